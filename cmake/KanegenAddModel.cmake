@@ -1,0 +1,1 @@
+# kanegen_add_model: written with the generator

@@ -1,0 +1,134 @@
+// kanegen: generate, simulate and evaluate Kane's equations of a model.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "cli/runner_build.hpp"
+#include "codegen/emitter.hpp"
+#include "model/model_error.hpp"
+#include "pipeline/pipeline.hpp"
+
+namespace {
+
+using kanegen::cli::BuildOptions;
+
+struct RunOptions {
+  std::string model;
+  std::vector<std::string> sets;
+  bool quiet = false;
+  std::vector<double> gravity;
+};
+
+void add_common(CLI::App* command, RunOptions& options) {
+  command->add_option("MODEL", options.model, "model file (.json or .urdf)")->required()->check(CLI::ExistingFile);
+  command->add_option("--gravity", options.gravity, "URDF only: gravity vector X,Y,Z in m/s^2 (default 0,0,-9.81)")
+      ->expected(3)
+      ->delimiter(',');
+  command->add_flag("--quiet", options.quiet, "no progress lines on stderr");
+}
+
+BuildOptions build_options(const RunOptions& options) {
+  BuildOptions b;
+  b.verbose = !options.quiet;
+  if (options.gravity.size() == 3) b.load.urdf_gravity = {options.gravity[0], options.gravity[1], options.gravity[2]};
+  return b;
+}
+
+void append_pairs(std::vector<std::string>& args, const char* flag, const std::vector<std::string>& pairs) {
+  for (const std::string& p : pairs) {
+    args.push_back(flag);
+    args.push_back(p);
+  }
+}
+
+int generate(const RunOptions& options, const std::string& out_dir) {
+  const BuildOptions b = build_options(options);
+  const kanegen::pipeline::GeneratedModel g = kanegen::pipeline::generate(options.model, b.load);
+  kanegen::codegen::write_files_atomically(out_dir, g.files);
+  if (!options.quiet) {
+    std::printf("%s: %d coordinates, %zu intermediates; load %.3f s, derive %.3f s, emit %.3f s\n", g.name.c_str(),
+                g.nq, g.intermediates, g.seconds.load, g.seconds.derive, g.seconds.emit);
+    for (const auto& [kernel, count] : g.operations) std::printf("  %-18s %8ld operations\n", kernel.c_str(), count);
+    for (const auto& [file, content] : g.files)
+      std::printf("  wrote %s\n", (std::filesystem::path(out_dir) / file).c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"kanegen " KANEGEN_VERSION
+               ": equations of motion by Kane's method, generated as C++ kernels.\n"
+               "Models are kanegen JSON (docs/model-format.md) or URDF files."};
+  app.set_version_flag("--version", "kanegen " KANEGEN_VERSION);
+  app.require_subcommand(1);
+
+  RunOptions gen_options;
+  std::string out_dir;
+  CLI::App* gen = app.add_subcommand("generate", "write the model's C++ kernels (header, source, runner) to a directory");
+  add_common(gen, gen_options);
+  gen->add_option("-o,--output", out_dir, "output directory (created if needed)")->required();
+
+  RunOptions sim_options;
+  std::string t_end, dt = "0.01", rtol = "1e-8", atol = "1e-10";
+  std::string integrator = "dopri5", csv;
+  std::vector<std::string> q0, u0;
+  bool stats = false;
+  CLI::App* sim = app.add_subcommand("simulate", "generate (cached), compile and integrate the model; write CSV");
+  add_common(sim, sim_options);
+  sim->add_option("--t-end", t_end, "end time in s")->required()->check(CLI::Number);
+  sim->add_option("--dt", dt, "output interval, and the step of rk4, in s")->capture_default_str()->check(CLI::PositiveNumber);
+  sim->add_option("--integrator", integrator, "rk4 (fixed step) or dopri5 (adaptive)")->capture_default_str()
+      ->check(CLI::IsMember({"rk4", "dopri5"}));
+  sim->add_option("--rtol", rtol, "dopri5 relative tolerance")->capture_default_str()->check(CLI::PositiveNumber);
+  sim->add_option("--atol", atol, "dopri5 absolute tolerance")->capture_default_str()->check(CLI::PositiveNumber);
+  sim->add_option("--set", sim_options.sets, "parameter value NAME=VALUE (repeatable)");
+  sim->add_option("--q0", q0, "initial coordinate NAME=VALUE (repeatable)");
+  sim->add_option("--u0", u0, "initial speed NAME=VALUE (repeatable)");
+  sim->add_option("-o,--output", csv, "CSV file (default: standard output)");
+  sim->add_flag("--stats", stats, "print integrator statistics on stderr");
+
+  RunOptions eval_options;
+  std::string q_values, u_values, time = "0";
+  CLI::App* eval = app.add_subcommand("eval", "print M, f, udot and the energies at one state, as JSON");
+  add_common(eval, eval_options);
+  eval->add_option("--q", q_values, "coordinates v1,v2,... (model order)")->required();
+  eval->add_option("--u", u_values, "speeds v1,v2,... (model order)")->required();
+  eval->add_option("--t", time, "time in s")->capture_default_str()->check(CLI::Number);
+  eval->add_option("--set", eval_options.sets, "parameter value NAME=VALUE (repeatable)");
+
+  CLI11_PARSE(app, argc, argv);
+
+  try {
+    if (*gen) return generate(gen_options, out_dir);
+    if (*sim) {
+      const std::string runner = kanegen::cli::build_runner(sim_options.model, build_options(sim_options));
+      std::vector<std::string> args{"simulate", "--t-end", t_end, "--dt", dt, "--integrator", integrator,
+                                    "--rtol", rtol, "--atol", atol};
+      append_pairs(args, "--set", sim_options.sets);
+      append_pairs(args, "--q0", q0);
+      append_pairs(args, "--u0", u0);
+      if (!csv.empty()) args.insert(args.end(), {"-o", csv});
+      if (stats) args.push_back("--stats");
+      return kanegen::cli::run_program(runner, args);
+    }
+    if (*eval) {
+      const std::string runner = kanegen::cli::build_runner(eval_options.model, build_options(eval_options));
+      std::vector<std::string> args{"eval", "--q", q_values, "--u", u_values, "--t", time};
+      append_pairs(args, "--set", eval_options.sets);
+      return kanegen::cli::run_program(runner, args);
+    }
+  } catch (const kanegen::model::ModelError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

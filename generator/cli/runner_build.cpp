@@ -1,0 +1,130 @@
+#include "cli/runner_build.hpp"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+#include <vector>
+
+#include "codegen/cpp_printer.hpp"
+#include "codegen/emitter.hpp"
+#include "pipeline/pipeline.hpp"
+
+namespace kanegen::embedded {
+extern const char* const model_hpp_template;
+extern const char* const model_cpp_template;
+extern const char* const runner_cpp_template;
+}  // namespace kanegen::embedded
+
+namespace kanegen::cli {
+namespace fs = std::filesystem;
+namespace {
+
+struct RuntimeLocation {
+  fs::path include_dir, library;
+};
+
+/// The runtime next to an installed kanegen (bin/../include, bin/../lib), else the build tree's.
+RuntimeLocation locate_runtime() {
+  std::error_code error;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", error);
+  if (!error) {
+    const fs::path prefix = exe.parent_path().parent_path();
+    for (const char* lib : {"lib", "lib64", "lib/x86_64-linux-gnu"}) {
+      RuntimeLocation installed{prefix / "include", prefix / lib / "libkanegen_runtime.a"};
+      if (fs::exists(installed.include_dir / "kanegen/runtime/driver.hpp") && fs::exists(installed.library))
+        return installed;
+    }
+  }
+  return {KANEGEN_RUNTIME_INCLUDE_DIR, KANEGEN_RUNTIME_LIBRARY};
+}
+
+std::string compiler() {
+  const char* cxx = std::getenv("KANEGEN_CXX");
+  if (!cxx || !*cxx) cxx = std::getenv("CXX");
+  return cxx && *cxx ? cxx : "c++";
+}
+
+fs::path cache_root() {
+  if (const char* dir = std::getenv("KANEGEN_CACHE_DIR"); dir && *dir) return dir;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return fs::path(xdg) / "kanegen";
+  if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".cache" / "kanegen";
+  return fs::temp_directory_path() / "kanegen-cache";
+}
+
+/// Everything that changes the runner: the model, the generator, the
+/// templates, the runtime (headers and library) and the compiler.
+std::string cache_key(const std::string& model_path, const RuntimeLocation& runtime, const BuildOptions& options) {
+  std::string bytes = pipeline::read_file(model_path);
+  for (double g : options.load.urdf_gravity) bytes += codegen::format_double(g) + ",";
+  bytes += KANEGEN_VERSION;
+  bytes += embedded::model_hpp_template;
+  bytes += embedded::model_cpp_template;
+  bytes += embedded::runner_cpp_template;
+  bytes += compiler();
+  for (const auto& entry : fs::recursive_directory_iterator(runtime.include_dir / "kanegen"))
+    if (entry.is_regular_file()) bytes += pipeline::read_file(entry.path().string());
+  bytes += pipeline::read_file(runtime.library.string());
+  return pipeline::digest(bytes);
+}
+
+}  // namespace
+
+int run_program(const std::string& program, const std::vector<std::string>& args) {
+  std::vector<char*> argv;
+  argv.push_back(const_cast<char*>(program.c_str()));
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  const pid_t pid = fork();
+  if (pid < 0) throw std::runtime_error("cannot start " + program);
+  if (pid == 0) {
+    execvp(program.c_str(), argv.data());
+    std::fprintf(stderr, "error: cannot run %s\n", program.c_str());
+    _exit(127);
+  }
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0) {
+  }
+  if (WIFEXITED(status)) return WEXITSTATUS(status);
+  return 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+}
+
+std::string build_runner(const std::string& model_path, const BuildOptions& options) {
+  const RuntimeLocation runtime = locate_runtime();
+  if (!fs::exists(runtime.library))
+    throw std::runtime_error(runtime.library.string() + ": the kanegen runtime library is missing; build or install kanegen");
+  const fs::path dir = cache_root() / cache_key(model_path, runtime, options);
+  const fs::path runner = dir / "runner";
+  if (fs::exists(runner)) return runner.string();
+
+  const auto start = std::chrono::steady_clock::now();
+  if (options.verbose) std::fprintf(stderr, "kanegen: generating %s ...\n", model_path.c_str());
+  const pipeline::GeneratedModel generated = pipeline::generate(model_path, options.load);
+  codegen::write_files_atomically(dir.string(), generated.files);
+
+  if (options.verbose)
+    std::fprintf(stderr, "kanegen: compiling %s (%ld operations in forward_dynamics) ...\n", generated.name.c_str(),
+                 generated.operations.at("forward_dynamics"));
+  // Compile to a temporary name and rename, so a concurrent or interrupted
+  // build never leaves a broken runner in the cache.
+  const fs::path temporary = dir / ("runner.tmp." + std::to_string(getpid()));
+  const std::vector<std::string> args{"-std=c++17", "-O2", "-I" + dir.string(), "-I" + runtime.include_dir.string(),
+                                      (dir / (generated.name + ".cpp")).string(),
+                                      (dir / (generated.name + "_runner.cpp")).string(), runtime.library.string(),
+                                      "-o", temporary.string()};
+  if (run_program(compiler(), args) != 0)
+    throw std::runtime_error((dir / (generated.name + ".cpp")).string() +
+                             ": the generated code did not compile (see the compiler's messages above); please "
+                             "report this as a kanegen bug");
+  fs::rename(temporary, runner);
+  if (options.verbose)
+    std::fprintf(stderr, "kanegen: ready in %.1f s (cached in %s)\n",
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), dir.c_str());
+  return runner.string();
+}
+
+}  // namespace kanegen::cli

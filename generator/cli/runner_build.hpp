@@ -1,0 +1,25 @@
+// Turns a model file into a compiled runner executable (the model's kernels
+// linked with the runtime driver), cached by a digest of everything that
+// goes into it, so repeated `simulate` and `eval` calls skip generation.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "model/load.hpp"
+
+namespace kanegen::cli {
+
+struct BuildOptions {
+  bool verbose = true;  ///< progress lines on stderr
+  model::LoadOptions load;
+};
+
+/// Returns the path of the runner for `model_path`, generating and compiling
+/// it if the cache has none. Throws model::ModelError or std::runtime_error.
+std::string build_runner(const std::string& model_path, const BuildOptions& options);
+
+/// Runs a program with arguments, waits, and returns its exit status.
+int run_program(const std::string& program, const std::vector<std::string>& args);
+
+}  // namespace kanegen::cli

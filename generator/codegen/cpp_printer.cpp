@@ -1,0 +1,205 @@
+#include "codegen/cpp_printer.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <map>
+
+namespace kanegen::codegen {
+
+std::string format_double(double v) {
+  char buffer[40];
+  for (int precision = 1; precision <= 17; ++precision) {
+    std::snprintf(buffer, sizeof buffer, "%.*g", precision, v);
+    if (std::strtod(buffer, nullptr) == v) break;
+  }
+  std::string s = buffer;
+  if (s.find_first_of(".einf") == std::string::npos) s += ".0";
+  return s;
+}
+
+namespace {
+
+bool is_leaf(const Node& n) { return n.op == Op::number || n.op == Op::input; }
+bool is_integer(double x) { return std::floor(x) == x && std::abs(x) < 64; }
+
+class Printer {
+ public:
+  Printer(const ExpressionGraph& graph, const std::string& indent, const std::string& prefix)
+      : graph_(graph), indent_(indent), prefix_(prefix) {}
+
+  PrintedKernel run(const std::vector<Assignment>& assignments) {
+    for (const Assignment& a : assignments) count_uses(a.node);
+    for (const Assignment& a : assignments) {
+      emit_temporaries(a.node);
+      out_.body += indent_ + a.target + " = " + text(a.node) + ";\n";
+    }
+    out_.temporaries = static_cast<int>(temps_.size());
+    return out_;
+  }
+
+ private:
+  const Node& node(int id) const { return graph_.node(id); }
+
+  // Counts references; a node first reached is costed once, as the emitted
+  // code evaluates it once (temporary or inlined at its single use).
+  void count_uses(int id) {
+    if (uses_[id]++ > 0) return;
+    const Node& n = node(id);
+    out_.operations += cost(n);
+    for (int a : n.args) count_uses(a);
+    // A power's base is repeated in the printed product: give it a name.
+    if (n.op == Op::power && !is_leaf(node(n.args[0]))) uses_[n.args[0]] += 1;
+  }
+
+  long cost(const Node& n) const {
+    const long k = static_cast<long>(n.args.size());
+    switch (n.op) {
+      case Op::number:
+      case Op::input: return 0;
+      case Op::add: return k - 1;
+      case Op::mul: {
+        long c = k - 1;
+        for (int a : n.args)
+          if (node(a).op == Op::number && std::abs(node(a).value) == 1.0) --c;
+        return c < 0 ? 0 : c;
+      }
+      case Op::power: {
+        if (!is_integer(n.value)) return 1;
+        const long e = std::labs(static_cast<long>(n.value));
+        return (e - 1) + (n.value < 0 ? 1 : 0);
+      }
+      default: return 1;
+    }
+  }
+
+  bool wants_temp(int id) const {
+    const Node& n = node(id);
+    return !is_leaf(n) && uses_.at(id) > 1;
+  }
+
+  void emit_temporaries(int id) {
+    if (temps_.count(id) || is_leaf(node(id))) return;
+    for (int a : node(id).args) emit_temporaries(a);
+    if (wants_temp(id)) {
+      const std::string name = prefix_ + std::to_string(temps_.size());
+      out_.body += indent_ + "const double " + name + " = " + expression(id) + ";\n";
+      temps_.emplace(id, name);
+    }
+  }
+
+  // The text of a node where it is used: its temporary's name if it has one.
+  std::string text(int id) const {
+    auto t = temps_.find(id);
+    if (t != temps_.end()) return t->second;
+    return expression(id);
+  }
+
+  // Text safe to use as a factor of a product.
+  std::string factor(int id) const {
+    const Node& n = node(id);
+    const std::string s = text(id);
+    if (temps_.count(id)) return s;
+    if (n.op == Op::add || n.op == Op::mul || (n.op == Op::number && n.value < 0) ||
+        (n.op == Op::power && n.value < 0))
+      return "(" + s + ")";
+    return s;
+  }
+
+  // A product split into sign, magnitude of the coefficient, and factors.
+  std::string product(const Node& n, bool& negative) const {
+    double coefficient = 1.0;
+    std::vector<std::string> numerator, denominator;
+    for (int a : n.args) {
+      const Node& f = node(a);
+      if (f.op == Op::number) {
+        coefficient *= f.value;
+      } else if (f.op == Op::power && is_integer(f.value) && f.value < 0 && !temps_.count(a)) {
+        denominator.push_back(repeated(f.args[0], static_cast<long>(-f.value)));
+      } else {
+        numerator.push_back(factor(a));
+      }
+    }
+    negative = coefficient < 0;
+    const double magnitude = std::abs(coefficient);
+    std::string s;
+    if (magnitude != 1.0 || numerator.empty()) s = format_double(magnitude);
+    for (const std::string& f : numerator) s += (s.empty() ? "" : "*") + f;
+    if (!denominator.empty()) {
+      std::string d;
+      for (const std::string& f : denominator) d += (d.empty() ? "" : "*") + f;
+      s += "/" + (denominator.size() > 1 || d.find('*') != std::string::npos ? "(" + d + ")" : d);
+    }
+    return s;
+  }
+
+  std::string repeated(int base, long times) const {
+    std::string b = factor(base), s = b;
+    for (long i = 1; i < times; ++i) s += "*" + b;
+    return s;
+  }
+
+  std::string call(const char* f, const Node& n) const { return std::string(f) + "(" + text(n.args[0]) + ")"; }
+
+  std::string expression(int id) const {
+    const Node& n = node(id);
+    switch (n.op) {
+      case Op::number: return format_double(n.value);
+      case Op::input: return n.name;
+      case Op::add: {
+        std::string s;
+        for (int a : n.args) {
+          const Node& term = node(a);
+          bool negative = false;
+          std::string t;
+          if (term.op == Op::mul && !temps_.count(a)) {
+            t = product(term, negative);
+          } else if (term.op == Op::number) {
+            negative = term.value < 0;
+            t = format_double(std::abs(term.value));
+          } else {
+            t = text(a);
+          }
+          if (s.empty())
+            s = negative ? "-" + t : t;
+          else
+            s += (negative ? " - " : " + ") + t;
+        }
+        return s;
+      }
+      case Op::mul: {
+        bool negative = false;
+        const std::string s = product(n, negative);
+        return negative ? "-" + s : s;
+      }
+      case Op::power: {
+        if (is_integer(n.value) && n.value > 0) return repeated(n.args[0], static_cast<long>(n.value));
+        if (is_integer(n.value)) return "1.0/(" + repeated(n.args[0], static_cast<long>(-n.value)) + ")";
+        return "std::pow(" + text(n.args[0]) + ", " + format_double(n.value) + ")";
+      }
+      case Op::sqrt: return call("std::sqrt", n);
+      case Op::sin: return call("std::sin", n);
+      case Op::cos: return call("std::cos", n);
+      case Op::tan: return call("std::tan", n);
+      case Op::exp: return call("std::exp", n);
+      case Op::log: return call("std::log", n);
+    }
+    return "";
+  }
+
+  const ExpressionGraph& graph_;
+  std::string indent_, prefix_;
+  std::map<int, int> uses_;
+  std::map<int, std::string> temps_;
+  PrintedKernel out_;
+};
+
+}  // namespace
+
+PrintedKernel print_kernel(const ExpressionGraph& graph, const std::vector<Assignment>& assignments,
+                           const std::string& indent, const std::string& temp_prefix) {
+  return Printer(graph, indent, temp_prefix).run(assignments);
+}
+
+}  // namespace kanegen::codegen

@@ -1,0 +1,33 @@
+// Prints a kernel (a set of assignments `target = node`) of the expression
+// graph as straight-line C++: nodes used more than once become `const double`
+// temporaries named by their position, the rest are inlined. The text
+// depends only on the graph's canonical structure, so it is byte-identical
+// from run to run.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "codegen/expression_graph.hpp"
+
+namespace kanegen::codegen {
+
+struct Assignment {
+  std::string target;  ///< e.g. "M[3]"
+  int node = -1;
+};
+
+struct PrintedKernel {
+  std::string body;     ///< statements, one per line, indented
+  long operations = 0;  ///< additions, multiplications, divisions and function calls
+  int temporaries = 0;
+};
+
+PrintedKernel print_kernel(const ExpressionGraph& graph, const std::vector<Assignment>& assignments,
+                           const std::string& indent = "  ", const std::string& temp_prefix = "x");
+
+/// Shortest decimal text that reads back as the same double, always with a
+/// '.' or an exponent so that C++ reads it as a double.
+std::string format_double(double v);
+
+}  // namespace kanegen::codegen

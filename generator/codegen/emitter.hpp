@@ -1,0 +1,32 @@
+// Emission: fills the templates with the printed kernels of a model and
+// writes <name>.hpp, <name>.cpp and <name>_runner.cpp atomically.
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "kane/equations.hpp"
+#include "model/model.hpp"
+#include "symbolic/program.hpp"
+#include "symbolic/variables.hpp"
+
+namespace kanegen::codegen {
+
+struct EmittedModel {
+  std::map<std::string, std::string> files;  ///< file name -> content
+  std::map<std::string, long> operations;    ///< kernel -> operation count
+};
+
+/// model_hash: a digest of the model file, quoted in the header comment.
+EmittedModel emit_model(const model::Model& model, const kane::Equations& equations,
+                        const symbolic::Variables& vars, const symbolic::Program& program,
+                        const std::string& model_hash);
+
+/// Replaces every {{KEY}} of `text`; throws std::logic_error on a key left over.
+std::string fill_template(const std::string& text, const std::map<std::string, std::string>& values);
+
+/// Writes each file to dir/name through a temporary file and a rename, so a
+/// failure never leaves a half-written file; creates dir if needed.
+void write_files_atomically(const std::string& dir, const std::map<std::string, std::string>& files);
+
+}  // namespace kanegen::codegen

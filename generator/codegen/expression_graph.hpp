@@ -1,0 +1,54 @@
+// The expression graph: GiNaC expressions (with the Program's intermediates
+// inlined) become one hash-consed DAG whose nodes are canonical, so equal
+// subexpressions anywhere in the model are one node (common subexpression
+// elimination) and the order of operands never depends on GiNaC's
+// run-to-run term order.
+#pragma once
+
+#include <ginac/ginac.h>
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "symbolic/program.hpp"
+#include "symbolic/variables.hpp"
+
+namespace kanegen::codegen {
+
+enum class Op { number, input, add, mul, power, sin, cos, tan, exp, log, sqrt };
+
+struct Node {
+  Op op = Op::number;
+  double value = 0.0;      ///< number: its value; power: the exponent
+  std::string name;        ///< input: C++ text ("q[0]", "p.m1")
+  std::vector<int> args;   ///< operands, in canonical order
+  std::uint64_t key = 0;   ///< structural hash, independent of GiNaC's order
+};
+
+class ExpressionGraph {
+ public:
+  ExpressionGraph(const symbolic::Variables& vars, const symbolic::Program& program)
+      : vars_(vars), program_(program) {}
+
+  /// Adds an expression; returns its node.
+  int add(const GiNaC::ex& e);
+  const Node& node(int id) const { return nodes_[id]; }
+  std::size_t size() const { return nodes_.size(); }
+
+ private:
+  int intern(Node node);
+  int number(double v);
+  int convert(const GiNaC::ex& e);
+  double fold(const Node& n) const;
+
+  const symbolic::Variables& vars_;
+  const symbolic::Program& program_;
+  std::vector<Node> nodes_;
+  std::map<std::tuple<int, std::uint64_t, std::string, std::vector<int>>, int> index_;
+  std::map<GiNaC::ex, int, GiNaC::ex_is_less> converted_;
+};
+
+}  // namespace kanegen::codegen

@@ -1,0 +1,34 @@
+// Kane's equations F_r + F*_r = 0 of a rigid tree, written as
+// M(q) u_dot = f(t, q, u, tau), with the energies and named outputs.
+#pragma once
+
+#include <ginac/ginac.h>
+
+#include <string>
+#include <vector>
+
+#include "model/model.hpp"
+#include "symbolic/program.hpp"
+#include "symbolic/variables.hpp"
+
+namespace kanegen::kane {
+
+struct Equations {
+  int nq = 0, nu = 0;
+  std::vector<GiNaC::ex> mass_matrix;       ///< nu*nu, row-major, symmetric
+  std::vector<GiNaC::ex> forcing;           ///< nu: gravity, velocity terms, springs, dampers, forces, tau
+  std::vector<GiNaC::ex> coordinate_rates;  ///< nq: q_dot as a function of u
+  GiNaC::ex kinetic_energy, potential_energy;
+  std::vector<GiNaC::ex> outputs;
+  std::vector<std::string> output_names;
+  std::vector<std::string> coordinate_names, speed_names, input_names;
+};
+
+/// Derives the equations: partial velocities of each body's centre of mass and
+/// partial angular velocities from the tree kinematics, then
+///   M_rs = sum_i m_i v_r.v_s + w_r.I_i w_s,
+///   f_r  = sum_i v_r.(m_i (g - a_i) + F_i) + w_r.(-I_i alpha_i - w_i x I_i w_i + T_i) + joint terms,
+/// where a_i, alpha_i are the accelerations with u_dot = 0.
+Equations derive_equations(const model::Model& model, const symbolic::Variables& vars, symbolic::Program& program);
+
+}  // namespace kanegen::kane

@@ -1,0 +1,159 @@
+#include "kinematics/tree_kinematics.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace kanegen::kinematics {
+using namespace kanegen::symbolic;  // the vector algebra and its operators
+namespace {
+
+using GiNaC::ex;
+
+/// Floating-point round-off of an rpy of pi/2 leaves 6e-17 where the exact
+/// matrix has 0; snapping keeps the sparsity that the generated code exploits.
+ex snap(const ex& e) {
+  if (!GiNaC::is_a<GiNaC::numeric>(e)) return e;
+  const double v = GiNaC::ex_to<GiNaC::numeric>(e).to_double();
+  for (int k : {-1, 0, 1})
+    if (std::abs(v - k) < 1e-15) return k;
+  return e;
+}
+
+Mat3 snapped(const Mat3& m) {
+  Mat3 r;
+  for (int i = 0; i < 9; ++i) r[i] = snap(m[i]);
+  return r;
+}
+
+}  // namespace
+
+Mat3 rotation_rpy(const ex& roll, const ex& pitch, const ex& yaw) {
+  const ex cr = GiNaC::cos(roll), sr = GiNaC::sin(roll);
+  const ex cp = GiNaC::cos(pitch), sp = GiNaC::sin(pitch);
+  const ex cy = GiNaC::cos(yaw), sy = GiNaC::sin(yaw);
+  const Mat3 rz{cy, -sy, 0, sy, cy, 0, 0, 0, 1};
+  const Mat3 ry{cp, 0, sp, 0, 1, 0, -sp, 0, cp};
+  const Mat3 rx{1, 0, 0, 0, cr, -sr, 0, sr, cr};
+  return snapped(mul(rz, mul(ry, rx)));
+}
+
+Mat3 rotation_about(const Vec3& a, const ex& angle) {
+  const ex c = GiNaC::cos(angle), s = GiNaC::sin(angle);
+  const Mat3 skew{0, -a[2], a[1], a[2], 0, -a[0], -a[1], a[0], 0};
+  Mat3 r;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) r[3 * i + j] = (i == j ? c : ex(0)) + s * skew[3 * i + j] + (1 - c) * a[i] * a[j];
+  return r;
+}
+
+TreeKinematics::TreeKinematics(const model::Model& model, const symbolic::Variables& vars,
+                               symbolic::Program& program)
+    : model_(model), program_(program), joints_(model.joints.size()) {
+  // Speeds are numbered in file order of the moving joints.
+  int speed = 0;
+  for (std::size_t k = 0; k < model.joints.size(); ++k)
+    if (model.joints[k].moves()) {
+      joints_[k].speed = speed++;
+      joint_of_speed_.push_back(static_cast<int>(k));
+    }
+
+  // Place bodies parents first: repeatedly take the joints whose parent is placed.
+  std::vector<bool> placed(model.joints.size(), false);
+  for (bool progress = true; progress;) {
+    progress = false;
+    for (std::size_t k = 0; k < model.joints.size(); ++k) {
+      const model::Joint& joint = model.joints[k];
+      const int parent = joint.parent == model.ground ? -1 : state_of(joint.parent);
+      if (placed[k] || (parent < 0 && joint.parent != model.ground)) continue;
+      placed[k] = progress = true;
+
+      BodyState b;
+      for (std::size_t i = 0; i < model.bodies.size(); ++i)
+        if (model.bodies[i].name == joint.child) b.body = static_cast<int>(i);
+      if (b.body < 0) throw std::logic_error("joint child not found: " + joint.child);
+      b.parent_state = parent;
+      b.joint = static_cast<int>(k);
+
+      BodyState ground;
+      ground.rotation = symbolic::identity_mat();
+      ground.origin = ground.omega = ground.velocity = ground.alpha_rest = ground.accel_rest = symbolic::zero_vec();
+      const BodyState& p = parent < 0 ? ground : bodies_[parent];
+      b.path = p.path;
+
+      const Vec3 xyz{vars.scalar(joint.origin_xyz[0]), vars.scalar(joint.origin_xyz[1]),
+                     vars.scalar(joint.origin_xyz[2])};
+      const Mat3 r_origin = rotation_rpy(vars.scalar(joint.origin_rpy[0]), vars.scalar(joint.origin_rpy[1]),
+                                         vars.scalar(joint.origin_rpy[2]));
+      const Mat3 r_joint = named(program, mul(p.rotation, r_origin));
+      JointFrame& frame = joints_[k];
+      frame.prismatic = joint.type == model::JointType::prismatic;
+      const Vec3 r_po = named(program, mul(p.rotation, xyz));  // parent origin -> joint origin
+      frame.origin = named(program, p.origin + r_po);
+      Vec3 axis_exact;
+      for (int i = 0; i < 3; ++i) axis_exact[i] = snap(symbolic::number(joint.axis[i]));
+      frame.axis = named(program, mul(r_joint, axis_exact));
+
+      Vec3 r = r_po;  // parent origin -> child origin
+      b.rotation = r_joint;
+      b.omega = p.omega;
+      b.alpha_rest = p.alpha_rest;
+      Vec3 relative_velocity = symbolic::zero_vec(), coriolis = symbolic::zero_vec();
+      if (joint.moves()) {
+        b.path.push_back(static_cast<int>(k));
+        const ex qk = vars.q[frame.speed], uk = vars.u[frame.speed];
+        if (frame.prismatic) {
+          r = named(program, r + qk * frame.axis);
+          relative_velocity = uk * frame.axis;
+          coriolis = 2 * uk * cross(p.omega, frame.axis);
+        } else {
+          b.rotation = named(program, mul(r_joint, rotation_about(axis_exact, qk)));
+          b.omega = named(program, p.omega + uk * frame.axis);
+          b.alpha_rest = named(program, p.alpha_rest + uk * cross(p.omega, frame.axis));
+        }
+      }
+      b.origin = named(program, p.origin + r);
+      b.velocity = named(program, p.velocity + cross(p.omega, r) + relative_velocity);
+      b.accel_rest = named(program, p.accel_rest + cross(p.alpha_rest, r) + cross(p.omega, cross(p.omega, r)) +
+                                        coriolis);
+      bodies_.push_back(std::move(b));
+    }
+  }
+}
+
+int TreeKinematics::state_of(const std::string& body_name) const {
+  for (std::size_t i = 0; i < bodies_.size(); ++i)
+    if (model_.bodies[bodies_[i].body].name == body_name) return static_cast<int>(i);
+  return -1;
+}
+
+Vec3 TreeKinematics::point(const BodyState& b, const Vec3& local) const {
+  return named(program_, b.origin + mul(b.rotation, local));
+}
+
+Vec3 TreeKinematics::point_velocity(const BodyState& b, const Vec3& p) const {
+  return named(program_, b.velocity + cross(b.omega, p - b.origin));
+}
+
+Vec3 TreeKinematics::point_accel_rest(const BodyState& b, const Vec3& p) const {
+  const Vec3 r = p - b.origin;
+  return named(program_, b.accel_rest + cross(b.alpha_rest, r) + cross(b.omega, cross(b.omega, r)));
+}
+
+Vec3 TreeKinematics::partial_velocity(const BodyState& b, const Vec3& p, int r) const {
+  const int k = joint_of_speed_.at(r);
+  bool on_path = false;
+  for (int j : b.path) on_path = on_path || j == k;
+  if (!on_path) return symbolic::zero_vec();
+  const JointFrame& frame = joints_[k];
+  if (frame.prismatic) return frame.axis;
+  return named(program_, cross(frame.axis, p - frame.origin));
+}
+
+Vec3 TreeKinematics::partial_angular_velocity(const BodyState& b, int r) const {
+  const int k = joint_of_speed_.at(r);
+  for (int j : b.path)
+    if (j == k) return joints_[k].prismatic ? symbolic::zero_vec() : joints_[k].axis;
+  return symbolic::zero_vec();
+}
+
+}  // namespace kanegen::kinematics

@@ -1,0 +1,66 @@
+#include "pipeline/pipeline.hpp"
+
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "codegen/emitter.hpp"
+#include "kane/equations.hpp"
+#include "symbolic/program.hpp"
+#include "symbolic/variables.hpp"
+
+namespace kanegen::pipeline {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+std::string digest(const std::string& bytes) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (unsigned char c : bytes) h = (h ^ c) * 0x100000001b3ULL;
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
+  return text;
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path + ": cannot open the file; check the path");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+GeneratedModel generate(const std::string& model_path, const model::LoadOptions& options) {
+  GeneratedModel out;
+  auto start = std::chrono::steady_clock::now();
+  const model::Model model = model::load_model(model_path, options);
+  const std::string hash = digest(read_file(model_path));
+  out.seconds.load = seconds_since(start);
+
+  start = std::chrono::steady_clock::now();
+  const symbolic::Variables vars(model);
+  symbolic::Program program;
+  const kane::Equations equations = kane::derive_equations(model, vars, program);
+  out.seconds.derive = seconds_since(start);
+
+  start = std::chrono::steady_clock::now();
+  codegen::EmittedModel emitted = codegen::emit_model(model, equations, vars, program, hash);
+  out.seconds.emit = seconds_since(start);
+
+  out.name = model.name;
+  out.files = std::move(emitted.files);
+  out.operations = std::move(emitted.operations);
+  out.intermediates = program.size();
+  out.nq = equations.nq;
+  out.nu = equations.nu;
+  return out;
+}
+
+}  // namespace kanegen::pipeline

@@ -1,0 +1,34 @@
+// The whole generator as one call: model file -> Model -> kinematics ->
+// Kane's equations -> expression graph -> emitted C++ files.
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "model/load.hpp"
+
+namespace kanegen::pipeline {
+
+struct StageTimes {
+  double load = 0, derive = 0, emit = 0;  ///< seconds
+};
+
+struct GeneratedModel {
+  std::string name;
+  std::map<std::string, std::string> files;  ///< file name -> content
+  std::map<std::string, long> operations;    ///< kernel -> operation count
+  std::size_t intermediates = 0;             ///< named intermediates of the derivation
+  int nq = 0, nu = 0;
+  StageTimes seconds;
+};
+
+/// Runs every stage on the model file. Throws model::ModelError for a bad
+/// model; the caller writes the files (see codegen::write_files_atomically).
+GeneratedModel generate(const std::string& model_path, const model::LoadOptions& options = {});
+
+/// Hex digest (64-bit FNV-1a) of a byte string; stable across machines.
+std::string digest(const std::string& bytes);
+/// The bytes of a file; throws std::runtime_error naming the file.
+std::string read_file(const std::string& path);
+
+}  // namespace kanegen::pipeline

@@ -1,0 +1,32 @@
+// A straight-line program under construction: every intermediate quantity of
+// the derivation (a rotation entry, an angular velocity component, ...) gets
+// its own symbol, so expressions stay small and the emitted code grows
+// polynomially with the number of bodies instead of exponentially.
+#pragma once
+
+#include <ginac/ginac.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace kanegen::symbolic {
+
+class Program {
+ public:
+  /// Names `value` by a fresh intermediate symbol and returns the symbol.
+  /// Numbers, symbols and zero pass through unchanged, which keeps the
+  /// sparsity of joint axes and offsets visible to later stages.
+  GiNaC::ex define(const GiNaC::ex& value);
+
+  /// The definition of an intermediate, or nullptr for an input symbol.
+  const GiNaC::ex* definition(const GiNaC::symbol& s) const;
+
+  std::size_t size() const { return definitions_.size(); }
+
+ private:
+  std::vector<GiNaC::symbol> symbols_;
+  std::map<GiNaC::symbol, GiNaC::ex, GiNaC::ex_is_less> definitions_;
+};
+
+}  // namespace kanegen::symbolic

@@ -1,0 +1,44 @@
+// What the runtime expects of a generated model. Every generated header
+// defines, in namespace kanegen_models::<model>, a `struct System` of this
+// shape; the integrators and the driver are templates over it, so the
+// runtime never depends on a particular model.
+//
+//   struct System {
+//     using Params = <model>::Params;            // plain struct, one double per parameter
+//     static constexpr int nq, nu, ntau, ny, np; // sizes (coordinates, speeds, inputs, outputs, parameters)
+//     static constexpr const char* name;         // the model's name
+//     static const char* const* coordinate_names();  // nq entries
+//     static const char* const* speed_names();       // nu entries
+//     static const char* const* input_names();       // ntau entries
+//     static const char* const* output_names();      // ny entries
+//     static const char* const* parameter_names();   // np entries
+//     static const double* q0();                     // nq initial coordinates
+//     static const double* u0();                     // nu initial speeds
+//     static bool set_parameter(Params& p, const char* name, double value);  // false if unknown
+//     static double get_parameter(const Params& p, int index);
+//     // M: nu*nu, row-major, symmetric
+//     static void mass_matrix(const Params& p, const double* q, double* M);
+//     // f: nu; M udot = f + (inputs), f includes gravity, velocity terms, springs, dampers, point forces, tau
+//     static void forcing(const Params& p, double t, const double* q, const double* u, const double* tau, double* f);
+//     // udot: nu; returns 0 on success, k > 0 if the k-th pivot of M's LDL^T was not positive
+//     static int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
+//                                 double* udot);
+//     static void coordinate_rates(const double* q, const double* u, double* qdot);  // kinematic equations
+//     static double kinetic_energy(const Params& p, const double* q, const double* u);
+//     static double potential_energy(const Params& p, const double* q);
+//     static void outputs(const Params& p, double t, const double* q, const double* u, double* y);  // ny
+//   };
+//
+// All generated functions are allocation-free and exception-free; arrays
+// with a size of zero are still valid pointers (sized 1 in the generated code).
+#pragma once
+
+namespace kanegen::runtime {
+
+/// The state vector of a System is x = [q (nq); u (nu)].
+template <class System>
+constexpr int state_size() {
+  return System::nq + System::nu;
+}
+
+}  // namespace kanegen::runtime
