@@ -1,1 +1,53 @@
-# kanegen_add_model: written with the generator
+# kanegen_add_model(<target> <model file> [NAME <model name>] [RUNNER])
+#
+# Generates the model's kernels at build time (again whenever the model file
+# or the kanegen generator changes) and makes <target> a static library with
+# them: include "<model name>.hpp" and call kanegen_models::<model name>::...
+# With RUNNER, also builds <target>_runner, the simulate/eval/info program.
+#
+# The model name is read from the file (JSON "name", URDF <robot name>, made
+# a C++ identifier as kanegen does); NAME overrides it if your file is unusual.
+function(kanegen_add_model target model)
+  cmake_parse_arguments(ARG "RUNNER" "NAME" "" ${ARGN})
+  get_filename_component(model_path ${model} ABSOLUTE)
+  if(NOT EXISTS ${model_path})
+    message(FATAL_ERROR "kanegen_add_model(${target}): model file ${model_path} does not exist")
+  endif()
+  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${model_path})
+  set(name ${ARG_NAME})
+  if(NOT name)
+    file(READ ${model_path} content)
+    if(model_path MATCHES "\\.json$")
+      string(JSON name ERROR_VARIABLE json_error GET "${content}" name)
+      if(json_error)
+        message(FATAL_ERROR "kanegen_add_model(${target}): ${model_path}: no top-level \"name\" (${json_error})")
+      endif()
+    else()
+      string(REGEX MATCH "<robot[^>]*name[ \t]*=[ \t]*[\"']([^\"']*)[\"']" match "${content}")
+      set(name ${CMAKE_MATCH_1})
+      string(REGEX REPLACE "[^A-Za-z0-9_]" "_" name "${name}")
+      if(name MATCHES "^[0-9]")
+        set(name "_${name}")
+      endif()
+    endif()
+  endif()
+  if(NOT name)
+    message(FATAL_ERROR "kanegen_add_model(${target}): cannot read the model name from ${model_path}; pass NAME")
+  endif()
+
+  set(out ${CMAKE_CURRENT_BINARY_DIR}/kanegen_generated/${target})
+  add_custom_command(
+    OUTPUT ${out}/${name}.hpp ${out}/${name}.cpp ${out}/${name}_runner.cpp
+    COMMAND ${KANEGEN_EXECUTABLE} generate ${model_path} -o ${out} --quiet
+    DEPENDS ${model_path} ${KANEGEN_EXECUTABLE}
+    COMMENT "kanegen: generating ${name} from ${model}"
+    VERBATIM)
+  add_library(${target} STATIC ${out}/${name}.cpp ${out}/${name}.hpp)
+  target_include_directories(${target} PUBLIC ${out})
+  target_link_libraries(${target} PUBLIC kanegen::runtime)
+  set_target_properties(${target} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  if(ARG_RUNNER)
+    add_executable(${target}_runner ${out}/${name}_runner.cpp)
+    target_link_libraries(${target}_runner PRIVATE ${target})
+  endif()
+endfunction()

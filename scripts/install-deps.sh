@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Installs the Debian packages kanegen needs to build, test and benchmark.
+# Run as root on Debian 12 (bookworm) or later.
+set -euo pipefail
+packages=(
+  g++ clang cmake make pkg-config git python3
+  libginac-dev libeigen3-dev nlohmann-json3-dev catch2 libcli11-dev
+  liburdfdom-dev libtinyxml2-dev libvalijson-dev
+  libmujoco-dev libbenchmark-dev
+)
+if [ "$(id -u)" -ne 0 ]; then
+  echo "install-deps.sh: run as root (apt-get needs it), e.g. sudo bash scripts/install-deps.sh" >&2
+  exit 1
+fi
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -q
+apt-get install -y -q --no-install-recommends "${packages[@]}"
