@@ -27,6 +27,21 @@ Mat3 world_inertia(symbolic::Program& program, const Mat3& rotation, const Mat3&
   return world;
 }
 
+/// Mass, first moment m c and second moment K = I + m (|c|^2 1 - c c^T) of a
+/// set of bodies about the world origin: enough to give the momentum of the
+/// set moving as one rigid body.
+struct SpatialInertia {
+  ex mass = 0;
+  Vec3 moment = zero_vec();
+  Mat3 second = Mat3{0, 0, 0, 0, 0, 0, 0, 0, 0};
+};
+
+/// Resultant force and moment about the world origin.
+struct Wrench {
+  Vec3 moment = zero_vec();
+  Vec3 force = zero_vec();
+};
+
 }  // namespace
 
 Equations derive_equations(const model::Model& model, const symbolic::Variables& vars, symbolic::Program& program) {
@@ -38,52 +53,88 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
   eq.forcing.assign(n, 0);
   eq.kinetic_energy = eq.potential_energy = 0;
   const Vec3 gravity = vec(vars, model.gravity);
+  const auto& states = tree.bodies();
 
-  for (const kinematics::BodyState& b : tree.bodies()) {
+  // Per body: its inertia about the world origin, and the applied-plus-inertia
+  // wrench (gravity, point forces, -m a_c, -I alpha - w x I w) about the origin.
+  std::vector<SpatialInertia> inertia(states.size());
+  std::vector<Wrench> wrench(states.size());
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    const kinematics::BodyState& b = states[i];
     const model::Body& body = model.bodies[b.body];
     const ex mass = vars.scalar(body.mass);
     const auto& in = body.inertia;
     const Mat3 local{vars.scalar(in[0]), vars.scalar(in[3]), vars.scalar(in[4]),
                      vars.scalar(in[3]), vars.scalar(in[1]), vars.scalar(in[5]),
                      vars.scalar(in[4]), vars.scalar(in[5]), vars.scalar(in[2])};
-    const Mat3 inertia = world_inertia(program, b.rotation, local);
+    const Mat3 central = world_inertia(program, b.rotation, local);
     const Vec3 com = tree.point(b, vec(vars, body.com));
     const Vec3 com_velocity = tree.point_velocity(b, com);
     const Vec3 com_accel = tree.point_accel_rest(b, com);
-    const Vec3 spin = named(program, mul(inertia, b.omega));  // I w
+    const Vec3 spin = named(program, mul(central, b.omega));  // I w
 
-    // Resultant applied-plus-inertia force at the centre of mass and torque.
     Vec3 force = mass * (gravity - com_accel);
-    Vec3 torque = symbolic::zero_vec() - mul(inertia, b.alpha_rest) - cross(b.omega, spin);
+    Vec3 torque = zero_vec() - mul(central, b.alpha_rest) - cross(b.omega, spin);
     for (const model::PointForce& pf : model.forces) {
       if (pf.body != body.name) continue;
-      const Vec3 local_force = vec(vars, pf.force);
-      const Vec3 f = pf.frame == model::ForceFrame::world ? local_force : mul(b.rotation, local_force);
+      const Vec3 given = vec(vars, pf.force);
+      const Vec3 f = pf.frame == model::ForceFrame::world ? given : mul(b.rotation, given);
       const Vec3 at = tree.point(b, vec(vars, pf.point));
       force = force + f;
       torque = torque + cross(at - com, f);
       if (pf.frame == model::ForceFrame::world) eq.potential_energy -= dot(f, at);
     }
     force = named(program, force);
-    torque = named(program, torque);
+    wrench[i] = {named(program, torque + cross(com, force)), force};
+
+    const Vec3 h = named(program, mass * com);
+    inertia[i].mass = mass;
+    inertia[i].moment = h;
+    for (int r = 0; r < 3; ++r)
+      for (int c = r; c < 3; ++c)
+        inertia[i].second[3 * r + c] = inertia[i].second[3 * c + r] =
+            program.define(central[3 * r + c] + (r == c ? dot(com, h) : ex(0)) - com[r] * h[c]);
 
     eq.kinetic_energy += (mass * dot(com_velocity, com_velocity) + dot(b.omega, spin)) / 2;
     eq.potential_energy -= mass * dot(gravity, com);
+  }
 
-    // Partial velocities for the speeds on this body's path.
-    std::vector<int> speeds;
-    std::vector<Vec3> v, w, mv, iw;
+  // Composite bodies: each subtree's inertia and wrench, leaves first.
+  for (std::size_t i = states.size(); i-- > 0;) {
+    SpatialInertia& c = inertia[i];
+    c.mass = program.define(c.mass);
+    c.moment = named(program, c.moment);
+    c.second = named(program, c.second);
+    wrench[i] = {named(program, wrench[i].moment), named(program, wrench[i].force)};
+    const int parent = states[i].parent_state;
+    if (parent < 0) continue;
+    inertia[parent].mass += c.mass;
+    inertia[parent].moment = inertia[parent].moment + c.moment;
+    for (int k = 0; k < 9; ++k) inertia[parent].second[k] += c.second[k];
+    wrench[parent].moment = wrench[parent].moment + wrench[i].moment;
+    wrench[parent].force = wrench[parent].force + wrench[i].force;
+  }
+
+  // Kane's equations with the sums over bodies grouped by subtree. With
+  // (w_r, v_r) the partial velocities of speed r at the world origin, the
+  // partial velocity of a point p is v_r + w_r x p, so
+  //   f_r  = sum_i (v_r + w_r x c_i).F_i + w_r.T_i = w_r.N_sub(r) + v_r.F_sub(r),
+  //   M_rs = sum_i m_i v_r^i.v_s^i + w_r.I_i w_s = w_r.L_s + v_r.P_s,
+  // where (L_s, P_s) is the momentum of the subtree of joint s moving with
+  // u_s = 1 alone (r an ancestor of s or s itself; zero otherwise).
+  std::vector<Vec3> w(n), v(n);
+  for (int r = 0; r < n; ++r) tree.partial_velocities(r, w[r], v[r]);
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    const kinematics::BodyState& b = states[i];
+    if (!model.joints[b.joint].moves()) continue;
+    const int s = tree.joints()[b.joint].speed;
+    const SpatialInertia& c = inertia[i];
+    const Vec3 angular = named(program, mul(c.second, w[s]) + cross(c.moment, v[s]));
+    const Vec3 linear = named(program, c.mass * v[s] + cross(w[s], c.moment));
+    eq.forcing[s] = dot(w[s], wrench[i].moment) + dot(v[s], wrench[i].force);
     for (int k : b.path) {
       const int r = tree.joints()[k].speed;
-      speeds.push_back(r);
-      v.push_back(tree.partial_velocity(b, com, r));
-      w.push_back(tree.partial_angular_velocity(b, r));
-      mv.push_back(named(program, mass * v.back()));
-      iw.push_back(named(program, mul(inertia, w.back())));
-    }
-    for (std::size_t a = 0; a < speeds.size(); ++a) {
-      eq.forcing[speeds[a]] += dot(v[a], force) + dot(w[a], torque);
-      for (std::size_t c = 0; c <= a; ++c) eq.mass_matrix[speeds[a] * n + speeds[c]] += dot(mv[a], v[c]) + dot(w[a], iw[c]);
+      eq.mass_matrix[s * n + r] = eq.mass_matrix[r * n + s] = dot(w[r], angular) + dot(v[r], linear);
     }
   }
 
@@ -101,8 +152,6 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
     eq.speed_names.push_back(joint.name + "_dot");
     eq.input_names.push_back(joint.name + "_tau");
   }
-  for (int r = 0; r < n; ++r)
-    for (int s = r + 1; s < n; ++s) eq.mass_matrix[r * n + s] = eq.mass_matrix[s * n + r];
 
   for (const model::Output& out : model.outputs) {
     if (out.kind == model::OutputKind::point_position) {

@@ -24,11 +24,11 @@ struct Equations {
   std::vector<std::string> coordinate_names, speed_names, input_names;
 };
 
-/// Derives the equations: partial velocities of each body's centre of mass and
-/// partial angular velocities from the tree kinematics, then
+/// Derives the equations from the partial velocities v_r, w_r of the tree:
 ///   M_rs = sum_i m_i v_r.v_s + w_r.I_i w_s,
 ///   f_r  = sum_i v_r.(m_i (g - a_i) + F_i) + w_r.(-I_i alpha_i - w_i x I_i w_i + T_i) + joint terms,
-/// where a_i, alpha_i are the accelerations with u_dot = 0.
+/// (v_r at each centre of mass; a_i, alpha_i the accelerations with u_dot = 0),
+/// with the sums over bodies grouped by subtree so that the cost is O(n^2).
 Equations derive_equations(const model::Model& model, const symbolic::Variables& vars, symbolic::Program& program);
 
 }  // namespace kanegen::kane

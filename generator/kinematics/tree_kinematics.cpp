@@ -139,21 +139,15 @@ Vec3 TreeKinematics::point_accel_rest(const BodyState& b, const Vec3& p) const {
   return named(program_, b.accel_rest + cross(b.alpha_rest, r) + cross(b.omega, cross(b.omega, r)));
 }
 
-Vec3 TreeKinematics::partial_velocity(const BodyState& b, const Vec3& p, int r) const {
-  const int k = joint_of_speed_.at(r);
-  bool on_path = false;
-  for (int j : b.path) on_path = on_path || j == k;
-  if (!on_path) return symbolic::zero_vec();
-  const JointFrame& frame = joints_[k];
-  if (frame.prismatic) return frame.axis;
-  return named(program_, cross(frame.axis, p - frame.origin));
-}
-
-Vec3 TreeKinematics::partial_angular_velocity(const BodyState& b, int r) const {
-  const int k = joint_of_speed_.at(r);
-  for (int j : b.path)
-    if (j == k) return joints_[k].prismatic ? symbolic::zero_vec() : joints_[k].axis;
-  return symbolic::zero_vec();
+void TreeKinematics::partial_velocities(int r, Vec3& w_r, Vec3& v_r) const {
+  const JointFrame& frame = joints_[joint_of_speed_.at(r)];
+  if (frame.prismatic) {
+    w_r = zero_vec();
+    v_r = frame.axis;
+  } else {
+    w_r = frame.axis;
+    v_r = named(program_, cross(frame.origin, frame.axis));
+  }
 }
 
 }  // namespace kanegen::kinematics

@@ -53,10 +53,12 @@ class TreeKinematics {
   /// Velocity and rest acceleration of a point fixed in the body at world position p.
   Vec3 point_velocity(const BodyState& b, const Vec3& p) const;
   Vec3 point_accel_rest(const BodyState& b, const Vec3& p) const;
-  /// Partial velocity of a point of body b at world position p with respect
-  /// to speed r, and the partial angular velocity (zero off b's path).
-  Vec3 partial_velocity(const BodyState& b, const Vec3& p, int r) const;
-  Vec3 partial_angular_velocity(const BodyState& b, int r) const;
+  /// The partial velocities of speed r: the partial angular velocity w_r and
+  /// the partial velocity v_r of the body point passing the world origin, so
+  /// that the partial velocity of any point p of a body on r's subtree is
+  /// v_r + w_r x p (and zero off the subtree). Revolute: (a_k, o_k x a_k);
+  /// prismatic: (0, a_k).
+  void partial_velocities(int r, Vec3& w_r, Vec3& v_r) const;
 
  private:
   const model::Model& model_;
