@@ -1,5 +1,7 @@
 #include "codegen/emitter.hpp"
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -174,7 +176,7 @@ void write_files_atomically(const std::string& dir, const std::map<std::string, 
   std::vector<std::pair<fs::path, fs::path>> staged;
   for (const auto& [name, content] : files) {
     const fs::path target = fs::path(dir) / name;
-    const fs::path temporary = fs::path(dir) / ("." + name + ".tmp");
+    const fs::path temporary = fs::path(dir) / ("." + name + "." + std::to_string(::getpid()) + ".tmp");
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     out << content;
     out.close();

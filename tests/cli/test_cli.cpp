@@ -1,0 +1,166 @@
+// The kanegen command line as a user runs it: help, generate, eval, simulate,
+// and bad models. Expected values are analytic (simple pendulum).
+#define CATCH_CONFIG_MAIN
+#include <catch2/catch.hpp>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+  int status = -1;
+  std::string out, err;
+};
+
+fs::path scratch() {
+  static const fs::path dir = [] {
+    // One directory per process (ctest runs test cases in parallel processes).
+    fs::path d = fs::path(KANEGEN_SCRATCH_DIR) / std::to_string(::getpid());
+    fs::create_directories(d);
+    return d;
+  }();
+  return dir;
+}
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// Runs kanegen with the given argument text (shell syntax), with a private runner cache.
+Result kanegen(const std::string& args) {
+  const fs::path out = scratch() / "stdout.txt", err = scratch() / "stderr.txt";
+  const std::string command = "KANEGEN_CACHE_DIR='" KANEGEN_SCRATCH_DIR "/cache" + "' '" KANEGEN_EXE "' " + args +
+                              " >'" + out.string() + "' 2>'" + err.string() + "'";
+  const int raw = std::system(command.c_str());
+  Result r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+std::string model(const std::string& name) { return std::string(KANEGEN_MODELS_DIR) + "/" + name; }
+std::string bad(const std::string& name) { return std::string(KANEGEN_BAD_MODELS_DIR) + "/" + name; }
+
+}  // namespace
+
+TEST_CASE("help is available for every subcommand", "[cli]") {
+  const Result top = kanegen("--help");
+  CHECK(top.status == 0);
+  for (const char* sub : {"generate", "simulate", "eval"}) {
+    CHECK(top.out.find(sub) != std::string::npos);
+    const Result r = kanegen(std::string(sub) + " --help");
+    CHECK(r.status == 0);
+    CHECK(r.out.find("MODEL") != std::string::npos);
+  }
+  CHECK(kanegen("").status != 0);
+  CHECK(kanegen("frobnicate").status != 0);
+}
+
+TEST_CASE("generate writes a header, a source and a runner", "[cli]") {
+  const fs::path dir = scratch() / "gen";
+  const Result r = kanegen("generate " + model("double_pendulum.json") + " -o " + dir.string());
+  REQUIRE(r.status == 0);
+  CHECK(r.out.find("operations") != std::string::npos);
+  for (const char* f : {"double_pendulum.hpp", "double_pendulum.cpp", "double_pendulum_runner.cpp"})
+    CHECK(fs::exists(dir / f));
+  CHECK(slurp(dir / "double_pendulum.hpp").find("struct Params") != std::string::npos);
+}
+
+TEST_CASE("eval of the simple pendulum matches the closed form", "[cli]") {
+  const double q = 0.7, u = 1.3, m = 1.0, l = 1.0, g = 9.81;
+  const Result r = kanegen("eval " + model("simple_pendulum.json") + " --q 0.7 --u 1.3 --quiet");
+  REQUIRE(r.status == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  CHECK(j["mass_matrix"][0][0].get<double>() == Approx(m * l * l).epsilon(1e-14));
+  CHECK(j["forcing"][0].get<double>() == Approx(-m * g * l * std::sin(q)).epsilon(1e-14));
+  CHECK(j["udot"][0].get<double>() == Approx(-g / l * std::sin(q)).epsilon(1e-14));
+  CHECK(j["kinetic_energy"].get<double>() == Approx(0.5 * m * l * l * u * u).epsilon(1e-14));
+  CHECK(j["potential_energy"].get<double>() == Approx(-m * g * l * std::cos(q)).epsilon(1e-14));
+
+  // Parameters are symbolic in the kernels: --set changes them at run time.
+  const Result r2 = kanegen("eval " + model("simple_pendulum.json") + " --q 0.7 --u 0 --set l=2 --set m=3 --quiet");
+  REQUIRE(r2.status == 0);
+  const auto j2 = nlohmann::json::parse(r2.out);
+  CHECK(j2["mass_matrix"][0][0].get<double>() == Approx(3.0 * 4.0).epsilon(1e-14));
+  CHECK(j2["udot"][0].get<double>() == Approx(-g / 2.0 * std::sin(q)).epsilon(1e-14));
+}
+
+TEST_CASE("eval works on a URDF model and M udot = f", "[cli]") {
+  const Result r = kanegen("eval " + model("arm7.urdf") + " --q 0.1,0.2,0.3,0.4,0.5,0.6,0.7 --u 1,-1,1,-1,1,-1,1 --quiet");
+  REQUIRE(r.status == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  REQUIRE(j["mass_matrix"].size() == 7);
+  for (int i = 0; i < 7; ++i) {
+    double lhs = 0;
+    for (int k = 0; k < 7; ++k) lhs += j["mass_matrix"][i][k].get<double>() * j["udot"][k].get<double>();
+    CHECK(lhs == Approx(j["forcing"][i].get<double>()).margin(1e-9));
+  }
+}
+
+TEST_CASE("simulate writes the CSV with the documented header", "[cli]") {
+  const fs::path csv = scratch() / "pendulum.csv";
+  const Result r = kanegen("simulate " + model("simple_pendulum.json") + " --t-end 1 --dt 0.1 --quiet -o " + csv.string());
+  REQUIRE(r.status == 0);
+  std::istringstream lines(slurp(csv));
+  std::string header, line;
+  std::getline(lines, header);
+  CHECK(header == "t,pivot,pivot_dot,bob.x,bob.y,bob.z,angle");
+  int rows = 0;
+  double last_t = -1;
+  while (std::getline(lines, line)) {
+    ++rows;
+    last_t = std::stod(line.substr(0, line.find(',')));
+  }
+  CHECK(rows == 11);
+  CHECK(last_t == Approx(1.0).margin(1e-12));
+
+  // Without -o the CSV goes to standard output; rk4 is available.
+  const Result s = kanegen("simulate " + model("simple_pendulum.json") + " --t-end 0.05 --dt 0.01 --integrator rk4 --quiet");
+  REQUIRE(s.status == 0);
+  CHECK(s.out.rfind("t,pivot,pivot_dot", 0) == 0);
+}
+
+TEST_CASE("bad models end in one clear error and no output", "[cli]") {
+  const fs::path dir = scratch() / "bad_out";
+  fs::remove_all(dir);
+  for (const char* name : {"malformed.json", "unknown_key.json", "negative_mass.json", "cycle.json",
+                           "expression_unknown_name.json", "malformed.urdf", "zero_axis.urdf"}) {
+    INFO(name);
+    const Result r = kanegen("generate " + bad(name) + " -o " + dir.string());
+    CHECK(r.status != 0);
+    CHECK(r.err.rfind("error: ", 0) == 0);
+    CHECK(r.err.find(name) != std::string::npos);
+    CHECK(!fs::exists(dir));
+  }
+  const Result missing = kanegen("generate /nonexistent/model.json -o " + dir.string());
+  CHECK(missing.status != 0);
+  CHECK(missing.err.find("model.json") != std::string::npos);
+}
+
+TEST_CASE("a failed regeneration leaves the previous files intact", "[cli]") {
+  const fs::path dir = scratch() / "keep";
+  REQUIRE(kanegen("generate " + model("simple_pendulum.json") + " -o " + dir.string() + " --quiet").status == 0);
+  const std::string before = slurp(dir / "simple_pendulum.cpp");
+  // A model with the same name but an error: nothing may be written.
+  const fs::path broken = scratch() / "simple_pendulum_broken.json";
+  std::string text = slurp(model("simple_pendulum.json"));
+  text.replace(text.find("\"mass\": \"m\""), 11, "\"mass\": \"m +\"");
+  std::ofstream(broken) << text;
+  CHECK(kanegen("generate " + broken.string() + " -o " + dir.string()).status != 0);
+  CHECK(slurp(dir / "simple_pendulum.cpp") == before);
+}

@@ -1,0 +1,11 @@
+# The command line, run as a user would, in a private runner cache.
+find_package(nlohmann_json REQUIRED)
+add_executable(test_cli ${CMAKE_CURRENT_LIST_DIR}/test_cli.cpp)
+target_compile_options(test_cli PRIVATE ${KANEGEN_WARNINGS})
+target_compile_definitions(test_cli PRIVATE KANEGEN_EXE="$<TARGET_FILE:kanegen>"
+                                            KANEGEN_MODELS_DIR="${PROJECT_SOURCE_DIR}/models"
+                                            KANEGEN_BAD_MODELS_DIR="${PROJECT_SOURCE_DIR}/tests/data/bad_models"
+                                            KANEGEN_SCRATCH_DIR="${CMAKE_CURRENT_BINARY_DIR}/cli_scratch")
+target_link_libraries(test_cli PRIVATE Catch2::Catch2 nlohmann_json::nlohmann_json)
+add_dependencies(test_cli kanegen kanegen_runtime)
+catch_discover_tests(test_cli TEST_PREFIX "cli: ")
