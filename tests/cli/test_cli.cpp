@@ -43,7 +43,7 @@ std::string slurp(const fs::path& path) {
 /// Runs kanegen with the given argument text (shell syntax), with a private runner cache.
 Result kanegen(const std::string& args) {
   const fs::path out = scratch() / "stdout.txt", err = scratch() / "stderr.txt";
-  const std::string command = "KANEGEN_CACHE_DIR='" KANEGEN_SCRATCH_DIR "/cache" + "' '" KANEGEN_EXE "' " + args +
+  const std::string command = std::string("KANEGEN_CACHE_DIR='" KANEGEN_SCRATCH_DIR "/cache' '" KANEGEN_EXE "' ") + args +
                               " >'" + out.string() + "' 2>'" + err.string() + "'";
   const int raw = std::system(command.c_str());
   Result r;
