@@ -1,0 +1,83 @@
+// A generated System behind a virtual interface, so that everything in the
+// runner that does not depend on the particular model is compiled once in
+// the runtime library instead of in every model's executable.
+#pragma once
+
+#include "kanegen/runtime/system.hpp"
+
+namespace kanegen::runtime {
+
+/// Sizes, names and initial state of a model (pointers into generated code).
+struct ModelInfo {
+  const char* name;
+  int nq, nu, ntau, ny, np;
+  const char* const* coordinate_names;
+  const char* const* speed_names;
+  const char* const* input_names;
+  const char* const* output_names;
+  const char* const* parameter_names;
+  const double* q0;
+  const double* u0;
+};
+
+/// A model together with one set of parameter values. The functions are
+/// those of system.hpp with the parameters bound.
+class Model {
+ public:
+  explicit Model(const ModelInfo& info) : info_(info) {}
+  virtual ~Model() = default;
+  const ModelInfo& info() const { return info_; }
+
+  virtual bool set_parameter(const char* name, double value) = 0;  ///< false if unknown
+  virtual double parameter(int index) const = 0;
+  virtual void mass_matrix(const double* q, double* M) const = 0;
+  virtual void forcing(double t, const double* q, const double* u, const double* tau, double* f) const = 0;
+  /// 0 on success, k > 0 if the k-th pivot of the mass matrix was not positive.
+  virtual int forward_dynamics(double t, const double* q, const double* u, const double* tau,
+                               double* udot) const = 0;
+  virtual void coordinate_rates(const double* q, const double* u, double* qdot) const = 0;
+  virtual double kinetic_energy(const double* q, const double* u) const = 0;
+  virtual double potential_energy(const double* q) const = 0;
+  virtual void outputs(double t, const double* q, const double* u, double* y) const = 0;
+
+ private:
+  ModelInfo info_;
+};
+
+/// The Model of a generated System, with its default parameters.
+template <class System>
+class SystemModel final : public Model {
+ public:
+  SystemModel()
+      : Model(ModelInfo{System::name, System::nq, System::nu, System::ntau, System::ny, System::np,
+                        System::coordinate_names(), System::speed_names(), System::input_names(),
+                        System::output_names(), System::parameter_names(), System::q0(), System::u0()}) {}
+
+  bool set_parameter(const char* name, double value) override {
+    return System::set_parameter(params_, name, value);
+  }
+  double parameter(int index) const override { return System::get_parameter(params_, index); }
+  void mass_matrix(const double* q, double* M) const override { System::mass_matrix(params_, q, M); }
+  void forcing(double t, const double* q, const double* u, const double* tau, double* f) const override {
+    System::forcing(params_, t, q, u, tau, f);
+  }
+  int forward_dynamics(double t, const double* q, const double* u, const double* tau,
+                       double* udot) const override {
+    return System::forward_dynamics(params_, t, q, u, tau, udot);
+  }
+  void coordinate_rates(const double* q, const double* u, double* qdot) const override {
+    System::coordinate_rates(q, u, qdot);
+  }
+  double kinetic_energy(const double* q, const double* u) const override {
+    return System::kinetic_energy(params_, q, u);
+  }
+  double potential_energy(const double* q) const override { return System::potential_energy(params_, q); }
+  void outputs(double t, const double* q, const double* u, double* y) const override {
+    System::outputs(params_, t, q, u, y);
+  }
+
+ private:
+  typename System::Params params_{};
+};
+
+}  // namespace kanegen::runtime
