@@ -63,25 +63,20 @@ void mass_matrix(const Params& p, const double* q, double* M) {
   (void)p;
   (void)q;
   (void)M;
-  const double x0 = std::cos(q[0]);
-  const double x1 = std::sin(q[1]);
+  const double x0 = std::sin(q[0]);
+  const double x1 = std::cos(q[0]);
   const double x2 = std::cos(q[1]);
-  const double x3 = std::sin(q[0]);
-  const double x4 = -x3;
-  const double x5 = p.l1*x4;
-  const double x6 = 0.5*p.l2*(-x0*x1 + x2*x4) + x5;
-  const double x7 = p.m2*x6;
-  const double x8 = x0*p.l1;
-  const double x9 = 0.5*p.l2*(x0*x2 - x3*x1) + x8;
-  const double x10 = p.m2*x9;
-  const double x11 = x7*x6 + 0.08333333333333333*p.m2*p.l2*p.l2 + x9*x10;
-  const double x12 = 0.5*p.l1*x4;
-  const double x13 = 0.5*x0*p.l1;
-  M[0] = x11 + x12*(p.m1*x12) + (p.m1*x13)*x13 + 0.08333333333333333*p.m1*p.l1*p.l1;
-  const double x14 = -x8*x10 + x11 - x7*x5;
-  M[1] = x14;
-  M[2] = x14;
-  M[3] = -x5*(x7 - p.m2*x5) + x14 + x8*(-x10 + p.m2*x8);
+  const double x3 = std::sin(q[1]);
+  const double x4 = x1*p.l1;
+  const double x5 = 0.5*(p.l2*(x1*x2 - (x0*x3))) + x4;
+  const double x6 = p.m2*x5;
+  const double x7 = 0.5*(p.l2*(x1*x3 + x0*x2)) + p.l1*x0;
+  const double x8 = 0.08333333333333333*(p.m2*p.l2*p.l2) + x5*x6 + p.m2*x7*x7;
+  M[0] = 0.25*(p.m1*p.l1*p.l1*x0*x0) + 0.08333333333333333*(p.m1*p.l1*p.l1) + 0.25*(p.m1*x1*x1*p.l1*p.l1) + x8;
+  const double x9 = -(p.m2*p.l1*x0*x7 + x4*x6 - x8);
+  M[1] = x9;
+  M[2] = x9;
+  M[3] = x9 + x4*(p.m2*x4 - x6) - (p.l1*x0*(-(p.m2*p.l1*x0) + p.m2*x7));
 }
 
 void forcing(const Params& p, double t, const double* q, const double* u, const double* tau, double* f) {
@@ -91,25 +86,23 @@ void forcing(const Params& p, double t, const double* q, const double* u, const 
   (void)u;
   (void)tau;
   (void)f;
-  const double x0 = u[1] + u[0];
-  const double x1 = x0*x0;
-  const double x2 = std::cos(q[0]);
-  const double x3 = std::sin(q[1]);
+  const double x0 = std::cos(q[0]);
+  const double x1 = std::sin(q[0]);
+  const double x2 = u[0]*u[0];
+  const double x3 = p.l1*x1*x2;
   const double x4 = std::cos(q[1]);
-  const double x5 = std::sin(q[0]);
-  const double x6 = -x5;
-  const double x7 = p.l1*x6;
-  const double x8 = 0.5*p.l2*(-x2*x3 + x4*x6) + x7;
-  const double x9 = u[0]*u[0];
-  const double x10 = -p.m2*(x1*(-x8 + x7) - x9*x7 + 9.81);
-  const double x11 = x2*p.l1;
-  const double x12 = 0.5*p.l2*(x2*x4 - x5*x3) + x11;
-  const double x13 = -p.m2*(-x1*(-x11 + x12) - x11*x9);
-  const double x14 = -x10*x12 + x13*x8;
-  const double x15 = 0.5*p.l1*x6;
-  const double x16 = 0.5*x2*p.l1;
-  f[0] = tau[0] + x14 + x15*(-p.m1*(-x9*x16)) - (-p.m1*(-x15*x9 + 9.81))*x16 - u[0]*p.c1;
-  f[1] = tau[1] + x14 - u[1]*p.c2 + x10*x11 - x7*x13;
+  const double x5 = std::sin(q[1]);
+  const double x6 = x0*p.l1;
+  const double x7 = 0.5*(p.l2*(x0*x4 - (x1*x5))) + x6;
+  const double x8 = u[1] + u[0];
+  const double x9 = x8*x8;
+  const double x10 = p.m2*((x7 - x6)*x9 + x6*x2);
+  const double x11 = p.l1*x1;
+  const double x12 = 0.5*(p.l2*(x0*x5 + x1*x4)) + x11;
+  const double x13 = -(x9*(-x12 + x11)) + x3 + 9.81;
+  const double x14 = x10*x12 - (p.m2*x7*x13);
+  f[0] = -(u[0]*p.c1 - tau[0] + -(-0.25*(p.m1*x0*p.l1*p.l1*x1*x2) + 0.5*(p.m1*x0*(9.81 + 0.5*x3)*p.l1)) + x14);
+  f[1] = tau[1] - (u[1]*p.c2) - x14 - (p.m2*x13*x6) + p.l1*x1*x10;
 }
 
 namespace {
@@ -146,32 +139,29 @@ int forward_dynamics(const Params& p, double t, const double* q, const double* u
   (void)u;
   (void)tau;
   double M[4];
-  const double x0 = std::cos(q[0]);
-  const double x1 = std::sin(q[1]);
+  const double x0 = std::sin(q[0]);
+  const double x1 = std::cos(q[0]);
   const double x2 = std::cos(q[1]);
-  const double x3 = std::sin(q[0]);
-  const double x4 = -x3;
-  const double x5 = p.l1*x4;
-  const double x6 = 0.5*p.l2*(-x0*x1 + x2*x4) + x5;
-  const double x7 = p.m2*x6;
-  const double x8 = x0*p.l1;
-  const double x9 = 0.5*p.l2*(x0*x2 - x3*x1) + x8;
-  const double x10 = p.m2*x9;
-  const double x11 = x7*x6 + 0.08333333333333333*p.m2*p.l2*p.l2 + x9*x10;
-  const double x12 = 0.5*p.l1*x4;
-  const double x13 = 0.5*x0*p.l1;
-  M[0] = x11 + x12*(p.m1*x12) + (p.m1*x13)*x13 + 0.08333333333333333*p.m1*p.l1*p.l1;
-  const double x14 = -x8*x10 + x11 - x7*x5;
-  M[2] = x14;
-  M[3] = -x5*(x7 - p.m2*x5) + x14 + x8*(-x10 + p.m2*x8);
-  const double x15 = u[1] + u[0];
-  const double x16 = x15*x15;
-  const double x17 = u[0]*u[0];
-  const double x18 = -p.m2*(x16*(-x6 + x5) - x17*x5 + 9.81);
-  const double x19 = -p.m2*(-x16*(-x8 + x9) - x8*x17);
-  const double x20 = -x18*x9 + x19*x6;
-  udot[0] = tau[0] + x20 + x12*(-p.m1*(-x17*x13)) - (-p.m1*(-x12*x17 + 9.81))*x13 - u[0]*p.c1;
-  udot[1] = tau[1] + x20 - u[1]*p.c2 + x18*x8 - x5*x19;
+  const double x3 = std::sin(q[1]);
+  const double x4 = x1*p.l1;
+  const double x5 = 0.5*(p.l2*(x1*x2 - (x0*x3))) + x4;
+  const double x6 = p.m2*x5;
+  const double x7 = p.l1*x0;
+  const double x8 = 0.5*(p.l2*(x1*x3 + x0*x2)) + x7;
+  const double x9 = 0.08333333333333333*(p.m2*p.l2*p.l2) + x5*x6 + p.m2*x8*x8;
+  M[0] = 0.25*(p.m1*p.l1*p.l1*x0*x0) + 0.08333333333333333*(p.m1*p.l1*p.l1) + 0.25*(p.m1*x1*x1*p.l1*p.l1) + x9;
+  const double x10 = -(p.m2*p.l1*x0*x8 + x4*x6 - x9);
+  M[2] = x10;
+  M[3] = x10 + x4*(p.m2*x4 - x6) - (p.l1*x0*(-(p.m2*p.l1*x0) + p.m2*x8));
+  const double x11 = u[0]*u[0];
+  const double x12 = p.l1*x0*x11;
+  const double x13 = u[1] + u[0];
+  const double x14 = x13*x13;
+  const double x15 = p.m2*((x5 - x4)*x14 + x4*x11);
+  const double x16 = -(x14*(-x8 + x7)) + x12 + 9.81;
+  const double x17 = x15*x8 - (p.m2*x5*x16);
+  udot[0] = -(u[0]*p.c1 - tau[0] + -(-0.25*(p.m1*x1*p.l1*p.l1*x0*x11) + 0.5*(p.m1*x1*(9.81 + 0.5*x12)*p.l1)) + x17);
+  udot[1] = tau[1] - (u[1]*p.c2) - x17 - (p.m2*x16*x4) + p.l1*x0*x15;
   return solve_ldlt(M, udot);
 }
 
@@ -188,19 +178,18 @@ double kinetic_energy(const Params& p, const double* q, const double* u) {
   (void)q;
   (void)u;
   double T;
-  const double x0 = std::sin(q[0]);
-  const double x1 = -x0;
-  const double x2 = u[0]*(0.5*p.l1*x1);
-  const double x3 = std::cos(q[0]);
-  const double x4 = -u[0]*(0.5*x3*p.l1);
-  const double x5 = p.l1*x1;
-  const double x6 = u[1] + u[0];
-  const double x7 = std::sin(q[1]);
-  const double x8 = std::cos(q[1]);
-  const double x9 = u[0]*x5 - x6*(-(0.5*p.l2*(-x3*x7 + x8*x1) + x5) + x5);
-  const double x10 = x3*p.l1;
-  const double x11 = -u[0]*x10 - (-x10 + 0.5*p.l2*(x3*x8 - x0*x7) + x10)*x6;
-  T = 0.5*u[0]*(u[0]*(0.08333333333333333*p.m1*p.l1*p.l1)) + 0.5*p.m1*(x2*x2 + x4*x4) + 0.5*p.m2*(x9*x9 + x11*x11) + 0.5*((0.08333333333333333*p.m2*p.l2*p.l2)*x6)*x6;
+  const double x0 = std::cos(q[0]);
+  const double x1 = x0*u[0]*p.l1;
+  const double x2 = std::sin(q[0]);
+  const double x3 = u[0]*p.l1*x2;
+  const double x4 = u[1] + u[0];
+  const double x5 = std::sin(q[1]);
+  const double x6 = std::cos(q[1]);
+  const double x7 = p.l1*x2;
+  const double x8 = -((-(0.5*(p.l2*(x0*x5 + x2*x6)) + x7) + x7)*x4) + x3;
+  const double x9 = x0*p.l1;
+  const double x10 = u[0]*x9 + (0.5*(p.l2*(x0*x6 - (x2*x5))) + x9 - x9)*x4;
+  T = 0.5*(p.m1*(0.25*x1*x1 + 0.25*x3*x3)) + 0.041666666666666664*(p.m2*x4*x4*p.l2*p.l2) + 0.041666666666666664*(p.m1*u[0]*u[0]*p.l1*p.l1) + 0.5*(p.m2*(x8*x8 + x10*x10));
   return T;
 }
 
@@ -208,8 +197,8 @@ double potential_energy(const Params& p, const double* q) {
   (void)p;
   (void)q;
   double V;
-  const double x0 = -std::sin(q[0]);
-  V = 9.81*p.m2*(0.5*p.l2*(-std::cos(q[0])*std::sin(q[1]) + std::cos(q[1])*x0) + p.l1*x0) + 9.81*p.m1*(0.5*p.l1*x0);
+  const double x0 = std::sin(q[0]);
+  V = -(4.905*(p.m1*p.l1*x0) + 9.81*(p.m2*(0.5*(p.l2*(std::cos(q[0])*std::sin(q[1]) + x0*std::cos(q[1]))) + p.l1*x0)));
   return V;
 }
 
@@ -223,10 +212,9 @@ void outputs(const Params& p, double t, const double* q, const double* u, double
   const double x1 = std::cos(q[1]);
   const double x2 = std::sin(q[0]);
   const double x3 = std::sin(q[1]);
-  y[0] = x0*p.l1 + p.l2*(x0*x1 - x2*x3);
+  y[0] = p.l2*(x0*x1 - (x2*x3)) + x0*p.l1;
   y[1] = 0.0;
-  const double x4 = -x2;
-  y[2] = p.l1*x4 + p.l2*(-x0*x3 + x1*x4);
+  y[2] = -(p.l2*(x0*x3 + x2*x1) + p.l1*x2);
   y[3] = q[0];
   y[4] = q[1];
 }

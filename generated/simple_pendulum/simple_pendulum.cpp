@@ -48,9 +48,9 @@ void mass_matrix(const Params& p, const double* q, double* M) {
   (void)p;
   (void)q;
   (void)M;
-  const double x0 = -p.l*std::sin(q[0]);
-  const double x1 = -std::cos(q[0])*p.l;
-  M[0] = x0*(p.m*x0) + x1*(x1*p.m);
+  const double x0 = std::cos(q[0]);
+  const double x1 = std::sin(q[0]);
+  M[0] = x0*x0*p.m*p.l*p.l + p.m*p.l*p.l*x1*x1;
 }
 
 void forcing(const Params& p, double t, const double* q, const double* u, const double* tau, double* f) {
@@ -60,10 +60,10 @@ void forcing(const Params& p, double t, const double* q, const double* u, const 
   (void)u;
   (void)tau;
   (void)f;
-  const double x0 = -std::cos(q[0])*p.l;
-  const double x1 = u[0]*u[0];
-  const double x2 = -p.l*std::sin(q[0]);
-  f[0] = tau[0] + -(-p.m*(p.g - x0*x1))*x2 + (-p.m*(-x1*x2))*x0;
+  const double x0 = std::cos(q[0]);
+  const double x1 = std::sin(q[0]);
+  const double x2 = u[0]*u[0];
+  f[0] = x0*p.m*p.l*(p.l*x1*x2) - (p.m*p.l*x1*(x0*p.l*x2 + p.g)) + tau[0];
 }
 
 namespace {
@@ -100,11 +100,11 @@ int forward_dynamics(const Params& p, double t, const double* q, const double* u
   (void)u;
   (void)tau;
   double M[1];
-  const double x0 = -p.l*std::sin(q[0]);
-  const double x1 = -std::cos(q[0])*p.l;
-  M[0] = x0*(p.m*x0) + x1*(x1*p.m);
+  const double x0 = std::cos(q[0]);
+  const double x1 = std::sin(q[0]);
+  M[0] = x0*x0*p.m*p.l*p.l + p.m*p.l*p.l*x1*x1;
   const double x2 = u[0]*u[0];
-  udot[0] = tau[0] + -(-p.m*(p.g - x1*x2))*x0 + (-p.m*(-x2*x0))*x1;
+  udot[0] = x0*p.m*p.l*(p.l*x1*x2) - (p.m*p.l*x1*(x0*p.l*x2 + p.g)) + tau[0];
   return solve_ldlt(M, udot);
 }
 
@@ -120,8 +120,8 @@ double kinetic_energy(const Params& p, const double* q, const double* u) {
   (void)q;
   (void)u;
   double T;
-  const double x0 = -u[0]*(-p.l*std::sin(q[0]));
-  const double x1 = u[0]*(-std::cos(q[0])*p.l);
+  const double x0 = u[0]*p.l*std::sin(q[0]);
+  const double x1 = std::cos(q[0])*u[0]*p.l;
   T = 0.5*p.m*(x0*x0 + x1*x1);
   return T;
 }
@@ -130,7 +130,7 @@ double potential_energy(const Params& p, const double* q) {
   (void)p;
   (void)q;
   double V;
-  V = (-std::cos(q[0])*p.l)*p.m*p.g;
+  V = -std::cos(q[0])*p.m*p.l*p.g;
   return V;
 }
 

@@ -83,6 +83,87 @@ int ExpressionGraph::number(double v) {
   return intern(std::move(n));
 }
 
+ExpressionGraph::Term ExpressionGraph::split_coefficient(int id) {
+  const Node& n = nodes_[id];
+  if (n.op == Op::number) return {n.value, -1};
+  if (n.op != Op::mul) return {1.0, id};
+  double coefficient = 1.0;
+  std::vector<int> rest;
+  for (int a : n.args) {
+    if (nodes_[a].op == Op::number)
+      coefficient *= nodes_[a].value;
+    else
+      rest.push_back(a);
+  }
+  if (coefficient == 1.0) return {1.0, id};
+  if (rest.size() == 1) return {coefficient, rest[0]};
+  Node base;
+  base.op = Op::mul;
+  base.args = std::move(rest);
+  return {coefficient, intern(std::move(base))};
+}
+
+// A product in canonical form: at most one numeric coefficient, the product of
+// all coefficients of the factors multiplied in sorted order (so that the
+// rounding does not depend on GiNaC's operand order), and the other factors.
+int ExpressionGraph::make_mul(std::vector<int> factors) {
+  std::vector<double> coefficients;
+  Node n;
+  n.op = Op::mul;
+  for (int f : factors) {
+    const Term t = split_coefficient(f);
+    coefficients.push_back(t.coefficient);
+    if (t.base < 0) continue;
+    if (t.coefficient != 1.0 && nodes_[t.base].op == Op::mul)
+      for (int a : nodes_[t.base].args) n.args.push_back(a);
+    else
+      n.args.push_back(t.base);
+  }
+  std::sort(coefficients.begin(), coefficients.end());
+  double c = 1.0;
+  for (double x : coefficients) c *= x;
+  if (c == 0.0 || n.args.empty()) return number(c);
+  if (c == 1.0 && n.args.size() == 1) return n.args[0];
+  if (c != 1.0) n.args.push_back(number(c));
+  return intern(std::move(n));
+}
+
+// A sum in canonical form: terms ordered by their coefficient-free part, equal
+// parts merged, and the sign chosen so that the first term is positive. GiNaC
+// may write the same sum as a - b or as -(b - a) depending on its run-to-run
+// term order; both become one node here.
+int ExpressionGraph::make_add(std::vector<int> terms) {
+  std::vector<Term> split;
+  for (int t : terms) split.push_back(split_coefficient(t));
+  auto key = [this](int base) { return base < 0 ? std::uint64_t{0} : nodes_[base].key; };
+  std::sort(split.begin(), split.end(), [&](const Term& a, const Term& b) {
+    if (key(a.base) != key(b.base)) return key(a.base) < key(b.base);
+    if (a.base != b.base) return a.base < b.base;
+    return a.coefficient < b.coefficient;
+  });
+  std::vector<Term> merged;
+  for (const Term& t : split) {
+    if (!merged.empty() && merged.back().base == t.base)
+      merged.back().coefficient += t.coefficient;
+    else
+      merged.push_back(t);
+  }
+  merged.erase(std::remove_if(merged.begin(), merged.end(), [](const Term& t) { return t.coefficient == 0.0; }),
+               merged.end());
+  if (merged.empty()) return number(0.0);
+  auto term_node = [this](double c, int base) {
+    if (base < 0) return number(c);
+    return make_mul({number(c), base});
+  };
+  if (merged.size() == 1) return term_node(merged[0].coefficient, merged[0].base);
+  const double sign = merged[0].coefficient < 0 ? -1.0 : 1.0;
+  Node n;
+  n.op = Op::add;
+  for (const Term& t : merged) n.args.push_back(term_node(sign * t.coefficient, t.base));
+  const int sum = intern(std::move(n));
+  return sign > 0 ? sum : make_mul({number(-1.0), sum});
+}
+
 int ExpressionGraph::add(const GiNaC::ex& e) { return convert(e); }
 
 int ExpressionGraph::convert(const GiNaC::ex& e) {
@@ -103,23 +184,26 @@ int ExpressionGraph::convert(const GiNaC::ex& e) {
   } else if (GiNaC::is_a<GiNaC::numeric>(e) || GiNaC::is_a<GiNaC::constant>(e)) {
     id = number(GiNaC::ex_to<GiNaC::numeric>(GiNaC::evalf(e)).to_double());
   } else if (GiNaC::is_a<GiNaC::add>(e) || GiNaC::is_a<GiNaC::mul>(e)) {
-    Node n;
-    n.op = GiNaC::is_a<GiNaC::add>(e) ? Op::add : Op::mul;
-    for (std::size_t i = 0; i < e.nops(); ++i) n.args.push_back(convert(e.op(i)));
-    id = intern(std::move(n));
+    std::vector<int> args;
+    for (std::size_t i = 0; i < e.nops(); ++i) args.push_back(convert(e.op(i)));
+    id = GiNaC::is_a<GiNaC::add>(e) ? make_add(std::move(args)) : make_mul(std::move(args));
   } else if (GiNaC::is_a<GiNaC::power>(e)) {
     const GiNaC::ex exponent = e.op(1);
     if (!GiNaC::is_a<GiNaC::numeric>(exponent)) throw std::logic_error("expression graph: symbolic exponent");
     const double x = GiNaC::ex_to<GiNaC::numeric>(exponent).to_double();
+    const int base = convert(e.op(0));
+    const Term split = split_coefficient(base);
     Node n;
-    if (x == 0.5) {
-      n.op = Op::sqrt;
+    n.op = x == 0.5 ? Op::sqrt : Op::power;
+    n.value = x == 0.5 ? 0.0 : x;
+    if (n.op == Op::power && std::floor(x) == x && split.base >= 0 && split.coefficient != 1.0) {
+      // (c b)^k = c^k b^k: the sign GiNaC happened to give b does not show.
+      n.args.push_back(split.base);
+      id = make_mul({number(std::pow(split.coefficient, x)), intern(std::move(n))});
     } else {
-      n.op = Op::power;
-      n.value = x;
+      n.args.push_back(base);
+      id = intern(std::move(n));
     }
-    n.args.push_back(convert(e.op(0)));
-    id = intern(std::move(n));
   } else if (GiNaC::is_a<GiNaC::function>(e)) {
     const std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
     static const std::map<std::string, Op> functions{{"sin", Op::sin}, {"cos", Op::cos}, {"tan", Op::tan},

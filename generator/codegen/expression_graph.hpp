@@ -39,6 +39,14 @@ class ExpressionGraph {
   std::size_t size() const { return nodes_.size(); }
 
  private:
+  /// A node as coefficient * base; base -1 stands for the number 1.
+  struct Term {
+    double coefficient;
+    int base;
+  };
+  Term split_coefficient(int id);
+  int make_mul(std::vector<int> factors);
+  int make_add(std::vector<int> terms);
   int intern(Node node);
   int number(double v);
   int convert(const GiNaC::ex& e);

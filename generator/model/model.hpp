@@ -14,9 +14,9 @@ namespace kanegen::model {
 /// which stays symbolic and can be changed at run time through Params.
 struct Scalar {
   bool is_literal = true;
-  double value = 0.0;   ///< the number when is_literal
-  std::string text;     ///< the expression when !is_literal
-  std::string where;    ///< JSON pointer or URDF element, for error messages
+  double value = 0.0;  ///< the number when is_literal
+  std::string text;    ///< the expression when !is_literal
+  std::string where;   ///< JSON pointer or URDF element, for error messages
 
   static Scalar number(double v, std::string where_ = {}) {
     Scalar s;
@@ -47,8 +47,8 @@ struct Parameter {
 struct Body {
   std::string name;
   Scalar mass;
-  Vec3 com;                          ///< centre of mass in the body frame
-  std::array<Scalar, 6> inertia;     ///< ixx, iyy, izz, ixy, ixz, iyz
+  Vec3 com;                       ///< centre of mass in the body frame
+  std::array<Scalar, 6> inertia;  ///< ixx, iyy, izz, ixy, ixz, iyz
   std::string where;
 };
 
@@ -68,10 +68,10 @@ struct Joint {
   std::array<double, 3> axis{0.0, 0.0, 1.0};
   Scalar spring_stiffness;  ///< generalized spring: -k (q - rest)
   Scalar spring_rest;
-  Scalar damping;           ///< generalized damper: -c u
-  bool actuated = true;     ///< has an input torque/force tau
-  double q0 = 0.0;          ///< initial coordinate
-  double u0 = 0.0;          ///< initial speed
+  Scalar damping;        ///< generalized damper: -c u
+  bool actuated = true;  ///< has an input torque/force tau
+  double q0 = 0.0;       ///< initial coordinate
+  double u0 = 0.0;       ///< initial speed
   std::string where;
 
   bool moves() const { return type != JointType::fixed; }
@@ -83,8 +83,8 @@ enum class ForceFrame { world, body };
 struct PointForce {
   std::string name;
   std::string body;
-  Vec3 point;   ///< in the body frame
-  Vec3 force;   ///< in `frame` axes
+  Vec3 point;  ///< in the body frame
+  Vec3 force;  ///< in `frame` axes
   ForceFrame frame = ForceFrame::world;
   std::string where;
 };
@@ -103,8 +103,8 @@ struct Output {
 };
 
 struct Model {
-  std::string name;         ///< a C++ identifier; names the namespace and files
-  std::string source_file;  ///< the file it was loaded from
+  std::string name;               ///< a C++ identifier; names the namespace and files
+  std::string source_file;        ///< the file it was loaded from
   std::string ground = "ground";  ///< the fixed body's name (URDF: the root link)
 
   std::vector<Parameter> parameters;

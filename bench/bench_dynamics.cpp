@@ -1,0 +1,281 @@
+// bench_dynamics: the generated kernels of arm7 and chain20 against MuJoCo,
+// in one run, on the same fixed set of states (cycled, one state per call).
+//
+// kanegen:  mass_matrix (dense M), forcing (f, tau = 0), forward_dynamics
+//           (udot = M^-1 f, LDL^T inside).
+// MuJoCo (the same URDF, fusestatic on, contacts disabled):
+//   mj_forward        the full pipeline as a simulator calls it: kinematics,
+//                     com, crb (M) and its factorisation, collision (nothing:
+//                     no geoms), constraint set-up (joint limits: none active
+//                     at the states used), transmission, velocity stage
+//                     (com velocities, passive forces, RNE bias), actuation,
+//                     qacc_smooth, constraint solver (no constraints), sensors
+//                     (none) — contacts disabled (mjDSBL_CONTACT);
+//   mj_forward_lean   mj_forward with every optional stage disabled as well
+//                     (constraint, passive, actuation, sensor);
+//   smooth            only what forward_dynamics computes: mj_kinematics,
+//                     mj_comPos, mj_crb, mj_factorM, mj_comVel, mj_rne (bias),
+//                     mj_solveM (qacc = -M^-1 bias);
+//   mass_matrix       mj_kinematics, mj_comPos, mj_crb (qM, MuJoCo's sparse
+//                     lower triangle; for a chain that is all of it);
+//   bias              mj_kinematics, mj_comPos, mj_comVel, mj_rne (qfrc_bias).
+// Before timing, each model checks that the kernels and the MuJoCo variants
+// compute the same udot at the benchmark states; it aborts otherwise.
+#include <benchmark/benchmark.h>
+#include <mujoco/mujoco.h>
+
+#include <algorithm>
+#include <arm7.hpp>
+#include <chain20.hpp>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+constexpr int kStates = 64;  // a power of two: index wraps with a mask
+
+[[noreturn]] void die(const std::string& msg) {
+  std::fprintf(stderr, "bench_dynamics: %s\n", msg.c_str());
+  std::exit(1);
+}
+
+// Loads a URDF into MuJoCo with fusestatic="true": links on fixed joints are
+// merged into their parent, as MuJoCo would by default, so that it does not
+// carry the extra bodies the consistency tests keep.
+mjModel* load_mujoco(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) die("cannot read " + path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string text = ss.str();
+  const std::string from = "fusestatic=\"false\"", to = "fusestatic=\"true\"";
+  for (auto at = text.find(from); at != std::string::npos; at = text.find(from, at))
+    text.replace(at, from.size(), to);
+
+  auto vfs = std::make_unique<mjVFS>();
+  mj_defaultVFS(vfs.get());
+  const char* name = "model.urdf";
+  if (mj_makeEmptyFileVFS(vfs.get(), name, static_cast<int>(text.size())) != 0) die("VFS full");
+  std::copy(text.begin(), text.end(), static_cast<char*>(vfs->filedata[mj_findFileVFS(vfs.get(), name)]));
+  char error[1000] = "";
+  mjModel* m = mj_loadXML(name, vfs.get(), error, sizeof error);
+  mj_deleteVFS(vfs.get());
+  if (m == nullptr) die(path + ": " + error);
+  return m;
+}
+
+// One model: kanegen System S and its MuJoCo counterpart, the states, the
+// index maps and the output buffers.
+template <class S>
+struct Fixture {
+  std::string label;
+  mjModel* m = nullptr;
+  mjData* d = nullptr;
+  typename S::Params p{};
+  std::vector<int> qadr, dadr;  // MuJoCo qpos / dof address of coordinate i
+  std::vector<double> q, u;     // kStates x nu, kanegen order
+  std::vector<double> mq, mu;   // kStates x nv, MuJoCo qpos / qvel layout
+  std::vector<double> M, f, udot, tau, tmp;
+
+  Fixture(std::string label_, const std::string& urdf) : label(std::move(label_)) {
+    m = load_mujoco(urdf);
+    d = mj_makeData(m);
+    if (m->nv != S::nu || m->nq != S::nq) die(label + ": MuJoCo and kanegen sizes differ");
+    for (int i = 0; i < S::nq; ++i) {
+      const int j = mj_name2id(m, mjOBJ_JOINT, S::coordinate_names()[i]);
+      if (j < 0) die(label + ": MuJoCo has no joint " + S::coordinate_names()[i]);
+      qadr.push_back(m->jnt_qposadr[j]);
+      dadr.push_back(m->jnt_dofadr[j]);
+    }
+    // fixed seed; q inside the joint range (limits inactive), u in [-2, 2]
+    std::mt19937_64 rng(12345);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const int n = S::nu;
+    q.resize(kStates * n);
+    u.resize(kStates * n);
+    mq.assign(kStates * m->nq, 0.0);
+    mu.assign(kStates * m->nv, 0.0);
+    for (int k = 0; k < kStates; ++k) {
+      for (int i = 0; i < n; ++i) {
+        const int j = mj_name2id(m, mjOBJ_JOINT, S::coordinate_names()[i]);
+        double lo = -3.0, hi = 3.0;
+        if (m->jnt_limited[j]) {
+          lo = std::max(lo, 0.9 * m->jnt_range[2 * j]);
+          hi = std::min(hi, 0.9 * m->jnt_range[2 * j + 1]);
+        }
+        q[k * n + i] = lo + (hi - lo) * unit(rng);
+        u[k * n + i] = -2.0 + 4.0 * unit(rng);
+        mq[k * m->nq + qadr[i]] = q[k * n + i];
+        mu[k * m->nv + dadr[i]] = u[k * n + i];
+      }
+    }
+    M.assign(n * n, 0.0);
+    f.assign(n, 0.0);
+    udot.assign(n, 0.0);
+    tau.assign(std::max(S::ntau, 1), 0.0);
+    tmp.assign(m->nv, 0.0);
+    set_flags(false);
+    verify();
+  }
+  ~Fixture() {
+    mj_deleteData(d);
+    mj_deleteModel(m);
+  }
+  Fixture(const Fixture&) = delete;
+  Fixture& operator=(const Fixture&) = delete;
+
+  void set_flags(bool lean) {
+    m->opt.disableflags = mjDSBL_CONTACT;
+    if (lean) m->opt.disableflags |= mjDSBL_CONSTRAINT | mjDSBL_PASSIVE | mjDSBL_ACTUATION | mjDSBL_SENSOR;
+  }
+  void load_state(int k) {
+    mju_copy(d->qpos, &mq[k * m->nq], m->nq);
+    mju_copy(d->qvel, &mu[k * m->nv], m->nv);
+  }
+  void smooth() {
+    mj_kinematics(m, d);
+    mj_comPos(m, d);
+    mj_crb(m, d);
+    mj_factorM(m, d);
+    mj_comVel(m, d);
+    mj_rne(m, d, 0, d->qfrc_bias);
+    for (int i = 0; i < m->nv; ++i) tmp[i] = -d->qfrc_bias[i];
+    mj_solveM(m, d, d->qacc, tmp.data(), 1);
+  }
+
+  // The variants compute the same thing: udot from kanegen, mj_forward's
+  // qacc_smooth and qacc, and the smooth pipeline's qacc agree.
+  void verify() {
+    const int n = S::nu;
+    double worst = 0.0;
+    for (int k = 0; k < kStates; ++k) {
+      if (S::forward_dynamics(p, 0.0, &q[k * n], &u[k * n], tau.data(), udot.data()) != 0) {
+        die(label + ": forward_dynamics failed");
+      }
+      load_state(k);
+      mj_forward(m, d);
+      std::vector<double> ref(d->qacc_smooth, d->qacc_smooth + m->nv), qacc(d->qacc, d->qacc + m->nv);
+      smooth();
+      double scale = 1.0;
+      for (int i = 0; i < n; ++i) scale = std::max(scale, std::abs(ref[dadr[i]]));
+      for (int i = 0; i < n; ++i) {
+        worst = std::max(worst, std::abs(udot[i] - ref[dadr[i]]) / scale);
+        worst = std::max(worst, std::abs(qacc[dadr[i]] - ref[dadr[i]]) / scale);
+        worst = std::max(worst, std::abs(d->qacc[dadr[i]] - ref[dadr[i]]) / scale);
+      }
+    }
+    // 1e-6: MuJoCo's import of full inertia tensors is only accurate to ~1e-7
+    // (see tests/consistency/mujoco_reference.hpp); the tests check 1e-9.
+    if (worst > 1e-6)
+      die(label + ": kanegen and MuJoCo disagree, max rel. udot error " + std::to_string(worst));
+    std::fprintf(stderr, "%s: nv = %d, MuJoCo bodies = %d, kanegen vs MuJoCo udot max rel. error %.1e\n",
+                 label.c_str(), m->nv, m->nbody, worst);
+  }
+};
+
+template <class S>
+void register_model(Fixture<S>* fx) {
+  const int n = S::nu;
+  const std::string l = fx->label + "/";
+  benchmark::RegisterBenchmark((l + "kanegen/mass_matrix").c_str(), [fx, n](benchmark::State& st) {
+    int k = 0;
+    for (auto _ : st) {
+      S::mass_matrix(fx->p, &fx->q[k * n], fx->M.data());
+      benchmark::DoNotOptimize(fx->M.data());
+      benchmark::ClobberMemory();
+      k = (k + 1) & (kStates - 1);
+    }
+  });
+  benchmark::RegisterBenchmark((l + "kanegen/forcing").c_str(), [fx, n](benchmark::State& st) {
+    int k = 0;
+    for (auto _ : st) {
+      S::forcing(fx->p, 0.0, &fx->q[k * n], &fx->u[k * n], fx->tau.data(), fx->f.data());
+      benchmark::DoNotOptimize(fx->f.data());
+      benchmark::ClobberMemory();
+      k = (k + 1) & (kStates - 1);
+    }
+  });
+  benchmark::RegisterBenchmark((l + "kanegen/forward_dynamics").c_str(), [fx, n](benchmark::State& st) {
+    int k = 0;
+    for (auto _ : st) {
+      const int rc =
+          S::forward_dynamics(fx->p, 0.0, &fx->q[k * n], &fx->u[k * n], fx->tau.data(), fx->udot.data());
+      benchmark::DoNotOptimize(rc);
+      benchmark::DoNotOptimize(fx->udot.data());
+      benchmark::ClobberMemory();
+      k = (k + 1) & (kStates - 1);
+    }
+  });
+  for (const bool lean : {false, true}) {
+    const std::string name = l + (lean ? "mujoco/mj_forward_lean" : "mujoco/mj_forward");
+    benchmark::RegisterBenchmark(name.c_str(), [fx, lean](benchmark::State& st) {
+      fx->set_flags(lean);
+      int k = 0;
+      for (auto _ : st) {
+        fx->load_state(k);
+        mj_forward(fx->m, fx->d);
+        benchmark::DoNotOptimize(fx->d->qacc);
+        benchmark::ClobberMemory();
+        k = (k + 1) & (kStates - 1);
+      }
+      fx->set_flags(false);
+    });
+  }
+  benchmark::RegisterBenchmark((l + "mujoco/smooth").c_str(), [fx](benchmark::State& st) {
+    int k = 0;
+    for (auto _ : st) {
+      fx->load_state(k);
+      fx->smooth();
+      benchmark::DoNotOptimize(fx->d->qacc);
+      benchmark::ClobberMemory();
+      k = (k + 1) & (kStates - 1);
+    }
+  });
+  benchmark::RegisterBenchmark((l + "mujoco/mass_matrix").c_str(), [fx](benchmark::State& st) {
+    int k = 0;
+    for (auto _ : st) {
+      fx->load_state(k);
+      mj_kinematics(fx->m, fx->d);
+      mj_comPos(fx->m, fx->d);
+      mj_crb(fx->m, fx->d);
+      benchmark::DoNotOptimize(fx->d->qM);
+      benchmark::ClobberMemory();
+      k = (k + 1) & (kStates - 1);
+    }
+  });
+  benchmark::RegisterBenchmark((l + "mujoco/bias").c_str(), [fx](benchmark::State& st) {
+    int k = 0;
+    for (auto _ : st) {
+      fx->load_state(k);
+      mj_kinematics(fx->m, fx->d);
+      mj_comPos(fx->m, fx->d);
+      mj_comVel(fx->m, fx->d);
+      mj_rne(fx->m, fx->d, 0, fx->d->qfrc_bias);
+      benchmark::DoNotOptimize(fx->d->qfrc_bias);
+      benchmark::ClobberMemory();
+      k = (k + 1) & (kStates - 1);
+    }
+  });
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::AddCustomContext("mujoco", mj_versionString());
+  Fixture<kanegen_models::arm7::System> arm7("arm7", KANEGEN_ARM7_URDF);
+  Fixture<kanegen_models::chain20::System> chain20("chain20", KANEGEN_CHAIN20_URDF);
+  register_model(&arm7);
+  register_model(&chain20);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

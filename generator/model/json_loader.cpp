@@ -1,0 +1,205 @@
+#include "model/json_loader.hpp"
+
+#include "model/json_document.hpp"
+#include "model/model_check.hpp"
+#include "model/model_error.hpp"
+#include "model/names.hpp"
+#include "model/schema.hpp"
+
+namespace kanegen::model {
+namespace {
+
+// Ordered, so that parameters keep the file's order (they become Params fields).
+using json = nlohmann::ordered_json;
+
+/// Turns the schema-valid document into a Model. The schema has checked the
+/// types and keys; this adds the rules a schema cannot say well.
+class JsonReader {
+ public:
+  JsonReader(json document, std::string file) : doc_(std::move(document)), file_(std::move(file)) {}
+
+  Model read() {
+    Model m;
+    m.source_file = file_;
+    m.name = doc_["name"].get<std::string>();
+    check_identifier(m.name, "/name", "model name");
+    read_parameters(m);
+    m.gravity = vec3(doc_, "gravity", "", {0.0, 0.0, -9.81});
+    for (std::size_t i = 0; i < doc_["bodies"].size(); ++i) m.bodies.push_back(body(i));
+    for (std::size_t i = 0; i < doc_["joints"].size(); ++i) m.joints.push_back(joint(i));
+    if (doc_.contains("forces"))
+      for (std::size_t i = 0; i < doc_["forces"].size(); ++i) m.forces.push_back(force(i));
+    if (doc_.contains("outputs"))
+      for (std::size_t i = 0; i < doc_["outputs"].size(); ++i) m.outputs.push_back(output(i));
+    return m;
+  }
+
+ private:
+  [[noreturn]] void error(const std::string& place, const std::string& problem,
+                          const std::string& fix) const {
+    throw ModelError(file_, place, problem, fix);
+  }
+
+  void check_identifier(const std::string& name, const std::string& place, const std::string& what) const {
+    if (is_cpp_keyword(name))
+      error(place, what + " '" + name + "' is a C++ keyword", "choose another name, e.g. '" + name + "_'");
+  }
+
+  void read_parameters(Model& m) const {
+    if (!doc_.contains("parameters")) return;
+    for (const auto& [name, value] : doc_["parameters"].items()) {
+      const std::string place = "/parameters/" + pointer_token(name);
+      check_identifier(name, place, "parameter name");
+      if (is_reserved_parameter_name(name))
+        error(place, "parameter name '" + name + "' is reserved",
+              "rename it: t, q, u, tau, p, pi, I, Pi, Euler, Catalan and the function names are taken");
+      m.parameters.push_back({name, value.get<double>(), place});
+    }
+  }
+
+  static Scalar scalar(const json& v, const std::string& place) {
+    if (v.is_string()) return Scalar::expression(v.get<std::string>(), place);
+    return Scalar::number(v.get<double>(), place);
+  }
+
+  /// parent[key] as a scalar, or `fallback` when absent.
+  static Scalar scalar(const json& parent, const std::string& key, const std::string& place,
+                       double fallback) {
+    const std::string at = place + "/" + key;
+    return parent.contains(key) ? scalar(parent[key], at) : Scalar::number(fallback, at);
+  }
+
+  static Vec3 vec3(const json& parent, const std::string& key, const std::string& place,
+                   const std::array<double, 3>& fallback) {
+    const std::string at = place + "/" + key;
+    Vec3 out;
+    for (int i = 0; i < 3; ++i) {
+      const std::string entry = at + "/" + std::to_string(i);
+      out[i] = parent.contains(key) ? scalar(parent[key][i], entry) : Scalar::number(fallback[i], entry);
+    }
+    return out;
+  }
+
+  void check_names(const json& item, const std::string& place, const std::string& what) const {
+    for (const char* key : {"name", "body", "parent", "child", "joint"})
+      if (item.contains(key))
+        check_identifier(item[key].get<std::string>(), place + "/" + key, what + " " + key);
+  }
+
+  Body body(std::size_t i) const {
+    const json& j = doc_["bodies"][i];
+    const std::string place = "/bodies/" + std::to_string(i);
+    check_names(j, place, "body");
+    Body b;
+    b.name = j["name"].get<std::string>();
+    b.where = place;
+    b.mass = scalar(j["mass"], place + "/mass");
+    b.com = vec3(j, "com", place, {0, 0, 0});
+    const json inertia = j.value("inertia", json::object());
+    const char* keys[6] = {"ixx", "iyy", "izz", "ixy", "ixz", "iyz"};
+    for (int k = 0; k < 6; ++k) b.inertia[k] = scalar(inertia, keys[k], place + "/inertia", 0.0);
+    return b;
+  }
+
+  Joint joint(std::size_t i) const {
+    const json& j = doc_["joints"][i];
+    const std::string place = "/joints/" + std::to_string(i);
+    check_names(j, place, "joint");
+    Joint out;
+    out.name = j["name"].get<std::string>();
+    out.where = place;
+    const std::string type = j["type"].get<std::string>();
+    out.type = type == "revolute"     ? JointType::revolute
+               : type == "continuous" ? JointType::continuous
+               : type == "prismatic"  ? JointType::prismatic
+                                      : JointType::fixed;
+    out.parent = j["parent"].get<std::string>();
+    out.child = j["child"].get<std::string>();
+    const json origin = j.value("origin", json::object());
+    out.origin_xyz = vec3(origin, "xyz", place + "/origin", {0, 0, 0});
+    out.origin_rpy = vec3(origin, "rpy", place + "/origin", {0, 0, 0});
+    if (!out.moves()) {
+      // Fields of a coordinate the fixed joint does not have: likely a mistaken type.
+      for (const char* key : {"axis", "spring", "damping", "actuated", "initial"})
+        if (j.contains(key))
+          error(place + "/" + key,
+                "fixed joint '" + out.name + "' has no coordinate, so '" + key + "' does not apply",
+                "remove it, or make the joint revolute, continuous or prismatic");
+      out.actuated = false;
+    }
+    if (j.contains("axis"))
+      for (int k = 0; k < 3; ++k) out.axis[k] = j["axis"][k].get<double>();
+    const json spring = j.value("spring", json::object());
+    out.spring_stiffness = scalar(spring, "stiffness", place + "/spring", 0.0);
+    out.spring_rest = scalar(spring, "rest", place + "/spring", 0.0);
+    out.damping = scalar(j, "damping", place, 0.0);
+    if (out.moves()) out.actuated = j.value("actuated", true);
+    const json initial = j.value("initial", json::object());
+    out.q0 = initial.value("q", 0.0);
+    out.u0 = initial.value("u", 0.0);
+    return out;
+  }
+
+  PointForce force(std::size_t i) const {
+    const json& j = doc_["forces"][i];
+    const std::string place = "/forces/" + std::to_string(i);
+    check_names(j, place, "force");
+    PointForce f;
+    f.name = j["name"].get<std::string>();
+    f.where = place;
+    f.body = j["body"].get<std::string>();
+    f.point = vec3(j, "point", place, {0, 0, 0});
+    f.force = vec3(j, "force", place, {0, 0, 0});
+    f.frame = j.value("frame", "world") == "body" ? ForceFrame::body : ForceFrame::world;
+    return f;
+  }
+
+  Output output(std::size_t i) const {
+    const json& j = doc_["outputs"][i];
+    const std::string place = "/outputs/" + std::to_string(i);
+    check_names(j, place, "output");
+    Output o;
+    o.name = j["name"].get<std::string>();
+    o.where = place;
+    const std::string type = j["type"].get<std::string>();
+    o.kind = type == "point"   ? OutputKind::point_position
+             : type == "joint" ? OutputKind::joint_coordinate
+                               : OutputKind::joint_speed;
+    // Each output type takes its own keys; a key of another type is a mistake.
+    const std::vector<std::string> needed = o.kind == OutputKind::point_position
+                                                ? std::vector<std::string>{"body", "point"}
+                                                : std::vector<std::string>{"joint"};
+    for (const std::string& key : needed)
+      if (!j.contains(key))
+        error(place, "missing required key '" + key + "' for a '" + type + "' output",
+              key == "joint"  ? "add \"joint\": the joint name"
+              : key == "body" ? "add \"body\": the body name"
+                              : "add \"point\": [x, y, z] in the body frame");
+    for (const char* key : {"body", "point", "joint"})
+      if (j.contains(key) && std::find(needed.begin(), needed.end(), key) == needed.end())
+        error(place + "/" + key, "'" + std::string(key) + "' does not apply to a '" + type + "' output",
+              "remove it (a point output takes body and point, joint and joint_speed take joint)");
+    if (o.kind == OutputKind::point_position) {
+      o.body = j["body"].get<std::string>();
+      o.point = vec3(j, "point", place, {0, 0, 0});
+    } else {
+      o.joint = j["joint"].get<std::string>();
+    }
+    return o;
+  }
+
+  json doc_;
+  std::string file_;
+};
+
+}  // namespace
+
+Model load_json_model(const std::string& path) {
+  const std::string text = read_text_file(path);
+  validate_model_schema(parse_json_document(text, path), path);
+  Model model = JsonReader(json::parse(text), path).read();
+  check_model(model, "/");
+  return model;
+}
+
+}  // namespace kanegen::model

@@ -1,0 +1,320 @@
+#include "model/model_check.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "model/expression_check.hpp"
+#include "model/model_error.hpp"
+#include "model/names.hpp"
+
+namespace kanegen::model {
+namespace {
+
+std::string at(const std::string& where, const std::string& field) { return where + "/" + field; }
+
+std::string format(double v) {
+  std::ostringstream out;
+  out.precision(6);
+  out << v;
+  return out.str();
+}
+
+template <class Item>
+std::vector<std::string> names_of(const std::vector<Item>& items) {
+  std::vector<std::string> names;
+  for (const Item& i : items) names.push_back(i.name);
+  return names;
+}
+
+bool all_literal(const std::array<Scalar, 6>& s) {
+  for (const Scalar& x : s)
+    if (!x.is_literal) return false;
+  return true;
+}
+
+class Checker {
+ public:
+  Checker(Model& model, std::string root_place)
+      : m_(model), file_(model.source_file), root_place_(std::move(root_place)) {}
+
+  void run() {
+    check_names();
+    check_numbers();
+    check_expressions();
+    check_bodies();
+    check_joints();
+    check_tree();
+    check_references();
+    check_moving_mass();
+  }
+
+ private:
+  [[noreturn]] void error(const std::string& place, const std::string& problem,
+                          const std::string& fix) const {
+    throw ModelError(file_, place, problem, fix);
+  }
+
+  template <class Item>
+  void unique(const std::vector<Item>& items, const std::string& what) const {
+    std::map<std::string, const Item*> seen;
+    for (const Item& item : items) {
+      auto [it, fresh] = seen.emplace(item.name, &item);
+      if (!fresh)
+        error(at(item.where, "name"),
+              "duplicate " + what + " name '" + item.name + "' (also at " + it->second->where + ")",
+              "rename one of them");
+    }
+  }
+
+  void check_names() const {
+    unique(m_.parameters, "parameter");
+    unique(m_.bodies, "body");
+    unique(m_.joints, "joint");
+    unique(m_.forces, "force");
+    unique(m_.outputs, "output");
+    for (const Body& b : m_.bodies)
+      if (b.name == m_.ground)
+        error(at(b.where, "name"), "'" + b.name + "' names the fixed ground, not a body", "rename the body");
+  }
+
+  void for_each_scalar(const std::function<void(const Scalar&)>& visit) const {
+    for (const Scalar& s : m_.gravity) visit(s);
+    for (const Body& b : m_.bodies) {
+      visit(b.mass);
+      for (const Scalar& s : b.com) visit(s);
+      for (const Scalar& s : b.inertia) visit(s);
+    }
+    for (const Joint& j : m_.joints) {
+      for (const Scalar& s : j.origin_xyz) visit(s);
+      for (const Scalar& s : j.origin_rpy) visit(s);
+      visit(j.spring_stiffness);
+      visit(j.spring_rest);
+      visit(j.damping);
+    }
+    for (const PointForce& f : m_.forces) {
+      for (const Scalar& s : f.point) visit(s);
+      for (const Scalar& s : f.force) visit(s);
+    }
+    for (const Output& o : m_.outputs)
+      if (o.kind == OutputKind::point_position)
+        for (const Scalar& s : o.point) visit(s);
+  }
+
+  void check_numbers() const {
+    const auto finite = [&](double v, const std::string& place) {
+      if (!std::isfinite(v)) error(place, "number is not finite (" + format(v) + ")", "use a finite value");
+    };
+    for (const Parameter& p : m_.parameters) finite(p.value, p.where);
+    for_each_scalar([&](const Scalar& s) {
+      if (s.is_literal) finite(s.value, s.where);
+    });
+    for (const Joint& j : m_.joints) {
+      for (double a : j.axis) finite(a, at(j.where, "axis"));
+      finite(j.q0, at(j.where, "initial/q"));
+      finite(j.u0, at(j.where, "initial/u"));
+    }
+  }
+
+  void check_expressions() const {
+    const std::vector<std::string> parameters = names_of(m_.parameters);
+    for_each_scalar([&](const Scalar& s) {
+      if (s.is_literal) return;
+      if (auto issue = check_expression(s.text, parameters))
+        error(s.where, describe_with_caret(s.text, *issue), issue->fix);
+    });
+  }
+
+  static std::string inertia_place(const Body& b) {
+    // JSON gives each entry its own pointer (/bodies/0/inertia/ixx); URDF one
+    // element for all six, since they are mixed by the frame rotation.
+    const std::string& first = b.inertia[0].where;
+    if (first == b.inertia[1].where) return first;
+    return first.substr(0, first.rfind('/'));
+  }
+
+  void check_bodies() const {
+    for (const Body& b : m_.bodies) {
+      const bool literal_inertia = all_literal(b.inertia);
+      bool zero_inertia = literal_inertia;
+      for (const Scalar& s : b.inertia) zero_inertia = zero_inertia && s.value == 0.0;
+      if (b.mass.is_literal && b.mass.value < 0)
+        error(b.mass.where, "negative mass (" + format(b.mass.value) + ") of body '" + b.name + "'",
+              "give a positive mass in kg");
+      if (b.mass.is_literal && b.mass.value == 0 && literal_inertia && !zero_inertia)
+        error(b.mass.where, "zero mass with a nonzero inertia in body '" + b.name + "'",
+              "give a positive mass, or set all inertia entries to 0 for a massless frame");
+      if (literal_inertia && !zero_inertia) check_inertia(b);
+    }
+  }
+
+  void check_inertia(const Body& b) const {
+    const auto& i = b.inertia;
+    Eigen::Matrix3d tensor;
+    tensor << i[0].value, i[3].value, i[4].value, i[3].value, i[1].value, i[5].value, i[4].value, i[5].value,
+        i[2].value;
+    const Eigen::Vector3d l = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(tensor, Eigen::EigenvaluesOnly)
+                                  .eigenvalues();  // ascending
+    const double tolerance = 1e-9 * l.cwiseAbs().maxCoeff();
+    const std::string moments = format(l[0]) + ", " + format(l[1]) + ", " + format(l[2]);
+    if (l[0] < -tolerance)
+      error(inertia_place(b),
+            "inertia of body '" + b.name + "' has a negative principal moment (principal moments " + moments +
+                ")",
+            "check the entries: ixx, iyy, izz are positive and the products of inertia ixy, ixz, iyz are the "
+            "tensor's off-diagonal entries (-integral of x*y dm), small next to them");
+    if (l[0] + l[1] < l[2] - tolerance)
+      error(inertia_place(b),
+            "inertia of body '" + b.name + "' violates the triangle inequality (principal moments " +
+                moments + ": " + format(l[0]) + " + " + format(l[1]) + " < " + format(l[2]) + ")",
+            "no mass distribution has such moments: check the entries (the sum of any two principal moments "
+            "must be at least the third)");
+  }
+
+  void check_joints() const {
+    for (Joint& j : m_.joints) {
+      if (j.spring_stiffness.is_literal && j.spring_stiffness.value < 0)
+        error(j.spring_stiffness.where, "negative spring stiffness", "use a stiffness >= 0");
+      if (j.damping.is_literal && j.damping.value < 0)
+        error(j.damping.where, "negative damping", "use a damping coefficient >= 0");
+      if (!j.moves()) continue;
+      const double norm = std::sqrt(j.axis[0] * j.axis[0] + j.axis[1] * j.axis[1] + j.axis[2] * j.axis[2]);
+      if (!(norm > 1e-12))
+        error(at(j.where, "axis"), "zero-length axis of joint '" + j.name + "'",
+              "give the axis a direction, e.g. [0, 0, 1] (it is normalised at load)");
+      for (double& a : j.axis) a /= norm;
+    }
+  }
+
+  std::string unknown_body_fix(const std::string& name, bool allow_ground) const {
+    std::vector<std::string> candidates = names_of(m_.bodies);
+    if (allow_ground) candidates.push_back(m_.ground);
+    const std::string guess = nearest(name, candidates);
+    if (!guess.empty()) return "did you mean '" + guess + "'?";
+    return allow_ground ? "use a body name or '" + m_.ground + "'" : "use the name of a body";
+  }
+
+  void check_tree() {
+    std::map<std::string, std::size_t> body;
+    for (std::size_t i = 0; i < m_.bodies.size(); ++i) body[m_.bodies[i].name] = i;
+    parent_joint_.assign(m_.bodies.size(), -1);
+    for (std::size_t k = 0; k < m_.joints.size(); ++k) {
+      const Joint& j = m_.joints[k];
+      if (j.child == m_.ground)
+        error(at(j.where, "child"), "the ground '" + m_.ground + "' cannot be the child of a joint",
+              "swap parent and child");
+      if (!body.count(j.child))
+        error(at(j.where, "child"), "unknown body '" + j.child + "'", unknown_body_fix(j.child, false));
+      if (j.parent != m_.ground && !body.count(j.parent))
+        error(at(j.where, "parent"), "unknown body '" + j.parent + "'", unknown_body_fix(j.parent, true));
+      if (j.parent == j.child)
+        error(at(j.where, "child"), "joint '" + j.name + "' connects body '" + j.child + "' to itself",
+              "give it another parent");
+      int& parent = parent_joint_[body[j.child]];
+      if (parent >= 0)
+        error(at(j.where, "child"),
+              "body '" + j.child + "' is already the child of joint '" + m_.joints[parent].name + "' (" +
+                  m_.joints[parent].where + ")",
+              "a body hangs from exactly one joint (closed loops are not supported), so remove one of the "
+              "joints");
+      parent = static_cast<int>(k);
+    }
+    for (std::size_t b = 0; b < m_.bodies.size(); ++b)
+      if (parent_joint_[b] < 0)
+        error(m_.bodies[b].where, "body '" + m_.bodies[b].name + "' is not the child of any joint",
+              "attach it with a joint whose child is '" + m_.bodies[b].name + "', or remove it");
+    // Each body has one parent, so its chain of parents either reaches the
+    // ground or runs into a loop.
+    for (std::size_t b = 0; b < m_.bodies.size(); ++b) {
+      std::vector<std::size_t> chain{b};
+      for (;;) {
+        const Joint& j = m_.joints[parent_joint_[chain.back()]];
+        if (j.parent == m_.ground) break;
+        const std::size_t up = body[j.parent];
+        const bool loops = std::find(chain.begin(), chain.end(), up) != chain.end();
+        chain.push_back(up);
+        if (!loops) continue;
+        std::vector<std::string> names;
+        for (std::size_t c : chain) names.push_back(m_.bodies[c].name);
+        if (up == b)
+          error(at(m_.joints[parent_joint_[b]].where, "parent"),
+                "joints form a cycle: " + join(names, " -> "),
+                "each chain of parents must end at '" + m_.ground + "': make one of these bodies hang from " +
+                    m_.ground + " or from a body outside the cycle");
+        error(m_.bodies[b].where,
+              "body '" + m_.bodies[b].name + "' is not connected to the ground (its parents " +
+                  join(names, " -> ") + " loop)",
+              "attach the chain to '" + m_.ground + "'");
+      }
+    }
+  }
+
+  void check_references() const {
+    std::set<std::string> bodies;
+    for (const Body& b : m_.bodies) bodies.insert(b.name);
+    for (const PointForce& f : m_.forces)
+      if (!bodies.count(f.body))
+        error(at(f.where, "body"), "force '" + f.name + "' names unknown body '" + f.body + "'",
+              unknown_body_fix(f.body, false));
+    for (const Output& o : m_.outputs) {
+      if (o.kind == OutputKind::point_position) {
+        if (!bodies.count(o.body))
+          error(at(o.where, "body"), "output '" + o.name + "' names unknown body '" + o.body + "'",
+                unknown_body_fix(o.body, false));
+        continue;
+      }
+      const auto j =
+          std::find_if(m_.joints.begin(), m_.joints.end(), [&](const Joint& x) { return x.name == o.joint; });
+      if (j == m_.joints.end()) {
+        const std::string guess = nearest(o.joint, names_of(m_.joints));
+        error(at(o.where, "joint"), "output '" + o.name + "' names unknown joint '" + o.joint + "'",
+              guess.empty() ? "use the name of a joint" : "did you mean '" + guess + "'?");
+      }
+      if (!j->moves())
+        error(at(o.where, "joint"),
+              "output '" + o.name + "' names fixed joint '" + o.joint + "', which has no coordinate",
+              "name a revolute, continuous or prismatic joint");
+    }
+  }
+
+  void check_moving_mass() const {
+    if (std::none_of(m_.joints.begin(), m_.joints.end(), [](const Joint& j) { return j.moves(); }))
+      error(root_place_, "the model has no moving joint, so there is nothing to simulate",
+            "make at least one joint revolute, continuous or prismatic");
+    // A moving joint that carries only massless bodies gives a zero row in M(q).
+    std::map<std::string, std::vector<std::size_t>> children;  // body name -> child bodies
+    std::map<std::string, std::size_t> body;
+    for (std::size_t i = 0; i < m_.bodies.size(); ++i) body[m_.bodies[i].name] = i;
+    for (const Joint& j : m_.joints) children[j.parent].push_back(body.at(j.child));
+    for (const Joint& j : m_.joints) {
+      if (!j.moves()) continue;
+      bool unknown = false, massive = false;
+      std::vector<std::size_t> stack{body.at(j.child)};
+      while (!stack.empty()) {
+        const Body& b = m_.bodies[stack.back()];
+        stack.pop_back();
+        unknown = unknown || !b.mass.is_literal;
+        massive = massive || (b.mass.is_literal && b.mass.value > 0);
+        for (std::size_t c : children[b.name]) stack.push_back(c);
+      }
+      if (!unknown && !massive)
+        error(j.where,
+              "joint '" + j.name + "' moves only massless bodies, so the mass matrix would be singular",
+              "give a body it carries a positive mass, or make the joint fixed");
+    }
+  }
+
+  Model& m_;
+  std::string file_;
+  std::string root_place_;
+  std::vector<int> parent_joint_;  ///< per body: index of the joint whose child it is
+};
+
+}  // namespace
+
+void check_model(Model& model, const std::string& root_place) { Checker(model, root_place).run(); }
+
+}  // namespace kanegen::model

@@ -1,0 +1,257 @@
+#include "model/urdf_loader.hpp"
+
+#include <console_bridge/console.h>
+#include <tinyxml2.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include <Eigen/Geometry>
+#include <map>
+
+#include "model/json_document.hpp"
+#include "model/model_check.hpp"
+#include "model/model_error.hpp"
+#include "model/names.hpp"
+
+namespace kanegen::model {
+namespace {
+
+/// A <link> or <joint> child of <robot>, with what the error places need.
+struct Element {
+  std::string name;
+  std::string place;  ///< "line 12: <joint name=\"j3\">"
+  const tinyxml2::XMLElement* xml = nullptr;
+};
+
+std::string element_place(const tinyxml2::XMLElement* e, const std::string& name) {
+  return "line " + std::to_string(e->GetLineNum()) + ": <" + e->Name() +
+         (name.empty() ? std::string() : " name=\"" + name + "\"") + ">";
+}
+
+/// tinyxml2's "Error=XML_ERROR_MISMATCHED_ELEMENT ErrorID=14 (0xe) Line number=4: XMLElement name=link"
+/// in words.
+std::string xml_error(const tinyxml2::XMLDocument& document) {
+  std::string what;
+  switch (document.ErrorID()) {
+    case tinyxml2::XML_ERROR_MISMATCHED_ELEMENT:
+      what = "an element is not closed, or closed by the wrong tag";
+      break;
+    case tinyxml2::XML_ERROR_PARSING_ATTRIBUTE:
+      what = "malformed attribute";
+      break;
+    case tinyxml2::XML_ERROR_PARSING_ELEMENT:
+      what = "malformed element";
+      break;
+    case tinyxml2::XML_ERROR_EMPTY_DOCUMENT:
+      what = "the file is empty";
+      break;
+    default:
+      what = document.ErrorName();
+  }
+  const std::string raw = document.ErrorStr();
+  const auto line = raw.find("Line number=");
+  const auto detail = line == std::string::npos ? std::string::npos : raw.find(": ", line);
+  return "malformed XML: " + what +
+         (detail == std::string::npos ? std::string() : " (" + raw.substr(detail + 2) + ")");
+}
+
+/// What tinyxml2 gives and urdfdom hides: element order (urdfdom keeps
+/// joints in a std::map) and line numbers.
+struct UrdfIndex {
+  tinyxml2::XMLDocument document;
+  std::string robot_place;
+  std::vector<Element> links, joints;
+};
+
+void index_urdf(const std::string& text, const std::string& file, UrdfIndex& index) {
+  if (index.document.Parse(text.data(), text.size()) != tinyxml2::XML_SUCCESS)
+    throw ModelError(file, "line " + std::to_string(index.document.ErrorLineNum()), xml_error(index.document),
+                     "fix the XML syntax");
+  const tinyxml2::XMLElement* robot = index.document.RootElement();
+  if (!robot || std::string(robot->Name()) != "robot")
+    throw ModelError(file, robot ? element_place(robot, "") : "line 1", "the root element is not <robot>",
+                     "a URDF file holds one <robot> element");
+  const char* robot_name = robot->Attribute("name");
+  index.robot_place = element_place(robot, robot_name ? robot_name : "");
+  for (const tinyxml2::XMLElement* e = robot->FirstChildElement(); e; e = e->NextSiblingElement()) {
+    const std::string tag = e->Name();
+    if (tag != "link" && tag != "joint") continue;
+    const char* name = e->Attribute("name");
+    if (!name || !*name)
+      throw ModelError(file, element_place(e, ""), "<" + tag + "> without a name", "add name=\"...\"");
+    std::vector<Element>& list = tag == "link" ? index.links : index.joints;
+    for (const Element& other : list)
+      if (other.name == name)
+        throw ModelError(file, element_place(e, name),
+                         "duplicate " + tag + " name '" + name + "' (also at " +
+                             other.place.substr(0, other.place.find(':')) + ")",
+                         "rename one of them");
+    list.push_back({name, element_place(e, name), e});
+  }
+}
+
+/// Joint features urdfdom accepts but kanegen cannot honour, reported here
+/// with their element rather than after urdfdom's terse messages.
+void check_joint_elements(const UrdfIndex& index, const std::string& file) {
+  for (const Element& j : index.joints) {
+    const char* type_attribute = j.xml->Attribute("type");
+    const std::string type = type_attribute ? type_attribute : "";
+    if (type == "floating" || type == "planar")
+      throw ModelError(
+          file, j.place, "joint type '" + type + "' is not supported",
+          "kanegen handles revolute, continuous, prismatic and fixed joints: build the motion from "
+          "those (e.g. prismatic x, y and revolute z for planar)");
+    if (type != "revolute" && type != "continuous" && type != "prismatic" && type != "fixed") {
+      const std::string guess = nearest(type, {"revolute", "continuous", "prismatic", "fixed"});
+      throw ModelError(file, j.place,
+                       type.empty() ? "joint has no type" : "unknown joint type '" + type + "'",
+                       (guess.empty() ? std::string() : "did you mean '" + guess + "'? ") +
+                           "use type=\"revolute\", \"continuous\", \"prismatic\" or \"fixed\"");
+    }
+    if (j.xml->FirstChildElement("mimic"))
+      throw ModelError(file, j.place + "/mimic", "mimic joints are not supported",
+                       "remove <mimic> (the joint then gets its own coordinate)");
+  }
+}
+
+/// Collects console_bridge output while urdfdom runs instead of printing it.
+class CapturedConsole : public console_bridge::OutputHandler {
+ public:
+  CapturedConsole() { console_bridge::useOutputHandler(this); }
+  ~CapturedConsole() override { console_bridge::restorePreviousOutputHandler(); }
+  CapturedConsole(const CapturedConsole&) = delete;
+  CapturedConsole& operator=(const CapturedConsole&) = delete;
+
+  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR) errors.push_back(text);
+  }
+  std::vector<std::string> errors;
+};
+
+urdf::ModelInterfaceSharedPtr parse_with_urdfdom(const std::string& text, const UrdfIndex& index,
+                                                 const std::string& file) {
+  urdf::ModelInterfaceSharedPtr robot;
+  std::vector<std::string> errors;
+  {
+    CapturedConsole console;
+    try {
+      robot = urdf::parseURDF(text);
+    } catch (const std::exception& e) {
+      console.errors.push_back(e.what());
+    }
+    errors = console.errors;
+  }
+  if (robot) return robot;
+  // urdfdom names the culprit in brackets ("Joint [j3] ..."), often in a
+  // follow-up line after the specific one: point at the first one named.
+  std::string message = errors.empty() ? "unknown error" : errors.front();
+  std::string place = index.robot_place;
+  bool placed = false;
+  for (const std::string& error : errors) {
+    for (const auto* list : {&index.joints, &index.links})
+      for (const Element& e : *list)
+        if (!placed && error.find("[" + e.name + "]") != std::string::npos) {
+          place = e.place;
+          placed = true;
+          if (error != message) message += " (" + error + ")";
+        }
+  }
+  std::string fix = "fix the URDF as the message says";
+  if (message.find("limits") != std::string::npos)
+    fix =
+        "add <limit lower=\"...\" upper=\"...\" effort=\"...\" velocity=\"...\"/> (URDF requires it for "
+        "revolute "
+        "and prismatic joints, kanegen ignores them) or use type=\"continuous\"";
+  throw ModelError(file, place, "urdfdom cannot read the robot: " + message, fix);
+}
+
+Vec3 literal_vec3(double x, double y, double z, const std::string& where) {
+  return {Scalar::number(x, where), Scalar::number(y, where), Scalar::number(z, where)};
+}
+
+Body read_link(const urdf::Link& link, const Element& e) {
+  Body b;
+  b.name = link.name;
+  b.where = e.place;
+  const std::string inertial = e.place + "/inertial";
+  // A link without <inertial> is a massless frame (mass and inertia 0).
+  b.mass = Scalar::number(link.inertial ? link.inertial->mass : 0.0, inertial + "/mass");
+  b.com = literal_vec3(0, 0, 0, inertial + "/origin");
+  for (Scalar& s : b.inertia) s = Scalar::number(0.0, inertial + "/inertia");
+  if (!link.inertial) return b;
+  const urdf::Inertial& in = *link.inertial;
+  b.com =
+      literal_vec3(in.origin.position.x, in.origin.position.y, in.origin.position.z, inertial + "/origin");
+  // URDF gives the inertia in the inertial frame; the Model wants link axes: I_link = R I R^T.
+  const urdf::Rotation& q = in.origin.rotation;
+  const Eigen::Matrix3d r = Eigen::Quaterniond(q.w, q.x, q.y, q.z).normalized().toRotationMatrix();
+  Eigen::Matrix3d inertia;
+  inertia << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
+  Eigen::Matrix3d rotated = r * inertia * r.transpose();
+  // Drop rounding noise of the rotation so exact zeros stay zero in the generated code.
+  const double noise = 1e-14 * rotated.cwiseAbs().maxCoeff();
+  rotated = rotated.unaryExpr([noise](double v) { return std::abs(v) <= noise ? 0.0 : v; });
+  const double entries[6] = {rotated(0, 0), rotated(1, 1), rotated(2, 2),
+                             rotated(0, 1), rotated(0, 2), rotated(1, 2)};
+  for (int k = 0; k < 6; ++k) b.inertia[k].value = entries[k];
+  return b;
+}
+
+Joint read_joint(const urdf::Joint& joint, const Element& e, const LoadOptions& options) {
+  Joint j;
+  j.name = joint.name;
+  j.where = e.place;
+  switch (joint.type) {
+    case urdf::Joint::REVOLUTE:
+      j.type = JointType::revolute;
+      break;
+    case urdf::Joint::CONTINUOUS:
+      j.type = JointType::continuous;
+      break;
+    case urdf::Joint::PRISMATIC:
+      j.type = JointType::prismatic;
+      break;
+    default:  // floating, planar and unknown types are rejected by check_joint_elements
+      j.type = JointType::fixed;
+      break;
+  }
+  j.parent = joint.parent_link_name;
+  j.child = joint.child_link_name;
+  const urdf::Pose& origin = joint.parent_to_joint_origin_transform;
+  j.origin_xyz =
+      literal_vec3(origin.position.x, origin.position.y, origin.position.z, e.place + "/origin/xyz");
+  double roll = 0, pitch = 0, yaw = 0;
+  origin.rotation.getRPY(roll, pitch, yaw);
+  j.origin_rpy = literal_vec3(roll, pitch, yaw, e.place + "/origin/rpy");
+  j.axis = {joint.axis.x, joint.axis.y, joint.axis.z};  // urdfdom defaults it to (1, 0, 0)
+  j.spring_stiffness = Scalar::number(0.0, e.place + "/dynamics");
+  j.spring_rest = Scalar::number(0.0, e.place + "/dynamics");
+  const double damping = options.urdf_joint_damping && joint.dynamics ? joint.dynamics->damping : 0.0;
+  j.damping = Scalar::number(damping, e.place + "/dynamics");
+  j.actuated = j.moves();
+  return j;
+}
+
+}  // namespace
+
+Model load_urdf_model(const std::string& path, const LoadOptions& options) {
+  const std::string text = read_text_file(path);
+  UrdfIndex index;
+  index_urdf(text, path, index);
+  check_joint_elements(index, path);
+  const urdf::ModelInterfaceSharedPtr robot = parse_with_urdfdom(text, index, path);
+
+  Model m;
+  m.source_file = path;
+  m.name = sanitize_identifier(robot->getName());
+  m.ground = robot->getRoot()->name;  // its <inertial>, if any, is ignored: the ground does not move
+  const std::string gravity_place = index.robot_place + " (gravity: load option)";
+  m.gravity = literal_vec3(0, 0, 0, gravity_place);
+  for (int k = 0; k < 3; ++k) m.gravity[k].value = options.urdf_gravity[k];
+  for (const Element& e : index.links)
+    if (e.name != m.ground) m.bodies.push_back(read_link(*robot->getLink(e.name), e));
+  for (const Element& e : index.joints) m.joints.push_back(read_joint(*robot->getJoint(e.name), e, options));
+  check_model(m, index.robot_place);
+  return m;
+}
+
+}  // namespace kanegen::model

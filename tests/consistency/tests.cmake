@@ -1,0 +1,62 @@
+# MuJoCo consistency tests: the generated kernels of the shipped URDF models
+# against MuJoCo (libmujoco-dev), plus checks of the MuJoCo reference itself
+# against closed forms. Included from tests/CMakeLists.txt (Catch2 is found).
+if(KANEGEN_WITH_MUJOCO)
+  find_package(mujoco QUIET)
+  if(NOT mujoco_FOUND)
+    message(STATUS "kanegen: MuJoCo not found, no consistency tests (install libmujoco-dev)")
+  else()
+    # Debian's libmujoco-dev 2.2.2 lists /usr/include/libqhull_r/ as an include
+    # directory of mujoco::mujoco without depending on libqhull-dev; CMake
+    # refuses non-existent include directories of imported targets, and the
+    # public MuJoCo headers do not need qhull: keep the directories that exist.
+    get_target_property(_kg_mj_inc mujoco::mujoco INTERFACE_INCLUDE_DIRECTORIES)
+    set(_kg_mj_inc_ok)
+    foreach(_dir IN LISTS _kg_mj_inc)
+      if(EXISTS "${_dir}")
+        list(APPEND _kg_mj_inc_ok "${_dir}")
+      endif()
+    endforeach()
+    set_target_properties(mujoco::mujoco PROPERTIES INTERFACE_INCLUDE_DIRECTORIES "${_kg_mj_inc_ok}")
+
+    find_package(Eigen3 REQUIRED NO_MODULE)
+    find_package(PkgConfig REQUIRED)
+    pkg_check_modules(KANEGEN_CONSISTENCY_TINYXML2 REQUIRED IMPORTED_TARGET tinyxml2)
+
+    set(_kg_cons_dir ${CMAKE_CURRENT_LIST_DIR})
+    add_executable(test_consistency ${_kg_cons_dir}/main.cpp ${_kg_cons_dir}/test_mujoco.cpp
+                                    ${_kg_cons_dir}/mujoco_reference.cpp)
+    target_include_directories(test_consistency PRIVATE ${_kg_cons_dir})
+    target_compile_options(test_consistency PRIVATE ${KANEGEN_WARNINGS})
+    target_compile_definitions(test_consistency PRIVATE
+      KANEGEN_ARM7_URDF="${PROJECT_SOURCE_DIR}/models/arm7.urdf"
+      KANEGEN_CHAIN20_URDF="${PROJECT_SOURCE_DIR}/models/chain20.urdf"
+      KANEGEN_CONSISTENCY_DATA_DIR="${_kg_cons_dir}/data")
+    target_link_libraries(test_consistency PRIVATE mujoco::mujoco Catch2::Catch2 Eigen3::Eigen
+                                                   PkgConfig::KANEGEN_CONSISTENCY_TINYXML2)
+
+    if(COMMAND kanegen_add_model)
+      # kanegen_model_<stem> of every shipped model is defined in tests/CMakeLists.txt.
+      foreach(_kg_model arm7 chain20)
+        if(NOT TARGET kanegen_model_${_kg_model})
+          kanegen_add_model(kanegen_model_${_kg_model} ${PROJECT_SOURCE_DIR}/models/${_kg_model}.urdf)
+        endif()
+      endforeach()
+      target_link_libraries(test_consistency PRIVATE kanegen_model_arm7 kanegen_model_chain20)
+      target_compile_definitions(test_consistency PRIVATE KANEGEN_HAVE_GENERATED_MODELS=1)
+    else()
+      message(WARNING "kanegen: kanegen_add_model() is not defined; test_consistency checks MuJoCo only")
+      target_compile_definitions(test_consistency PRIVATE KANEGEN_HAVE_GENERATED_MODELS=0)
+    endif()
+
+    catch_discover_tests(test_consistency TEST_PREFIX "consistency/")
+  endif()
+endif()
+
+# models/chain20.urdf is the committed output of scripts/make_chain_urdf.py.
+find_package(Python3 COMPONENTS Interpreter QUIET)
+if(Python3_Interpreter_FOUND)
+  add_test(NAME consistency/chain20_urdf_is_up_to_date
+           COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/scripts/make_chain_urdf.py --check
+                   -o ${PROJECT_SOURCE_DIR}/models/chain20.urdf)
+endif()

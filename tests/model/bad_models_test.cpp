@@ -1,0 +1,285 @@
+// One test per kind of bad input (tests/data/bad_models): each fails with one
+// ModelError naming the file, the exact place and a fix.
+#include <catch2/catch.hpp>
+
+#include "test_support.hpp"
+
+using kanegen::model::test::bad_model;
+using kanegen::model::test::expect_model_error;
+
+// ---- JSON syntax and schema ----
+
+TEST_CASE("bad JSON: malformed, with line and column", "[bad][json]") {
+  expect_model_error(bad_model("malformed.json"), "line 5, column 10", "malformed JSON: syntax error",
+                     "fix the JSON syntax");
+}
+
+TEST_CASE("bad JSON: unknown key suggests the nearest known key", "[bad][json]") {
+  expect_model_error(bad_model("unknown_key.json"), "/joints/0/axes", "unknown key 'axes'",
+                     "did you mean 'axis'?");
+}
+
+TEST_CASE("bad JSON: missing required key", "[bad][json]") {
+  expect_model_error(bad_model("missing_key.json"), "/bodies/1", "missing required key 'mass'",
+                     "add \"mass\": the mass in kg");
+}
+
+TEST_CASE("bad JSON: wrong type", "[bad][json]") {
+  expect_model_error(bad_model("wrong_type.json"), "/bodies/1/mass",
+                     "wrong type: expected a number or an expression string, found an array",
+                     "write a number or an expression string");
+}
+
+TEST_CASE("bad JSON: value not among the allowed ones", "[bad][json]") {
+  expect_model_error(bad_model("bad_enum.json"), "/joints/0/type", "invalid value \"hinge\"",
+                     "use one of revolute, continuous, prismatic, fixed");
+}
+
+TEST_CASE("bad JSON: unsupported version", "[bad][json]") {
+  expect_model_error(bad_model("bad_version.json"), "/version", "expected 1, found 2", "set it to 1");
+}
+
+TEST_CASE("bad JSON: invalid name", "[bad][json]") {
+  expect_model_error(bad_model("bad_name.json"), "/joints/0/name", "'1st' is not a valid name",
+                     "starting with a letter");
+}
+
+TEST_CASE("bad JSON: invalid parameter name", "[bad][json]") {
+  expect_model_error(bad_model("bad_parameter_name.json"), "/parameters/2m", "'2m' is not a valid name",
+                     "starting with a letter");
+}
+
+TEST_CASE("bad JSON: vector of the wrong length", "[bad][json]") {
+  expect_model_error(bad_model("short_vector.json"), "/bodies/0/com", "expected 3 entries, found 2",
+                     "an array of 3 numbers or expressions");
+}
+
+TEST_CASE("bad JSON: number that is not finite", "[bad][json]") {
+  expect_model_error(bad_model("nonfinite.json"), "line 5, column 36",
+                     "number 1e999 is too large for a double", "use a finite value");
+}
+
+// ---- names ----
+
+TEST_CASE("bad model: duplicate body", "[bad][json]") {
+  expect_model_error(bad_model("duplicate_body.json"), "/bodies/1/name",
+                     "duplicate body name 'a' (also at /bodies/0)", "rename one of them");
+}
+
+TEST_CASE("bad model: duplicate joint", "[bad][json]") {
+  expect_model_error(bad_model("duplicate_joint.json"), "/joints/1/name", "duplicate joint name 'j1'",
+                     "rename one of them");
+}
+
+TEST_CASE("bad model: duplicate parameter (a key given twice)", "[bad][json]") {
+  expect_model_error(bad_model("duplicate_parameter.json"), "/parameters/m", "key 'm' appears twice",
+                     "keep only one of them");
+}
+
+TEST_CASE("bad model: duplicate output", "[bad][json]") {
+  expect_model_error(bad_model("duplicate_output.json"), "/outputs/1/name", "duplicate output name 'tip'",
+                     "rename one of them");
+}
+
+TEST_CASE("bad model: duplicate force", "[bad][json]") {
+  expect_model_error(bad_model("duplicate_force.json"), "/forces/1/name", "duplicate force name 'push'",
+                     "rename one of them");
+}
+
+TEST_CASE("bad model: reserved parameter name", "[bad][json]") {
+  expect_model_error(bad_model("reserved_parameter.json"), "/parameters/q", "parameter name 'q' is reserved",
+                     "rename it");
+}
+
+TEST_CASE("bad model: C++ keyword as model name", "[bad][json]") {
+  expect_model_error(bad_model("keyword_name.json"), "/name", "model name 'class' is a C++ keyword",
+                     "choose another name");
+}
+
+TEST_CASE("bad model: body named like the ground", "[bad][json]") {
+  expect_model_error(bad_model("body_named_ground.json"), "/bodies/1/name", "names the fixed ground",
+                     "rename the body");
+}
+
+// ---- expressions ----
+
+TEST_CASE("bad model: unknown name in an expression, with a caret", "[bad][json][expression]") {
+  expect_model_error(bad_model("expression_unknown_name.json"), "/bodies/0/mass",
+                     "unknown name 'm2' in expression\n  m1 + m2\n       ^",
+                     "did you mean 'm1'? otherwise define it under /parameters");
+}
+
+TEST_CASE("bad model: unclosed parenthesis in an expression", "[bad][json][expression]") {
+  expect_model_error(bad_model("expression_syntax.json"), "/bodies/0/com/2",
+                     "unclosed '(' in expression\n  -(l1 + 1\n   ^", "add the matching ')'");
+}
+
+TEST_CASE("bad model: sign after an operator in an expression", "[bad][json][expression]") {
+  expect_model_error(bad_model("expression_sign.json"), "/joints/1/origin/xyz/2",
+                     "sign right after an operator in expression\n  l1*-2\n     ^",
+                     "put the signed operand in parentheses");
+}
+
+// ---- mass properties ----
+
+TEST_CASE("bad model: zero mass with inertia", "[bad][json]") {
+  expect_model_error(bad_model("zero_mass_inertia.json"), "/bodies/0/mass",
+                     "zero mass with a nonzero inertia", "set all inertia entries to 0 for a massless frame");
+}
+
+TEST_CASE("bad model: negative mass", "[bad][json]") {
+  expect_model_error(bad_model("negative_mass.json"), "/bodies/1/mass", "negative mass",
+                     "give a positive mass");
+}
+
+TEST_CASE("bad model: negative principal moment", "[bad][json]") {
+  expect_model_error(bad_model("negative_inertia.json"), "/bodies/0/inertia", "negative principal moment",
+                     "check the entries");
+}
+
+TEST_CASE("bad model: inertia violates the triangle inequality", "[bad][json]") {
+  expect_model_error(bad_model("triangle_inertia.json"), "/bodies/0/inertia",
+                     "violates the triangle inequality (principal moments 0.1, 0.1, 0.5: 0.1 + 0.1 < 0.5)",
+                     "must be at least the third");
+}
+
+TEST_CASE("bad model: moving joint carrying only massless bodies", "[bad][json]") {
+  expect_model_error(bad_model("massless_moving.json"), "/joints/1", "moves only massless bodies",
+                     "make the joint fixed");
+}
+
+// ---- joints and tree ----
+
+TEST_CASE("bad model: zero-length axis", "[bad][json]") {
+  expect_model_error(bad_model("zero_axis.json"), "/joints/0/axis", "zero-length axis",
+                     "give the axis a direction");
+}
+
+TEST_CASE("bad model: negative damping", "[bad][json]") {
+  expect_model_error(bad_model("negative_damping.json"), "/joints/0/damping", "negative damping", ">= 0");
+}
+
+TEST_CASE("bad model: fields of a coordinate on a fixed joint", "[bad][json]") {
+  expect_model_error(bad_model("fixed_joint_spring.json"), "/joints/1/spring", "has no coordinate",
+                     "make the joint revolute, continuous or prismatic");
+}
+
+TEST_CASE("bad model: unknown parent", "[bad][json]") {
+  expect_model_error(bad_model("unknown_parent.json"), "/joints/1/parent", "unknown body 'aa'",
+                     "did you mean 'a'?");
+}
+
+TEST_CASE("bad model: unknown child", "[bad][json]") {
+  expect_model_error(bad_model("unknown_child.json"), "/joints/1/child", "unknown body 'c'",
+                     "use the name of a body");
+}
+
+TEST_CASE("bad model: body that is the child of two joints", "[bad][json]") {
+  expect_model_error(bad_model("two_parents.json"), "/joints/2/child",
+                     "body 'b' is already the child of joint 'j2' (/joints/1)", "remove one of the joints");
+}
+
+TEST_CASE("bad model: cycle", "[bad][json]") {
+  expect_model_error(bad_model("cycle.json"), "/joints/1/parent", "joints form a cycle: a -> b -> a",
+                     "must end at 'ground'");
+}
+
+TEST_CASE("bad model: body not connected to the ground", "[bad][json]") {
+  expect_model_error(bad_model("not_connected.json"), "/bodies/0", "body 'c' is not connected to the ground",
+                     "attach the chain to 'ground'");
+}
+
+TEST_CASE("bad model: body with no joint", "[bad][json]") {
+  expect_model_error(bad_model("no_joint.json"), "/bodies/2", "body 'd' is not the child of any joint",
+                     "attach it with a joint");
+}
+
+// ---- outputs and forces ----
+
+TEST_CASE("bad model: output naming an unknown body", "[bad][json]") {
+  expect_model_error(bad_model("output_unknown_body.json"), "/outputs/0/body", "unknown body 'bb'",
+                     "did you mean 'b'?");
+}
+
+TEST_CASE("bad model: output naming an unknown joint", "[bad][json]") {
+  expect_model_error(bad_model("output_unknown_joint.json"), "/outputs/1/joint", "unknown joint 'j9'",
+                     "did you mean 'j1'?");
+}
+
+TEST_CASE("bad model: joint output on a fixed joint", "[bad][json]") {
+  expect_model_error(bad_model("output_fixed_joint.json"), "/outputs/1/joint", "fixed joint 'j2'",
+                     "name a revolute, continuous or prismatic joint");
+}
+
+TEST_CASE("bad model: point output without a point", "[bad][json]") {
+  expect_model_error(bad_model("output_missing_point.json"), "/outputs/0",
+                     "missing required key 'point' for a 'point' output", "add \"point\"");
+}
+
+TEST_CASE("bad model: force on an unknown body", "[bad][json]") {
+  expect_model_error(bad_model("force_unknown_body.json"), "/forces/0/body", "names unknown body 'ground'",
+                     "use the name of a body");
+}
+
+// ---- files ----
+
+TEST_CASE("bad file: unsupported extension", "[bad]") {
+  expect_model_error(bad_model("unsupported.yaml"), "file", "unknown model file type '.yaml'", "use a .json");
+}
+
+TEST_CASE("bad file: missing file", "[bad]") {
+  expect_model_error(bad_model("does_not_exist.json"), "file", "cannot open it", "check the path");
+}
+
+// ---- URDF ----
+
+TEST_CASE("bad URDF: malformed XML", "[bad][urdf]") {
+  // tinyxml2 points at the element left open.
+  expect_model_error(bad_model("malformed.urdf"), "line 4", "malformed XML: an element is not closed",
+                     "fix the XML syntax");
+}
+
+TEST_CASE("bad URDF: floating joint", "[bad][urdf]") {
+  expect_model_error(bad_model("floating.urdf"), "line 10: <joint name=\"free\">",
+                     "joint type 'floating' is not supported", "revolute, continuous, prismatic and fixed");
+}
+
+TEST_CASE("bad URDF: unknown joint type", "[bad][urdf]") {
+  expect_model_error(bad_model("unknown_type.urdf"), "line 10: <joint name=\"j1\">",
+                     "unknown joint type 'hinge'", "use type=\"revolute\"");
+}
+
+TEST_CASE("bad URDF: mimic joint", "[bad][urdf]") {
+  expect_model_error(bad_model("mimic.urdf"), "line 20: <joint name=\"j2\">/mimic",
+                     "mimic joints are not supported", "remove <mimic>");
+}
+
+TEST_CASE("bad URDF: urdfdom failure (revolute without limit)", "[bad][urdf]") {
+  expect_model_error(bad_model("no_limit.urdf"), "line 10: <joint name=\"j1\">",
+                     "urdfdom cannot read the robot", "add <limit");
+}
+
+TEST_CASE("bad URDF: joint naming a missing link", "[bad][urdf]") {
+  expect_model_error(bad_model("missing_link.urdf"), "line 14: <joint name=\"j2\">",
+                     "urdfdom cannot read the robot", "fix the URDF");
+}
+
+TEST_CASE("bad URDF: duplicate link", "[bad][urdf]") {
+  expect_model_error(bad_model("duplicate_link.urdf"), "line 10: <link name=\"base\">",
+                     "duplicate link name 'base' (also at line 4)", "rename one of them");
+}
+
+TEST_CASE("bad URDF: zero-length axis", "[bad][urdf]") {
+  expect_model_error(bad_model("zero_axis.urdf"), "line 10: <joint name=\"j1\">/axis", "zero-length axis",
+                     "give the axis a direction");
+}
+
+TEST_CASE("bad URDF: negative principal moment", "[bad][urdf]") {
+  expect_model_error(bad_model("negative_inertia.urdf"), "line 4: <link name=\"base\">/inertial/inertia",
+                     "negative principal moment", "check the entries");
+}
+
+TEST_CASE("bad URDF: moving joint carrying only a link without inertial", "[bad][urdf]") {
+  expect_model_error(bad_model("massless_moving.urdf"), "line 15: <joint name=\"spin\">",
+                     "moves only massless bodies", "make the joint fixed");
+}

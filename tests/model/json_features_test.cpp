@@ -1,0 +1,59 @@
+// Format features the shipped models do not use: defaults, springs, fixed
+// joints, forces, axis normalisation, "$schema".
+#include <catch2/catch.hpp>
+#include <fstream>
+#include <sstream>
+
+#include "model/schema.hpp"
+#include "test_support.hpp"
+
+using namespace kanegen::model;
+using kanegen::model::test::test_data;
+
+TEST_CASE("JSON defaults and optional features", "[json]") {
+  const Model m = load_model(test_data("features.json"));
+  CHECK(m.gravity[2].is_literal);
+  CHECK(m.gravity[2].value == Approx(-9.81));
+
+  const Joint& slide = m.joints[0];
+  CHECK(slide.type == JointType::prismatic);
+  CHECK(slide.axis[0] == Approx(0.6));  // [3, 0, 4] normalised
+  CHECK(slide.axis[1] == 0);
+  CHECK(slide.axis[2] == Approx(0.8));
+  CHECK_FALSE(slide.spring_stiffness.is_literal);
+  CHECK(slide.spring_stiffness.text == "k");
+  CHECK(slide.spring_rest.value == Approx(0.1));
+  CHECK(slide.damping.value == Approx(0.5));
+  CHECK_FALSE(slide.actuated);
+  CHECK(slide.q0 == Approx(0.2));
+  CHECK(slide.u0 == Approx(-1));
+
+  const Joint& hinge = m.joints[1];
+  CHECK(hinge.type == JointType::continuous);
+  CHECK(hinge.axis == std::array<double, 3>{0, 0, 1});  // default axis
+  CHECK(hinge.origin_rpy[1].text == "pi/2");
+  CHECK(hinge.actuated);
+
+  const Joint& mount = m.joints[2];
+  CHECK(mount.type == JointType::fixed);
+  CHECK_FALSE(mount.moves());
+  CHECK_FALSE(mount.actuated);
+
+  CHECK(m.bodies[0].inertia[3].value == Approx(0.01));  // ixy
+  CHECK(m.bodies[2].mass.value == 0);                   // a massless frame on a fixed joint is fine
+
+  REQUIRE(m.forces.size() == 2);
+  CHECK(m.forces[0].frame == ForceFrame::body);
+  CHECK(m.forces[0].force[2].text == "-m*sin(pi/6)");
+  CHECK(m.forces[1].frame == ForceFrame::world);
+  CHECK(m.forces[1].point[0].value == 0);
+  CHECK(m.outputs[0].kind == OutputKind::joint_speed);
+  CHECK(m.outputs[0].joint == "slide");
+}
+
+TEST_CASE("the schema is embedded and matches models/schema", "[json]") {
+  std::ifstream in(kanegen::model::test::source_path("models/schema/kanegen-model.schema.json"));
+  std::stringstream text;
+  text << in.rdbuf();
+  CHECK(text.str() == model_schema_text());
+}
