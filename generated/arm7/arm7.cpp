@@ -747,32 +747,6 @@ void forcing(const Params& p, double t, const double* q, const double* u, const 
   f[6] = -(x363*(x216*x233 - (x218*x227)) + x358*x201 - (x216*x299) - tau[6] - (x349*x227) + x329*(x216*x203 + x218*x201) - ((x203*x227 + x233*x201)*x368));
 }
 
-namespace {
-
-// Solves M x = b in place for a symmetric positive definite M given by its
-// lower triangle (row-major, NU*NU), by LDL^T without square roots.
-int solve_ldlt(double* M, double* b) {
-  for (int j = 0; j < NU; ++j) {
-    double d = M[j * NU + j];
-    for (int k = 0; k < j; ++k) d -= M[j * NU + k] * M[j * NU + k] * M[k * NU + k];
-    if (!(d > 0.0)) return j + 1;
-    M[j * NU + j] = d;
-    for (int i = j + 1; i < NU; ++i) {
-      double l = M[i * NU + j];
-      for (int k = 0; k < j; ++k) l -= M[i * NU + k] * M[j * NU + k] * M[k * NU + k];
-      M[i * NU + j] = l / d;
-    }
-  }
-  for (int i = 0; i < NU; ++i)
-    for (int k = 0; k < i; ++k) b[i] -= M[i * NU + k] * b[k];
-  for (int i = 0; i < NU; ++i) b[i] /= M[i * NU + i];
-  for (int i = NU - 1; i >= 0; --i)
-    for (int k = i + 1; k < NU; ++k) b[i] -= M[k * NU + i] * b[k];
-  return 0;
-}
-
-}  // namespace
-
 int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
                      double* udot) {
   (void)p;
@@ -780,7 +754,6 @@ int forward_dynamics(const Params& p, double t, const double* q, const double* u
   (void)q;
   (void)u;
   (void)tau;
-  double M[49];
   const double x0 = std::sin(q[0]);
   const double x1 = std::cos(q[2]);
   const double x2 = std::cos(q[0]);
@@ -919,7 +892,7 @@ int forward_dynamics(const Params& p, double t, const double* q, const double* u
   const double x135 = x134*x134;
   const double x136 = -0.002*x0 + 0.03*x2;
   const double x137 = 0.03*x0 + 0.002*x2;
-  M[0] = x128 - (x131 - 4.0*x133 - 4.0*x135) + 4.0*(x136*x136) + 0.02 + 4.0*(x137*x137);
+  const double m0_0 = x128 - (x131 - 4.0*x133 - 4.0*x135) + 4.0*(x136*x136) + 0.02 + 4.0*(x137*x137);
   const double x138 = x13*x121 - (x31*x119) - (x120*x26);
   const double x139 = 0.2045*x3 + 0.36;
   const double x140 = x139 + 0.2155*x3;
@@ -971,7 +944,7 @@ int forward_dynamics(const Params& p, double t, const double* q, const double* u
   const double x186 = x185 - 1.7*x34;
   const double x187 = 2.7*x125 - x186;
   const double x188 = 3.0*x16 + x187;
-  M[7] = -(x2*(x163 + 4.0*(x134*x164) + x166) + 0.36*(x0*(4.0*x132 + x171)) - (x0*(-x172 + 4.0*(x164*x132) - x183)) - 0.36*(x2*(4.0*x134 + x188)));
+  const double m1_0 = -(x2*(x163 + 4.0*(x134*x164) + x166) + 0.36*(x0*(4.0*x132 + x171)) - (x0*(-x172 + 4.0*(x164*x132) - x183)) - 0.36*(x2*(4.0*x134 + x188)));
   const double x189 = -1.2*x155 + 0.3*x152;
   const double x190 = 1.8*x148 + x189;
   const double x191 = 1.7*x145 + x190;
@@ -1045,76 +1018,76 @@ int forward_dynamics(const Params& p, double t, const double* q, const double* u
   const double x259 = -(x31*x240) + x13*x238 - (x239*x26);
   const double x260 = x258 + -x259 + x124 + x210;
   const double x261 = x11 + x212 + x251 + x260;
-  M[8] = -(x0*(0.36*x195 - (x0*(4.0*x135 + x196 - x197 + x214)) - (x248*x2)) + x2*(0.36*x249 - (x2*(x250 + 4.0*x133 + x196 + x261)) - (x248*x0)) + 0.36*(x0*(x195 - 5.292*x0)) - 0.36*(x2*(-x249 + 5.292*x2)));
+  const double m1_1 = -(x0*(0.36*x195 - (x0*(4.0*x135 + x196 - x197 + x214)) - (x248*x2)) + x2*(0.36*x249 - (x2*(x250 + 4.0*x133 + x196 + x261)) - (x248*x0)) + 0.36*(x0*(x195 - 5.292*x0)) - 0.36*(x2*(-x249 + 5.292*x2)));
   const double x262 = -0.2045*(x0*x3*x8) + x139*x15;
   const double x263 = -0.2045*(x2*x3*x8) + x139*x9;
   const double x264 = x9*x183 - (x15*x163) + x262*x188 + x3*x128 + x263*x171;
-  M[14] = x264;
+  const double m2_0 = x264;
   const double x265 = 0.2045*(x9*x0*x8) - 0.2045*(x2*x8*x15);
   const double x266 = x9*x214 - (x193*x263) + x3*x183 - (x188*x265) - (x243*x15);
   const double x267 = 10.7*x263 - (x9*x193) + x3*x171;
   const double x268 = -(x193*x15) + 10.7*x262 + x3*x188;
   const double x269 = x15*x261 - (x9*x243) - (x3*x163) + x171*x265 - (x262*x193);
-  M[15] = -(x0*x266 + 0.36*(x0*x267) - 0.36*(x2*x268) - (x2*x269));
-  M[16] = x9*x266 + x264*x3 + x267*x263 + x262*x268 + (-(x9*x188) + 10.7*x265 + x171*x15)*x265 + x269*x15;
+  const double m2_1 = -(x0*x266 + 0.36*(x0*x267) - 0.36*(x2*x268) - (x2*x269));
+  const double m2_2 = x9*x266 + x264*x3 + x267*x263 + x262*x268 + (-(x9*x188) + 10.7*x265 + x171*x15)*x265 + x269*x15;
   const double x270 = x13*x140 - 0.42*(x18*x0*x8);
   const double x271 = x6*x140 + 0.42*(x2*x18*x8);
   const double x272 = -(x270*x187) + x170*x271 + x6*x182 - (x13*x160) - (x18*x127);
-  M[21] = -x272;
+  const double m3_0 = -x272;
   const double x273 = 0.42*(x6*x0*x8) + 0.42*(x2*x13*x8);
   const double x274 = -(x273*x187) - (x18*x182) + x13*x242 + x6*x211 + x192*x271;
   const double x275 = 7.7*x270 + x18*x187 + x13*x192;
   const double x276 = -(x6*x242) + x170*x273 - (x270*x192) - (x18*x160) - (x13*x260);
   const double x277 = x6*x192 - (x18*x170) + 7.7*x271;
-  M[22] = x0*x274 + 0.36*(x2*x275) - (x2*x276) + 0.36*(x0*x277);
+  const double m3_1 = x0*x274 + 0.36*(x2*x275) - (x2*x276) + 0.36*(x0*x277);
   const double x278 = x6*x187 - 7.7*x273 + x13*x170;
-  M[23] = -(x9*x274 - (x278*x265) - (x262*x275) + x3*x272 + x276*x15 + x263*x277);
-  M[24] = -(x273*x278) - (x18*x272) + x271*x277 + x270*x275 - (x13*x276) + x6*x274;
+  const double m3_2 = -(x9*x274 - (x278*x265) - (x262*x275) + x3*x272 + x276*x15 + x263*x277);
+  const double m3_3 = -(x273*x278) - (x18*x272) + x271*x277 + x270*x275 - (x13*x276) + x6*x274;
   const double x279 = x46*x38 - (x144*x36);
   const double x280 = -(x31*x144) + x46*x33;
   const double x281 = x31*x159 - (x279*x169) - (x181*x36) + x186*x280 + x46*x118;
-  M[28] = -x281;
+  const double m4_0 = -x281;
   const double x282 = -(x31*x38) + x33*x36;
   const double x283 = -(x31*x258) - (x282*x169) + x237*x36 - (x46*x159) - (x191*x280);
   const double x284 = x31*x191 + x46*x186 + 5.0*x280;
   const double x285 = x282*x186 - (x46*x181) + x208*x36 + x279*x191 - (x31*x237);
   const double x286 = x191*x36 - (x46*x169) + 5.0*x279;
-  M[29] = -(x2*x283 - 0.36*(x2*x284) + x0*x285 + 0.36*(x0*x286));
+  const double m4_1 = -(x2*x283 - 0.36*(x2*x284) + x0*x285 + 0.36*(x0*x286));
   const double x287 = x31*x169 + x186*x36 + 5.0*x282;
-  M[30] = -(-(x263*x286) + x15*x283 + x3*x281 - (x287*x265) - (x262*x284) - (x9*x285));
-  M[31] = -(x271*x286 + x18*x281 + x6*x285 + x287*x273 + x13*x283 - (x270*x284));
-  M[32] = x36*x285 + x284*x280 + x46*x281 - (x31*x283) + x287*x282 + x279*x286;
+  const double m4_2 = -(-(x263*x286) + x15*x283 + x3*x281 - (x287*x265) - (x262*x284) - (x9*x285));
+  const double m4_3 = -(x271*x286 + x18*x281 + x6*x285 + x287*x273 + x13*x283 - (x270*x284));
+  const double m4_4 = x36*x285 + x284*x280 + x46*x281 - (x31*x283) + x287*x282 + x279*x286;
   const double x288 = x64*x47 + x147*x30;
   const double x289 = x147*x40 + x71*x47;
   const double x290 = -(x158*x30) + x40*x179 + x117*x47 + x185*x288 - (x168*x289);
-  M[35] = x290;
+  const double m5_0 = x290;
   const double x291 = -3.3*x289 + x40*x190 + x168*x47;
   const double x292 = x64*x40 - (x71*x30);
   const double x293 = x236*x30 + x292*x185 + x40*x205 + x179*x47 - (x289*x190);
   const double x294 = x236*x40 + x292*x168 + x257*x30 - (x288*x190) - (x158*x47);
   const double x295 = 3.3*x288 + x185*x47 - (x30*x190);
-  M[36] = -(0.36*(x0*x291) + x0*x293 - (x2*x294) + 0.36*(x2*x295));
+  const double m5_1 = -(0.36*(x0*x291) + x0*x293 - (x2*x294) + 0.36*(x2*x295));
   const double x296 = 3.3*x292 + x185*x40 + x168*x30;
-  M[37] = x294*x15 + x291*x263 + x296*x265 + x290*x3 + x9*x293 - (x262*x295);
-  M[38] = -(x296*x273 + x6*x293 - (x294*x13) - (x290*x18) + x270*x295 + x291*x271);
-  M[39] = -(x46*x290) + x291*x279 - (x295*x280) + x293*x36 + x296*x282 + x31*x294;
-  M[40] = x40*x293 + x292*x296 + x295*x288 + x294*x30 + x290*x47 - (x291*x289);
+  const double m5_2 = x294*x15 + x291*x263 + x296*x265 + x290*x3 + x9*x293 - (x262*x295);
+  const double m5_3 = -(x296*x273 + x6*x293 - (x294*x13) - (x290*x18) + x270*x295 + x291*x271);
+  const double m5_4 = -(x46*x290) + x291*x279 - (x295*x280) + x293*x36 + x296*x282 + x31*x294;
+  const double m5_5 = x40*x293 + x292*x296 + x295*x288 + x294*x30 + x290*x47 - (x291*x289);
   const double x297 = x86*x65 - (x151*x61);
   const double x298 = x86*x73 + x151*x70;
   const double x299 = x177*x70 + x184*x297 + x108*x86 + x157*x61 + x167*x298;
-  M[42] = x299;
+  const double m6_0 = x299;
   const double x300 = 1.5*x298 + x86*x167 - (x189*x70);
   const double x301 = 1.5*x297 + x184*x86 + x189*x61;
   const double x302 = x73*x61 + x65*x70;
   const double x303 = x189*x297 + x255*x61 - (x231*x70) + x86*x157 + x302*x167;
   const double x304 = x231*x61 + x189*x298 - (x177*x86) - (x184*x302) - (x204*x70);
-  M[43] = -(-0.36*(x300*x0) + 0.36*(x301*x2) + x2*x303 - (x0*x304));
+  const double m6_1 = -(-0.36*(x300*x0) + 0.36*(x301*x2) + x2*x303 - (x0*x304));
   const double x305 = x184*x70 + x61*x167 + 1.5*x302;
-  M[44] = -(x300*x263 + x9*x304 - (x305*x265) + x301*x262 + x303*x15 - (x3*x299));
-  M[45] = -(x301*x270) + x300*x271 + x18*x299 + x6*x304 - (x273*x305) - (x13*x303);
-  M[46] = -(x300*x279) + x282*x305 - (x46*x299) - (x304*x36) - (x301*x280) - (x31*x303);
-  M[47] = -(x40*x304) + x299*x47 + x292*x305 + x300*x289 - (x303*x30) + x301*x288;
-  M[48] = x302*x305 + x303*x61 + x301*x297 - (x304*x70) + x300*x298 + x86*x299;
+  const double m6_2 = -(x300*x263 + x9*x304 - (x305*x265) + x301*x262 + x303*x15 - (x3*x299));
+  const double m6_3 = -(x301*x270) + x300*x271 + x18*x299 + x6*x304 - (x273*x305) - (x13*x303);
+  const double m6_4 = -(x300*x279) + x282*x305 - (x46*x299) - (x304*x36) - (x301*x280) - (x31*x303);
+  const double m6_5 = -(x40*x304) + x299*x47 + x292*x305 + x300*x289 - (x303*x30) + x301*x288;
+  const double m6_6 = x302*x305 + x303*x61 + x301*x297 - (x304*x70) + x300*x298 + x86*x299;
   const double x306 = u[1]*x2;
   const double x307 = u[1]*x0*x197 - (x247*x306) + u[0]*x172;
   const double x308 = 0.36 - x164;
@@ -1305,7 +1278,120 @@ int forward_dynamics(const Params& p, double t, const double* q, const double* u
   udot[4] = -(x31*x468 - (x46*x433) - tau[4] - (x279*x448) + x477*x36 + x280*x482 - (x487*x282));
   udot[5] = x292*x486 - (x476*x40) - (x432*x47) - (x288*x481) + x289*x447 + tau[5] - (x30*x467);
   udot[6] = -(x480*x297 + x475*x70 - (x86*x431) - tau[6] - (x466*x61) + x446*x298 - (x302*x485));
-  return solve_ldlt(M, udot);
+  // LDL^T of M, unrolled; d<j> are the pivots.
+  const double d0 = m0_0;
+  if (!(d0 > 0.0)) return 1;
+  const double inv_d0 = 1.0/d0;
+  const double l1_0 = (m1_0)*inv_d0;
+  const double l2_0 = (m2_0)*inv_d0;
+  const double l3_0 = (m3_0)*inv_d0;
+  const double l4_0 = (m4_0)*inv_d0;
+  const double l5_0 = (m5_0)*inv_d0;
+  const double l6_0 = (m6_0)*inv_d0;
+  const double ld1_0 = l1_0*d0;
+  const double d1 = m1_1 - l1_0*ld1_0;
+  if (!(d1 > 0.0)) return 2;
+  const double inv_d1 = 1.0/d1;
+  const double l2_1 = (m2_1 - l2_0*ld1_0)*inv_d1;
+  const double l3_1 = (m3_1 - l3_0*ld1_0)*inv_d1;
+  const double l4_1 = (m4_1 - l4_0*ld1_0)*inv_d1;
+  const double l5_1 = (m5_1 - l5_0*ld1_0)*inv_d1;
+  const double l6_1 = (m6_1 - l6_0*ld1_0)*inv_d1;
+  const double ld2_0 = l2_0*d0;
+  const double ld2_1 = l2_1*d1;
+  const double d2 = m2_2 - l2_0*ld2_0 - l2_1*ld2_1;
+  if (!(d2 > 0.0)) return 3;
+  const double inv_d2 = 1.0/d2;
+  const double l3_2 = (m3_2 - l3_0*ld2_0 - l3_1*ld2_1)*inv_d2;
+  const double l4_2 = (m4_2 - l4_0*ld2_0 - l4_1*ld2_1)*inv_d2;
+  const double l5_2 = (m5_2 - l5_0*ld2_0 - l5_1*ld2_1)*inv_d2;
+  const double l6_2 = (m6_2 - l6_0*ld2_0 - l6_1*ld2_1)*inv_d2;
+  const double ld3_0 = l3_0*d0;
+  const double ld3_1 = l3_1*d1;
+  const double ld3_2 = l3_2*d2;
+  const double d3 = m3_3 - l3_0*ld3_0 - l3_1*ld3_1 - l3_2*ld3_2;
+  if (!(d3 > 0.0)) return 4;
+  const double inv_d3 = 1.0/d3;
+  const double l4_3 = (m4_3 - l4_0*ld3_0 - l4_1*ld3_1 - l4_2*ld3_2)*inv_d3;
+  const double l5_3 = (m5_3 - l5_0*ld3_0 - l5_1*ld3_1 - l5_2*ld3_2)*inv_d3;
+  const double l6_3 = (m6_3 - l6_0*ld3_0 - l6_1*ld3_1 - l6_2*ld3_2)*inv_d3;
+  const double ld4_0 = l4_0*d0;
+  const double ld4_1 = l4_1*d1;
+  const double ld4_2 = l4_2*d2;
+  const double ld4_3 = l4_3*d3;
+  const double d4 = m4_4 - l4_0*ld4_0 - l4_1*ld4_1 - l4_2*ld4_2 - l4_3*ld4_3;
+  if (!(d4 > 0.0)) return 5;
+  const double inv_d4 = 1.0/d4;
+  const double l5_4 = (m5_4 - l5_0*ld4_0 - l5_1*ld4_1 - l5_2*ld4_2 - l5_3*ld4_3)*inv_d4;
+  const double l6_4 = (m6_4 - l6_0*ld4_0 - l6_1*ld4_1 - l6_2*ld4_2 - l6_3*ld4_3)*inv_d4;
+  const double ld5_0 = l5_0*d0;
+  const double ld5_1 = l5_1*d1;
+  const double ld5_2 = l5_2*d2;
+  const double ld5_3 = l5_3*d3;
+  const double ld5_4 = l5_4*d4;
+  const double d5 = m5_5 - l5_0*ld5_0 - l5_1*ld5_1 - l5_2*ld5_2 - l5_3*ld5_3 - l5_4*ld5_4;
+  if (!(d5 > 0.0)) return 6;
+  const double inv_d5 = 1.0/d5;
+  const double l6_5 = (m6_5 - l6_0*ld5_0 - l6_1*ld5_1 - l6_2*ld5_2 - l6_3*ld5_3 - l6_4*ld5_4)*inv_d5;
+  const double ld6_0 = l6_0*d0;
+  const double ld6_1 = l6_1*d1;
+  const double ld6_2 = l6_2*d2;
+  const double ld6_3 = l6_3*d3;
+  const double ld6_4 = l6_4*d4;
+  const double ld6_5 = l6_5*d5;
+  const double d6 = m6_6 - l6_0*ld6_0 - l6_1*ld6_1 - l6_2*ld6_2 - l6_3*ld6_3 - l6_4*ld6_4 - l6_5*ld6_5;
+  if (!(d6 > 0.0)) return 7;
+  const double inv_d6 = 1.0/d6;
+  udot[1] -= l1_0*udot[0];
+  udot[2] -= l2_0*udot[0];
+  udot[2] -= l2_1*udot[1];
+  udot[3] -= l3_0*udot[0];
+  udot[3] -= l3_1*udot[1];
+  udot[3] -= l3_2*udot[2];
+  udot[4] -= l4_0*udot[0];
+  udot[4] -= l4_1*udot[1];
+  udot[4] -= l4_2*udot[2];
+  udot[4] -= l4_3*udot[3];
+  udot[5] -= l5_0*udot[0];
+  udot[5] -= l5_1*udot[1];
+  udot[5] -= l5_2*udot[2];
+  udot[5] -= l5_3*udot[3];
+  udot[5] -= l5_4*udot[4];
+  udot[6] -= l6_0*udot[0];
+  udot[6] -= l6_1*udot[1];
+  udot[6] -= l6_2*udot[2];
+  udot[6] -= l6_3*udot[3];
+  udot[6] -= l6_4*udot[4];
+  udot[6] -= l6_5*udot[5];
+  udot[0] *= inv_d0;
+  udot[1] *= inv_d1;
+  udot[2] *= inv_d2;
+  udot[3] *= inv_d3;
+  udot[4] *= inv_d4;
+  udot[5] *= inv_d5;
+  udot[6] *= inv_d6;
+  udot[5] -= l6_5*udot[6];
+  udot[4] -= l5_4*udot[5];
+  udot[4] -= l6_4*udot[6];
+  udot[3] -= l4_3*udot[4];
+  udot[3] -= l5_3*udot[5];
+  udot[3] -= l6_3*udot[6];
+  udot[2] -= l3_2*udot[3];
+  udot[2] -= l4_2*udot[4];
+  udot[2] -= l5_2*udot[5];
+  udot[2] -= l6_2*udot[6];
+  udot[1] -= l2_1*udot[2];
+  udot[1] -= l3_1*udot[3];
+  udot[1] -= l4_1*udot[4];
+  udot[1] -= l5_1*udot[5];
+  udot[1] -= l6_1*udot[6];
+  udot[0] -= l1_0*udot[1];
+  udot[0] -= l2_0*udot[2];
+  udot[0] -= l3_0*udot[3];
+  udot[0] -= l4_0*udot[4];
+  udot[0] -= l5_0*udot[5];
+  udot[0] -= l6_0*udot[6];
+  return 0;
 }
 
 void coordinate_rates(const double* q, const double* u, double* qdot) {

@@ -105,32 +105,6 @@ void forcing(const Params& p, double t, const double* q, const double* u, const 
   f[1] = tau[1] - (u[1]*p.c2) - x14 - (p.m2*x13*x6) + p.l1*x1*x10;
 }
 
-namespace {
-
-// Solves M x = b in place for a symmetric positive definite M given by its
-// lower triangle (row-major, NU*NU), by LDL^T without square roots.
-int solve_ldlt(double* M, double* b) {
-  for (int j = 0; j < NU; ++j) {
-    double d = M[j * NU + j];
-    for (int k = 0; k < j; ++k) d -= M[j * NU + k] * M[j * NU + k] * M[k * NU + k];
-    if (!(d > 0.0)) return j + 1;
-    M[j * NU + j] = d;
-    for (int i = j + 1; i < NU; ++i) {
-      double l = M[i * NU + j];
-      for (int k = 0; k < j; ++k) l -= M[i * NU + k] * M[j * NU + k] * M[k * NU + k];
-      M[i * NU + j] = l / d;
-    }
-  }
-  for (int i = 0; i < NU; ++i)
-    for (int k = 0; k < i; ++k) b[i] -= M[i * NU + k] * b[k];
-  for (int i = 0; i < NU; ++i) b[i] /= M[i * NU + i];
-  for (int i = NU - 1; i >= 0; --i)
-    for (int k = i + 1; k < NU; ++k) b[i] -= M[k * NU + i] * b[k];
-  return 0;
-}
-
-}  // namespace
-
 int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
                      double* udot) {
   (void)p;
@@ -138,7 +112,6 @@ int forward_dynamics(const Params& p, double t, const double* q, const double* u
   (void)q;
   (void)u;
   (void)tau;
-  double M[4];
   const double x0 = std::sin(q[0]);
   const double x1 = std::cos(q[0]);
   const double x2 = std::cos(q[1]);
@@ -149,10 +122,10 @@ int forward_dynamics(const Params& p, double t, const double* q, const double* u
   const double x7 = p.l1*x0;
   const double x8 = 0.5*(p.l2*(x1*x3 + x0*x2)) + x7;
   const double x9 = 0.08333333333333333*(p.m2*p.l2*p.l2) + x5*x6 + p.m2*x8*x8;
-  M[0] = 0.25*(p.m1*p.l1*p.l1*x0*x0) + 0.08333333333333333*(p.m1*p.l1*p.l1) + 0.25*(p.m1*x1*x1*p.l1*p.l1) + x9;
+  const double m0_0 = 0.25*(p.m1*p.l1*p.l1*x0*x0) + 0.08333333333333333*(p.m1*p.l1*p.l1) + 0.25*(p.m1*x1*x1*p.l1*p.l1) + x9;
   const double x10 = -(p.m2*p.l1*x0*x8 + x4*x6 - x9);
-  M[2] = x10;
-  M[3] = x10 + x4*(p.m2*x4 - x6) - (p.l1*x0*(-(p.m2*p.l1*x0) + p.m2*x8));
+  const double m1_0 = x10;
+  const double m1_1 = x10 + x4*(p.m2*x4 - x6) - (p.l1*x0*(-(p.m2*p.l1*x0) + p.m2*x8));
   const double x11 = u[0]*u[0];
   const double x12 = p.l1*x0*x11;
   const double x13 = u[1] + u[0];
@@ -162,7 +135,20 @@ int forward_dynamics(const Params& p, double t, const double* q, const double* u
   const double x17 = x15*x8 - (p.m2*x5*x16);
   udot[0] = -(u[0]*p.c1 - tau[0] + -(-0.25*(p.m1*x1*p.l1*p.l1*x0*x11) + 0.5*(p.m1*x1*(9.81 + 0.5*x12)*p.l1)) + x17);
   udot[1] = tau[1] - (u[1]*p.c2) - x17 - (p.m2*x16*x4) + p.l1*x0*x15;
-  return solve_ldlt(M, udot);
+  // LDL^T of M, unrolled; d<j> are the pivots.
+  const double d0 = m0_0;
+  if (!(d0 > 0.0)) return 1;
+  const double inv_d0 = 1.0/d0;
+  const double l1_0 = (m1_0)*inv_d0;
+  const double ld1_0 = l1_0*d0;
+  const double d1 = m1_1 - l1_0*ld1_0;
+  if (!(d1 > 0.0)) return 2;
+  const double inv_d1 = 1.0/d1;
+  udot[1] -= l1_0*udot[0];
+  udot[0] *= inv_d0;
+  udot[1] *= inv_d1;
+  udot[0] -= l1_0*udot[1];
+  return 0;
 }
 
 void coordinate_rates(const double* q, const double* u, double* qdot) {

@@ -66,32 +66,6 @@ void forcing(const Params& p, double t, const double* q, const double* u, const 
   f[0] = x0*p.m*p.l*(p.l*x1*x2) - (p.m*p.l*x1*(x0*p.l*x2 + p.g)) + tau[0];
 }
 
-namespace {
-
-// Solves M x = b in place for a symmetric positive definite M given by its
-// lower triangle (row-major, NU*NU), by LDL^T without square roots.
-int solve_ldlt(double* M, double* b) {
-  for (int j = 0; j < NU; ++j) {
-    double d = M[j * NU + j];
-    for (int k = 0; k < j; ++k) d -= M[j * NU + k] * M[j * NU + k] * M[k * NU + k];
-    if (!(d > 0.0)) return j + 1;
-    M[j * NU + j] = d;
-    for (int i = j + 1; i < NU; ++i) {
-      double l = M[i * NU + j];
-      for (int k = 0; k < j; ++k) l -= M[i * NU + k] * M[j * NU + k] * M[k * NU + k];
-      M[i * NU + j] = l / d;
-    }
-  }
-  for (int i = 0; i < NU; ++i)
-    for (int k = 0; k < i; ++k) b[i] -= M[i * NU + k] * b[k];
-  for (int i = 0; i < NU; ++i) b[i] /= M[i * NU + i];
-  for (int i = NU - 1; i >= 0; --i)
-    for (int k = i + 1; k < NU; ++k) b[i] -= M[k * NU + i] * b[k];
-  return 0;
-}
-
-}  // namespace
-
 int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
                      double* udot) {
   (void)p;
@@ -99,13 +73,17 @@ int forward_dynamics(const Params& p, double t, const double* q, const double* u
   (void)q;
   (void)u;
   (void)tau;
-  double M[1];
   const double x0 = std::cos(q[0]);
   const double x1 = std::sin(q[0]);
-  M[0] = x0*x0*p.m*p.l*p.l + p.m*p.l*p.l*x1*x1;
+  const double m0_0 = x0*x0*p.m*p.l*p.l + p.m*p.l*p.l*x1*x1;
   const double x2 = u[0]*u[0];
   udot[0] = x0*p.m*p.l*(p.l*x1*x2) - (p.m*p.l*x1*(x0*p.l*x2 + p.g)) + tau[0];
-  return solve_ldlt(M, udot);
+  // LDL^T of M, unrolled; d<j> are the pivots.
+  const double d0 = m0_0;
+  if (!(d0 > 0.0)) return 1;
+  const double inv_d0 = 1.0/d0;
+  udot[0] *= inv_d0;
+  return 0;
 }
 
 void coordinate_rates(const double* q, const double* u, double* qdot) {

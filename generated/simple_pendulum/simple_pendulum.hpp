@@ -4,7 +4,7 @@
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 11
 //   forcing: 16
-//   forward_dynamics: 27 (with about 2 in LDL^T)
+//   forward_dynamics: 27 (2 of them in LDL^T)
 //   kinetic_energy: 11
 //   potential_energy: 4
 //   outputs: 4

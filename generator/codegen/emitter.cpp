@@ -21,7 +21,11 @@ namespace {
 
 std::string quoted_list(const std::vector<std::string>& names) {
   std::string s;
-  for (const std::string& n : names) s += (s.empty() ? "\"" : ", \"") + n + "\"";
+  for (const std::string& n : names) {
+    std::string escaped;  // URDF names may hold any character
+    for (char c : n) escaped += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
+    s += (s.empty() ? "\"" : ", \"") + escaped + "\"";
+  }
   return s;
 }
 
@@ -37,6 +41,59 @@ struct KernelText {
   std::string body;
   long operations;
 };
+
+/// M udot = f solved by an LDL^T unrolled for this model: the entries of M
+/// are locals m<i>_<j>, udot holds f on entry; entries that are zero by the
+/// tree's structure (and do not fill in) are left out.
+KernelText unrolled_ldlt(const std::vector<bool>& nonzero_m, int n) {
+  std::vector<bool> nz(nonzero_m);  // structure of L, lower triangle, row-major
+  auto m = [](int i, int j) { return "m" + std::to_string(i) + "_" + std::to_string(j); };
+  auto l = [](int i, int j) { return "l" + std::to_string(i) + "_" + std::to_string(j); };
+  auto d = [](int j) { return "d" + std::to_string(j); };
+  auto ld = [](int j, int k) { return "ld" + std::to_string(j) + "_" + std::to_string(k); };
+  std::string s = "  // LDL^T of M, unrolled; d<j> are the pivots.\n";
+  long ops = 0;
+  for (int j = 0; j < n; ++j) {
+    std::string pivot = m(j, j);
+    for (int k = 0; k < j; ++k)
+      if (nz[j * n + k]) {
+        s += "  const double " + ld(j, k) + " = " + l(j, k) + "*" + d(k) + ";\n";
+        pivot += " - " + l(j, k) + "*" + ld(j, k);
+        ops += 3;
+      }
+    s += "  const double " + d(j) + " = " + pivot + ";\n";
+    s += "  if (!(" + d(j) + " > 0.0)) return " + std::to_string(j + 1) + ";\n";
+    s += "  const double inv_" + d(j) + " = 1.0/" + d(j) + ";\n";
+    ops += 1;
+    for (int i = j + 1; i < n; ++i) {
+      std::string entry = nonzero_m[i * n + j] ? m(i, j) : "";
+      for (int k = 0; k < j; ++k)
+        if (nz[i * n + k] && nz[j * n + k]) {
+          entry += (entry.empty() ? "-" : " - ") + l(i, k) + "*" + ld(j, k);
+          ops += 2;
+        }
+      if (entry.empty()) continue;
+      nz[i * n + j] = true;
+      s += "  const double " + l(i, j) + " = (" + entry + ")*inv_" + d(j) + ";\n";
+      ops += 1;
+    }
+  }
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < i; ++k)
+      if (nz[i * n + k]) {
+        s += "  udot[" + std::to_string(i) + "] -= " + l(i, k) + "*udot[" + std::to_string(k) + "];\n";
+        ops += 2;
+      }
+  for (int i = 0; i < n; ++i) s += "  udot[" + std::to_string(i) + "] *= inv_" + d(i) + ";\n";
+  ops += n;
+  for (int i = n - 1; i >= 0; --i)
+    for (int k = i + 1; k < n; ++k)
+      if (nz[k * n + i]) {
+        s += "  udot[" + std::to_string(i) + "] -= " + l(k, i) + "*udot[" + std::to_string(k) + "];\n";
+        ops += 2;
+      }
+  return {s, ops};
+}
 
 KernelText kernel(const ExpressionGraph& graph, const std::vector<Assignment>& assignments) {
   const PrintedKernel printed = print_kernel(graph, assignments);
@@ -70,12 +127,18 @@ EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, co
   ExpressionGraph graph(vars, program);
   const int n = eq.nu;
   std::vector<Assignment> mass, force, dynamics, rates, outputs;
+  std::vector<bool> nonzero_m(static_cast<std::size_t>(n) * n, false);
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
       const std::string index = std::to_string(i * n + j);
       const int node = graph.add(eq.mass_matrix[i * n + j]);
       mass.push_back({"M[" + index + "]", node});
-      if (j <= i) dynamics.push_back({"M[" + index + "]", node});
+      if (j <= i) {
+        const Node& entry = graph.node(node);
+        nonzero_m[i * n + j] = !(entry.op == Op::number && entry.value == 0.0);
+        if (nonzero_m[i * n + j])
+          dynamics.push_back({"const double m" + std::to_string(i) + "_" + std::to_string(j), node});
+      }
     }
   for (int i = 0; i < n; ++i) {
     const int node = graph.add(eq.forcing[i]);
@@ -95,8 +158,8 @@ EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, co
       {"potential_energy", kernel(graph, {{"V", graph.add(eq.potential_energy)}})},
       {"outputs", kernel(graph, outputs)},
   };
-  // The LDL^T solve of forward_dynamics, counted by its loop structure.
-  const long ldlt = static_cast<long>(n) * n * n / 3 + 2L * n * n;
+  const KernelText solve = unrolled_ldlt(nonzero_m, n);
+  const long ldlt = solve.operations;
   kernels["forward_dynamics"].operations += ldlt;
 
   EmittedModel emitted;
@@ -105,7 +168,7 @@ EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, co
                            "outputs"}) {
     emitted.operations[name] = kernels[name].operations;
     counts += "//   " + std::string(name) + ": " + std::to_string(kernels[name].operations) +
-              (std::string(name) == "forward_dynamics" ? " (with about " + std::to_string(ldlt) + " in LDL^T)" : "") +
+              (std::string(name) == "forward_dynamics" ? " (" + std::to_string(ldlt) + " of them in LDL^T)" : "") +
               "\n";
   }
 
@@ -140,7 +203,6 @@ EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, co
       {"NP", std::to_string(param_names.size())},
       {"NQ_ARRAY", array_size(eq.nq)},
       {"NU_ARRAY", array_size(n)},
-      {"NU2_ARRAY", array_size(static_cast<std::size_t>(n) * n)},
       {"NTAU_ARRAY", array_size(n)},
       {"NY_ARRAY", array_size(output_names.size())},
       {"NP_ARRAY", array_size(param_names.size())},
@@ -156,6 +218,7 @@ EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, co
       {"MASS_MATRIX", kernels["mass_matrix"].body},
       {"FORCING", kernels["forcing"].body},
       {"DYNAMICS", kernels["forward_dynamics"].body},
+      {"LDLT_SOLVE", solve.body},
       {"COORDINATE_RATES", kernels["coordinate_rates"].body},
       {"KINETIC_ENERGY", kernels["kinetic_energy"].body},
       {"POTENTIAL_ENERGY", kernels["potential_energy"].body},

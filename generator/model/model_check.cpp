@@ -1,6 +1,7 @@
 #include "model/model_check.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <map>

@@ -1,5 +1,6 @@
 #include "model/schema.hpp"
 
+#include <algorithm>
 #include <memory>
 #include <regex>
 #include <valijson/adapters/nlohmann_json_adapter.hpp>

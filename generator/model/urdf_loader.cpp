@@ -5,7 +5,8 @@
 #include <urdf_parser/urdf_parser.h>
 
 #include <Eigen/Geometry>
-#include <map>
+#include <cmath>
+#include <vector>
 
 #include "model/json_document.hpp"
 #include "model/model_check.hpp"
