@@ -2,23 +2,11 @@
 # against MuJoCo (libmujoco-dev), plus checks of the MuJoCo reference itself
 # against closed forms. Included from tests/CMakeLists.txt (Catch2 is found).
 if(KANEGEN_WITH_MUJOCO)
-  find_package(mujoco QUIET)
+  include(${PROJECT_SOURCE_DIR}/cmake/KanegenFindMujoco.cmake)
+  kanegen_find_mujoco()
   if(NOT mujoco_FOUND)
     message(STATUS "kanegen: MuJoCo not found, no consistency tests (install libmujoco-dev)")
   else()
-    # Debian's libmujoco-dev 2.2.2 lists /usr/include/libqhull_r/ as an include
-    # directory of mujoco::mujoco without depending on libqhull-dev; CMake
-    # refuses non-existent include directories of imported targets, and the
-    # public MuJoCo headers do not need qhull: keep the directories that exist.
-    get_target_property(_kg_mj_inc mujoco::mujoco INTERFACE_INCLUDE_DIRECTORIES)
-    set(_kg_mj_inc_ok)
-    foreach(_dir IN LISTS _kg_mj_inc)
-      if(EXISTS "${_dir}")
-        list(APPEND _kg_mj_inc_ok "${_dir}")
-      endif()
-    endforeach()
-    set_target_properties(mujoco::mujoco PROPERTIES INTERFACE_INCLUDE_DIRECTORIES "${_kg_mj_inc_ok}")
-
     find_package(Eigen3 REQUIRED NO_MODULE)
     find_package(PkgConfig REQUIRED)
     pkg_check_modules(KANEGEN_CONSISTENCY_TINYXML2 REQUIRED IMPORTED_TARGET tinyxml2)
