@@ -63,20 +63,15 @@ void mass_matrix(const Params& p, const double* q, double* M) {
   (void)p;
   (void)q;
   (void)M;
-  const double x0 = std::sin(q[0]);
-  const double x1 = std::cos(q[0]);
-  const double x2 = std::cos(q[1]);
-  const double x3 = std::sin(q[1]);
-  const double x4 = x1*p.l1;
-  const double x5 = 0.5*(p.l2*(x1*x2 - (x0*x3))) + x4;
-  const double x6 = p.m2*x5;
-  const double x7 = 0.5*(p.l2*(x1*x3 + x0*x2)) + p.l1*x0;
-  const double x8 = 0.08333333333333333*(p.m2*p.l2*p.l2) + x5*x6 + p.m2*x7*x7;
-  M[0] = 0.25*(p.m1*p.l1*p.l1*x0*x0) + 0.08333333333333333*(p.m1*p.l1*p.l1) + 0.25*(p.m1*x1*x1*p.l1*p.l1) + x8;
-  const double x9 = -(p.m2*p.l1*x0*x7 + x4*x6 - x8);
-  M[1] = x9;
-  M[2] = x9;
-  M[3] = x9 + x4*(p.m2*x4 - x6) - (p.l1*x0*(-(p.m2*p.l1*x0) + p.m2*x7));
+  const double x0 = p.l1*p.l1;
+  const double x1 = p.m2*p.l1*p.l2*std::cos(q[1]);
+  const double x2 = p.l2*p.l2;
+  const double x3 = 0.3333333333333333*(p.m2*x2);
+  M[0] = p.m2*x0 + x1 + x3 + 0.3333333333333333*(p.m1*x0);
+  const double x4 = x3 + 0.5*x1;
+  M[1] = x4;
+  M[2] = x4;
+  M[3] = 0.3333333333333333*p.m2*x2;
 }
 
 void forcing(const Params& p, double t, const double* q, const double* u, const double* tau, double* f) {
@@ -87,22 +82,14 @@ void forcing(const Params& p, double t, const double* q, const double* u, const 
   (void)tau;
   (void)f;
   const double x0 = std::cos(q[0]);
-  const double x1 = std::sin(q[0]);
-  const double x2 = u[0]*u[0];
-  const double x3 = p.l1*x1*x2;
-  const double x4 = std::cos(q[1]);
-  const double x5 = std::sin(q[1]);
-  const double x6 = x0*p.l1;
-  const double x7 = 0.5*(p.l2*(x0*x4 - (x1*x5))) + x6;
-  const double x8 = u[1] + u[0];
-  const double x9 = x8*x8;
-  const double x10 = p.m2*((x7 - x6)*x9 + x6*x2);
-  const double x11 = p.l1*x1;
-  const double x12 = 0.5*(p.l2*(x0*x5 + x1*x4)) + x11;
-  const double x13 = -(x9*(-x12 + x11)) + x3 + 9.81;
-  const double x14 = x10*x12 - (p.m2*x7*x13);
-  f[0] = -(u[0]*p.c1 - tau[0] + -(-0.25*(p.m1*x0*p.l1*p.l1*x1*x2) + 0.5*(p.m1*x0*(9.81 + 0.5*x3)*p.l1)) + x14);
-  f[1] = tau[1] - (u[1]*p.c2) - x14 - (p.m2*x13*x6) + p.l1*x1*x10;
+  const double x1 = std::cos(q[1]);
+  const double x2 = std::sin(q[1]);
+  const double x3 = 9.81*std::sin(q[0]) + p.l1*u[0]*u[0];
+  const double x4 = -(x2*x3) + 9.81*(x0*x1);
+  const double x5 = u[1] + u[0];
+  const double x6 = 0.5*(p.m2*p.l2*x4);
+  f[0] = -(u[0]*p.c1 - (4.905*(p.m1*x0*p.l1) + p.l1*(p.m2*x1*x4 + (p.m2*(9.81*(x0*x2) + x1*x3 + 0.5*(p.l2*x5*x5)))*x2) + x6) - tau[0]);
+  f[1] = tau[1] - (u[1]*p.c2) + x6;
 }
 
 int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
@@ -112,29 +99,22 @@ int forward_dynamics(const Params& p, double t, const double* q, const double* u
   (void)q;
   (void)u;
   (void)tau;
-  const double x0 = std::sin(q[0]);
-  const double x1 = std::cos(q[0]);
-  const double x2 = std::cos(q[1]);
-  const double x3 = std::sin(q[1]);
-  const double x4 = x1*p.l1;
-  const double x5 = 0.5*(p.l2*(x1*x2 - (x0*x3))) + x4;
-  const double x6 = p.m2*x5;
-  const double x7 = p.l1*x0;
-  const double x8 = 0.5*(p.l2*(x1*x3 + x0*x2)) + x7;
-  const double x9 = 0.08333333333333333*(p.m2*p.l2*p.l2) + x5*x6 + p.m2*x8*x8;
-  const double m0_0 = 0.25*(p.m1*p.l1*p.l1*x0*x0) + 0.08333333333333333*(p.m1*p.l1*p.l1) + 0.25*(p.m1*x1*x1*p.l1*p.l1) + x9;
-  const double x10 = -(p.m2*p.l1*x0*x8 + x4*x6 - x9);
-  const double m1_0 = x10;
-  const double m1_1 = x10 + x4*(p.m2*x4 - x6) - (p.l1*x0*(-(p.m2*p.l1*x0) + p.m2*x8));
-  const double x11 = u[0]*u[0];
-  const double x12 = p.l1*x0*x11;
-  const double x13 = u[1] + u[0];
-  const double x14 = x13*x13;
-  const double x15 = p.m2*((x5 - x4)*x14 + x4*x11);
-  const double x16 = -(x14*(-x8 + x7)) + x12 + 9.81;
-  const double x17 = x15*x8 - (p.m2*x5*x16);
-  udot[0] = -(u[0]*p.c1 - tau[0] + -(-0.25*(p.m1*x1*p.l1*p.l1*x0*x11) + 0.5*(p.m1*x1*(9.81 + 0.5*x12)*p.l1)) + x17);
-  udot[1] = tau[1] - (u[1]*p.c2) - x17 - (p.m2*x16*x4) + p.l1*x0*x15;
+  const double x0 = p.l1*p.l1;
+  const double x1 = std::cos(q[1]);
+  const double x2 = p.m2*p.l1*p.l2*x1;
+  const double x3 = p.l2*p.l2;
+  const double x4 = 0.3333333333333333*(p.m2*x3);
+  const double m0_0 = p.m2*x0 + x2 + x4 + 0.3333333333333333*(p.m1*x0);
+  const double m1_0 = x4 + 0.5*x2;
+  const double m1_1 = 0.3333333333333333*p.m2*x3;
+  const double x5 = std::cos(q[0]);
+  const double x6 = std::sin(q[1]);
+  const double x7 = 9.81*std::sin(q[0]) + p.l1*u[0]*u[0];
+  const double x8 = -(x6*x7) + 9.81*(x5*x1);
+  const double x9 = u[1] + u[0];
+  const double x10 = 0.5*(p.m2*p.l2*x8);
+  udot[0] = -(u[0]*p.c1 - (4.905*(p.m1*x5*p.l1) + p.l1*(p.m2*x1*x8 + (p.m2*(9.81*(x5*x6) + x1*x7 + 0.5*(p.l2*x9*x9)))*x6) + x10) - tau[0]);
+  udot[1] = tau[1] - (u[1]*p.c2) + x10;
   // LDL^T of M, unrolled; d<j> are the pivots.
   const double d0 = m0_0;
   if (!(d0 > 0.0)) return 1;
@@ -164,18 +144,11 @@ double kinetic_energy(const Params& p, const double* q, const double* u) {
   (void)q;
   (void)u;
   double T;
-  const double x0 = std::cos(q[0]);
-  const double x1 = x0*u[0]*p.l1;
-  const double x2 = std::sin(q[0]);
-  const double x3 = u[0]*p.l1*x2;
-  const double x4 = u[1] + u[0];
-  const double x5 = std::sin(q[1]);
-  const double x6 = std::cos(q[1]);
-  const double x7 = p.l1*x2;
-  const double x8 = -((-(0.5*(p.l2*(x0*x5 + x2*x6)) + x7) + x7)*x4) + x3;
-  const double x9 = x0*p.l1;
-  const double x10 = u[0]*x9 + (0.5*(p.l2*(x0*x6 - (x2*x5))) + x9 - x9)*x4;
-  T = 0.5*(p.m1*(0.25*x1*x1 + 0.25*x3*x3)) + 0.041666666666666664*(p.m2*x4*x4*p.l2*p.l2) + 0.041666666666666664*(p.m1*u[0]*u[0]*p.l1*p.l1) + 0.5*(p.m2*(x8*x8 + x10*x10));
+  const double x0 = u[1] + u[0];
+  const double x1 = 0.5*(p.l2*x0) + u[0]*p.l1*std::cos(q[1]);
+  const double x2 = u[0]*p.l1*std::sin(q[1]);
+  const double x3 = u[0]*p.l1;
+  T = 0.5*(p.m2*(x1*x1 + x2*x2)) + 0.041666666666666664*(p.m2*x0*x0*p.l2*p.l2) + 0.041666666666666664*(p.m1*u[0]*u[0]*p.l1*p.l1) + 0.125*(p.m1*x3*x3);
   return T;
 }
 

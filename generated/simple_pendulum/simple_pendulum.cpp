@@ -48,9 +48,7 @@ void mass_matrix(const Params& p, const double* q, double* M) {
   (void)p;
   (void)q;
   (void)M;
-  const double x0 = std::cos(q[0]);
-  const double x1 = std::sin(q[0]);
-  M[0] = x0*x0*p.m*p.l*p.l + p.m*p.l*p.l*x1*x1;
+  M[0] = p.m*p.l*p.l;
 }
 
 void forcing(const Params& p, double t, const double* q, const double* u, const double* tau, double* f) {
@@ -60,10 +58,7 @@ void forcing(const Params& p, double t, const double* q, const double* u, const 
   (void)u;
   (void)tau;
   (void)f;
-  const double x0 = std::cos(q[0]);
-  const double x1 = std::sin(q[0]);
-  const double x2 = u[0]*u[0];
-  f[0] = x0*p.m*p.l*(p.l*x1*x2) - (p.m*p.l*x1*(x0*p.l*x2 + p.g)) + tau[0];
+  f[0] = -(p.l*(p.m*p.g*std::sin(q[0]))) + tau[0];
 }
 
 int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
@@ -73,11 +68,8 @@ int forward_dynamics(const Params& p, double t, const double* q, const double* u
   (void)q;
   (void)u;
   (void)tau;
-  const double x0 = std::cos(q[0]);
-  const double x1 = std::sin(q[0]);
-  const double m0_0 = x0*x0*p.m*p.l*p.l + p.m*p.l*p.l*x1*x1;
-  const double x2 = u[0]*u[0];
-  udot[0] = x0*p.m*p.l*(p.l*x1*x2) - (p.m*p.l*x1*(x0*p.l*x2 + p.g)) + tau[0];
+  const double m0_0 = p.m*p.l*p.l;
+  udot[0] = -(p.l*(p.m*p.g*std::sin(q[0]))) + tau[0];
   // LDL^T of M, unrolled; d<j> are the pivots.
   const double d0 = m0_0;
   if (!(d0 > 0.0)) return 1;
@@ -98,9 +90,8 @@ double kinetic_energy(const Params& p, const double* q, const double* u) {
   (void)q;
   (void)u;
   double T;
-  const double x0 = u[0]*p.l*std::sin(q[0]);
-  const double x1 = std::cos(q[0])*u[0]*p.l;
-  T = 0.5*p.m*(x0*x0 + x1*x1);
+  const double x0 = u[0]*p.l;
+  T = 0.5*x0*x0*p.m;
   return T;
 }
 

@@ -1,5 +1,7 @@
 #include "kane/equations.hpp"
 
+#include <map>
+
 #include "kinematics/tree_kinematics.hpp"
 #include "symbolic/vec3.hpp"
 
@@ -15,48 +17,61 @@ Vec3 vec(const symbolic::Variables& vars, const model::Vec3& v) {
   return {vars.scalar(v[0]), vars.scalar(v[1]), vars.scalar(v[2])};
 }
 
-/// World-axes inertia R I R^T, with its six distinct entries named.
-Mat3 world_inertia(symbolic::Program& program, const Mat3& rotation, const Mat3& local) {
-  Mat3 rt;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) rt[3 * i + j] = rotation[3 * j + i];
-  const Mat3 full = mul(rotation, mul(local, rt));
-  Mat3 world;
-  for (int i = 0; i < 3; ++i)
-    for (int j = i; j < 3; ++j) world[3 * i + j] = world[3 * j + i] = program.define(full[3 * i + j]);
-  return world;
-}
-
-/// Mass, first moment m c and second moment K = I + m (|c|^2 1 - c c^T) of a
-/// set of bodies about the world origin: enough to give the momentum of the
-/// set moving as one rigid body.
+/// Mass, first moment h = m c and second moment K = I + m (|c|^2 1 - c c^T)
+/// of a set of bodies about a body frame's origin, in its axes: enough to
+/// give the momentum of the set moving as one rigid body.
 struct SpatialInertia {
   ex mass = 0;
   Vec3 moment = zero_vec();
   Mat3 second = Mat3{0, 0, 0, 0, 0, 0, 0, 0, 0};
 };
 
-/// Resultant force and moment about the world origin.
+/// Resultant moment (about a body frame's origin) and force, in its axes.
 struct Wrench {
   Vec3 moment = zero_vec();
   Vec3 force = zero_vec();
 };
 
+/// A set's inertia about the parent frame's origin, in parent axes, given it
+/// in the child frame (E: parent -> child axes, r: parent origin -> child origin).
+SpatialInertia to_parent(Program& program, const SpatialInertia& c, const Mat3& to_child, const Vec3& r) {
+  const Vec3 h = named(program, mul_transposed(to_child, c.moment));
+  const Mat3 k = named(program, mul(transpose(to_child), mul(c.second, to_child)));
+  SpatialInertia p;
+  p.mass = c.mass;
+  p.moment = h + c.mass * r;
+  // Sum of m (|r + x|^2 1 - (r + x)(r + x)^T) over the set, x = its points.
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      p.second[3 * i + j] = k[3 * i + j] + (i == j ? c.mass * dot(r, r) + 2 * dot(r, h) : ex(0)) -
+                            c.mass * r[i] * r[j] - r[i] * h[j] - h[i] * r[j];
+  return p;
+}
+
+/// A wrench about the parent frame's origin, in parent axes.
+Wrench to_parent(Program& program, const Wrench& w, const Mat3& to_child, const Vec3& r) {
+  const Vec3 f = named(program, mul_transposed(to_child, w.force));
+  return {named(program, mul_transposed(to_child, w.moment) + cross(r, f)), f};
+}
+
 }  // namespace
 
-Equations derive_equations(const model::Model& model, const symbolic::Variables& vars, symbolic::Program& program) {
-  const kinematics::TreeKinematics tree(model, vars, program);
+Equations derive_equations(const model::Model& model, const symbolic::Variables& vars, symbolic::Program& program,
+                           MassMatrixMethod method) {
+  const Vec3 gravity = vec(vars, model.gravity);
+  // The ground accelerates at -g: every rest acceleration then carries gravity.
+  const kinematics::TreeKinematics tree(model, vars, program, zero_vec() - gravity);
   Equations eq;
   eq.nq = eq.nu = static_cast<int>(vars.q.size());
   const int n = eq.nu;
   eq.mass_matrix.assign(n * n, 0);
   eq.forcing.assign(n, 0);
   eq.kinetic_energy = eq.potential_energy = 0;
-  const Vec3 gravity = vec(vars, model.gravity);
   const auto& states = tree.bodies();
 
-  // Per body: its inertia about the world origin, and the applied-plus-inertia
-  // wrench (gravity, point forces, -m a_c, -I alpha - w x I w) about the origin.
+  // Per body, in its own axes: its inertia about its origin, and the
+  // applied-plus-inertia wrench about its origin (-m a_c with gravity inside
+  // a_c, point forces, -I alpha - w x I w).
   std::vector<SpatialInertia> inertia(states.size());
   std::vector<Wrench> wrench(states.size());
   for (std::size_t i = 0; i < states.size(); ++i) {
@@ -64,42 +79,40 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
     const model::Body& body = model.bodies[b.body];
     const ex mass = vars.scalar(body.mass);
     const auto& in = body.inertia;
-    const Mat3 local{vars.scalar(in[0]), vars.scalar(in[3]), vars.scalar(in[4]),
-                     vars.scalar(in[3]), vars.scalar(in[1]), vars.scalar(in[5]),
-                     vars.scalar(in[4]), vars.scalar(in[5]), vars.scalar(in[2])};
-    const Mat3 central = world_inertia(program, b.rotation, local);
-    const Vec3 com = tree.point(b, vec(vars, body.com));
-    const Vec3 com_velocity = tree.point_velocity(b, com);
-    const Vec3 com_accel = tree.point_accel_rest(b, com);
+    const Mat3 central{vars.scalar(in[0]), vars.scalar(in[3]), vars.scalar(in[4]),
+                       vars.scalar(in[3]), vars.scalar(in[1]), vars.scalar(in[5]),
+                       vars.scalar(in[4]), vars.scalar(in[5]), vars.scalar(in[2])};
+    const Vec3 com = vec(vars, body.com);
+    const Vec3 com_velocity = named(program, b.velocity + cross(b.omega, com));
+    const Vec3 com_accel =
+        named(program, b.accel_rest + cross(b.alpha_rest, com) + cross(b.omega, cross(b.omega, com)));
     const Vec3 spin = named(program, mul(central, b.omega));  // I w
 
-    Vec3 force = mass * (gravity - com_accel);
+    Vec3 force = zero_vec() - mass * com_accel;
     Vec3 torque = zero_vec() - mul(central, b.alpha_rest) - cross(b.omega, spin);
     for (const model::PointForce& pf : model.forces) {
       if (pf.body != body.name) continue;
       const Vec3 given = vec(vars, pf.force);
-      const Vec3 f = pf.frame == model::ForceFrame::world ? given : mul(b.rotation, given);
-      const Vec3 at = tree.point(b, vec(vars, pf.point));
+      const Vec3 f = pf.frame == model::ForceFrame::body ? given : named(program, mul_transposed(b.rotation, given));
+      const Vec3 at = vec(vars, pf.point);
       force = force + f;
       torque = torque + cross(at - com, f);
-      if (pf.frame == model::ForceFrame::world) eq.potential_energy -= dot(f, at);
+      if (pf.frame == model::ForceFrame::world) eq.potential_energy -= dot(given, tree.world_point(b, at));
     }
     force = named(program, force);
     wrench[i] = {named(program, torque + cross(com, force)), force};
 
-    const Vec3 h = named(program, mass * com);
     inertia[i].mass = mass;
-    inertia[i].moment = h;
+    inertia[i].moment = mass * com;
     for (int r = 0; r < 3; ++r)
-      for (int c = r; c < 3; ++c)
-        inertia[i].second[3 * r + c] = inertia[i].second[3 * c + r] =
-            program.define(central[3 * r + c] + (r == c ? dot(com, h) : ex(0)) - com[r] * h[c]);
+      for (int c = 0; c < 3; ++c)
+        inertia[i].second[3 * r + c] = central[3 * r + c] + mass * ((r == c ? dot(com, com) : ex(0)) - com[r] * com[c]);
 
     eq.kinetic_energy += (mass * dot(com_velocity, com_velocity) + dot(b.omega, spin)) / 2;
-    eq.potential_energy -= mass * dot(gravity, com);
+    eq.potential_energy -= mass * dot(gravity, tree.world_point(b, com));
   }
 
-  // Composite bodies: each subtree's inertia and wrench, leaves first.
+  // Composite bodies and subtree wrenches, leaves first, each in its own frame.
   for (std::size_t i = states.size(); i-- > 0;) {
     SpatialInertia& c = inertia[i];
     c.mass = program.define(c.mass);
@@ -108,33 +121,80 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
     wrench[i] = {named(program, wrench[i].moment), named(program, wrench[i].force)};
     const int parent = states[i].parent_state;
     if (parent < 0) continue;
-    inertia[parent].mass += c.mass;
-    inertia[parent].moment = inertia[parent].moment + c.moment;
-    for (int k = 0; k < 9; ++k) inertia[parent].second[k] += c.second[k];
-    wrench[parent].moment = wrench[parent].moment + wrench[i].moment;
-    wrench[parent].force = wrench[parent].force + wrench[i].force;
+    const SpatialInertia moved = to_parent(program, c, states[i].to_child, states[i].offset);
+    inertia[parent].mass += moved.mass;
+    inertia[parent].moment = inertia[parent].moment + moved.moment;
+    for (int k = 0; k < 9; ++k) inertia[parent].second[k] += moved.second[k];
+    const Wrench w = to_parent(program, wrench[i], states[i].to_child, states[i].offset);
+    wrench[parent].moment = wrench[parent].moment + w.moment;
+    wrench[parent].force = wrench[parent].force + w.force;
   }
 
-  // Kane's equations with the sums over bodies grouped by subtree. With
-  // (w_r, v_r) the partial velocities of speed r at the world origin, the
-  // partial velocity of a point p is v_r + w_r x p, so
-  //   f_r  = sum_i (v_r + w_r x c_i).F_i + w_r.T_i = w_r.N_sub(r) + v_r.F_sub(r),
+  // Kane's equations with the sums over bodies grouped by subtree. The
+  // partial velocities of speed r (joint k, child body i) at i's origin, in
+  // i's axes, are (w_r, v_r) = (a_k, 0) for a revolute and (0, a_k) for a
+  // prismatic joint, and a point p of the subtree has v_r + w_r x p. So
+  //   f_r  = sum_i (v_r + w_r x c_i).F_i + w_r.T_i = a_k.N_sub (revolute) or a_k.F_sub,
   //   M_rs = sum_i m_i v_r^i.v_s^i + w_r.I_i w_s = w_r.L_s + v_r.P_s,
-  // where (L_s, P_s) is the momentum of the subtree of joint s moving with
-  // u_s = 1 alone (r an ancestor of s or s itself; zero otherwise).
-  std::vector<Vec3> w(n), v(n);
-  for (int r = 0; r < n; ++r) tree.partial_velocities(r, w[r], v[r]);
+  // where (L_s, P_s) is the momentum, about r's child origin, of the subtree
+  // of joint s moving with u_s = 1 alone (r an ancestor of s or s itself).
+  struct WorldAxis {
+    Vec3 direction, moment;  ///< a_k and o_k x a_k in world axes
+  };
+  std::map<int, WorldAxis> world_axes;
+  if (method == MassMatrixMethod::world_projection)
+    for (const kinematics::BodyState& b : states) {
+      const kinematics::JointFrame& frame = tree.joints()[b.joint];
+      if (frame.speed < 0) continue;
+      const Vec3 a = named(program, mul(b.rotation, frame.axis));
+      world_axes[b.joint] = {a, frame.prismatic ? zero_vec() : named(program, cross(b.origin, a))};
+    }
+  auto project = [](const kinematics::JointFrame& frame, const Vec3& moment, const Vec3& force) {
+    return frame.prismatic ? dot(frame.axis, force) : dot(frame.axis, moment);
+  };
   for (std::size_t i = 0; i < states.size(); ++i) {
     const kinematics::BodyState& b = states[i];
-    if (!model.joints[b.joint].moves()) continue;
-    const int s = tree.joints()[b.joint].speed;
+    const kinematics::JointFrame& joint = tree.joints()[b.joint];
+    if (joint.speed < 0) continue;
+    const int s = joint.speed;
+    eq.forcing[s] = project(joint, wrench[i].moment, wrench[i].force);
+
     const SpatialInertia& c = inertia[i];
-    const Vec3 angular = named(program, mul(c.second, w[s]) + cross(c.moment, v[s]));
-    const Vec3 linear = named(program, c.mass * v[s] + cross(w[s], c.moment));
-    eq.forcing[s] = dot(w[s], wrench[i].moment) + dot(v[s], wrench[i].force);
-    for (int k : b.path) {
-      const int r = tree.joints()[k].speed;
-      eq.mass_matrix[s * n + r] = eq.mass_matrix[r * n + s] = dot(w[r], angular) + dot(v[r], linear);
+    Vec3 angular, linear;
+    if (joint.prismatic) {
+      linear = named(program, c.mass * joint.axis);
+      angular = named(program, cross(c.moment, joint.axis));
+    } else {
+      angular = named(program, mul(c.second, joint.axis));
+      linear = named(program, cross(joint.axis, c.moment));
+    }
+    if (method == MassMatrixMethod::world_projection) {
+      // The momentum in world axes about the world origin, met by each
+      // ancestor's partial velocities at the world origin: w = a, v = o x a.
+      const Vec3 p_world = named(program, mul(b.rotation, linear));
+      const Vec3 l_world = named(program, mul(b.rotation, angular) + cross(b.origin, p_world));
+      for (int k : b.path) {
+        const kinematics::JointFrame& frame = tree.joints()[k];
+        const WorldAxis& axis = world_axes.at(k);
+        eq.mass_matrix[s * n + frame.speed] = eq.mass_matrix[frame.speed * n + s] =
+            frame.prismatic ? dot(axis.direction, p_world)
+                            : dot(axis.direction, l_world) + dot(axis.moment, p_world);
+      }
+      continue;
+    }
+    // Up the path: at each ancestor's frame, project on its joint.
+    // Up the path: at each ancestor's frame, project on its joint.
+    for (int at = static_cast<int>(i);;) {
+      const kinematics::BodyState& a = states[at];
+      const kinematics::JointFrame& frame = tree.joints()[a.joint];
+      if (frame.speed >= 0)
+        eq.mass_matrix[s * n + frame.speed] = eq.mass_matrix[frame.speed * n + s] =
+            project(frame, angular, linear);
+      if (a.parent_state < 0) break;
+      const Wrench up = to_parent(program, {angular, linear}, a.to_child, a.offset);
+      angular = up.moment;
+      linear = up.force;
+      at = a.parent_state;
     }
   }
 
@@ -157,7 +217,7 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
     if (out.kind == model::OutputKind::point_position) {
       const int state = tree.state_of(out.body);
       Vec3 p = vec(vars, out.point);
-      if (state >= 0) p = tree.point(tree.bodies()[state], p);
+      if (state >= 0) p = tree.world_point(tree.bodies()[state], p);
       const char* axes[] = {".x", ".y", ".z"};
       for (int i = 0; i < 3; ++i) {
         eq.outputs.push_back(p[i]);

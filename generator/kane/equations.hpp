@@ -29,6 +29,14 @@ struct Equations {
 ///   f_r  = sum_i v_r.(m_i (g - a_i) + F_i) + w_r.(-I_i alpha_i - w_i x I_i w_i + T_i) + joint terms,
 /// (v_r at each centre of mass; a_i, alpha_i the accelerations with u_dot = 0),
 /// with the sums over bodies grouped by subtree so that the cost is O(n^2).
-Equations derive_equations(const model::Model& model, const symbolic::Variables& vars, symbolic::Program& program);
+/// Two ways to sum M_rs over a subtree: carry the momentum of joint s's
+/// subtree up the path frame by frame (cheap for short, sparse trees), or turn
+/// it into world axes once and meet each ancestor's world partial velocities
+/// (cheap for long chains). Both give the same M; the pipeline keeps the
+/// shorter code.
+enum class MassMatrixMethod { body_frames, world_projection };
+
+Equations derive_equations(const model::Model& model, const symbolic::Variables& vars, symbolic::Program& program,
+                           MassMatrixMethod method = MassMatrixMethod::body_frames);
 
 }  // namespace kanegen::kane

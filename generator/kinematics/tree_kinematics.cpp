@@ -47,15 +47,17 @@ Mat3 rotation_about(const Vec3& a, const ex& angle) {
 }
 
 TreeKinematics::TreeKinematics(const model::Model& model, const symbolic::Variables& vars,
-                               symbolic::Program& program)
+                               symbolic::Program& program, const Vec3& base_acceleration)
     : model_(model), program_(program), joints_(model.joints.size()) {
   // Speeds are numbered in file order of the moving joints.
   int speed = 0;
   for (std::size_t k = 0; k < model.joints.size(); ++k)
-    if (model.joints[k].moves()) {
-      joints_[k].speed = speed++;
-      joint_of_speed_.push_back(static_cast<int>(k));
-    }
+    if (model.joints[k].moves()) joints_[k].speed = speed++;
+
+  BodyState ground;
+  ground.to_child = ground.rotation = identity_mat();
+  ground.offset = ground.origin = ground.omega = ground.velocity = ground.alpha_rest = zero_vec();
+  ground.accel_rest = base_acceleration;
 
   // Place bodies parents first: repeatedly take the joints whose parent is placed.
   std::vector<bool> placed(model.joints.size(), false);
@@ -73,10 +75,6 @@ TreeKinematics::TreeKinematics(const model::Model& model, const symbolic::Variab
       if (b.body < 0) throw std::logic_error("joint child not found: " + joint.child);
       b.parent_state = parent;
       b.joint = static_cast<int>(k);
-
-      BodyState ground;
-      ground.rotation = symbolic::identity_mat();
-      ground.origin = ground.omega = ground.velocity = ground.alpha_rest = ground.accel_rest = symbolic::zero_vec();
       const BodyState& p = parent < 0 ? ground : bodies_[parent];
       b.path = p.path;
 
@@ -84,36 +82,43 @@ TreeKinematics::TreeKinematics(const model::Model& model, const symbolic::Variab
                      vars.scalar(joint.origin_xyz[2])};
       const Mat3 r_origin = rotation_rpy(vars.scalar(joint.origin_rpy[0]), vars.scalar(joint.origin_rpy[1]),
                                          vars.scalar(joint.origin_rpy[2]));
-      const Mat3 r_joint = named(program, mul(p.rotation, r_origin));
       JointFrame& frame = joints_[k];
       frame.prismatic = joint.type == model::JointType::prismatic;
-      const Vec3 r_po = named(program, mul(p.rotation, xyz));  // parent origin -> joint origin
-      frame.origin = named(program, p.origin + r_po);
-      Vec3 axis_exact;
-      for (int i = 0; i < 3; ++i) axis_exact[i] = snap(symbolic::number(joint.axis[i]));
-      frame.axis = named(program, mul(r_joint, axis_exact));
+      for (int i = 0; i < 3; ++i) frame.axis[i] = snap(symbolic::number(joint.axis[i]));
 
-      Vec3 r = r_po;  // parent origin -> child origin
-      b.rotation = r_joint;
-      b.omega = p.omega;
-      b.alpha_rest = p.alpha_rest;
-      Vec3 relative_velocity = symbolic::zero_vec(), coriolis = symbolic::zero_vec();
+      // Child axes = joint axes turned about a revolute axis; the axis has the
+      // same coordinates in both.
+      Mat3 joint_to_child = identity_mat();  // transposed rotation of the joint motion
+      b.offset = xyz;
+      Vec3 relative_velocity = zero_vec();
       if (joint.moves()) {
         b.path.push_back(static_cast<int>(k));
-        const ex qk = vars.q[frame.speed], uk = vars.u[frame.speed];
+        const GiNaC::ex qk = vars.q[frame.speed], uk = vars.u[frame.speed];
         if (frame.prismatic) {
-          r = named(program, r + qk * frame.axis);
+          b.offset = named(program, xyz + qk * mul(r_origin, frame.axis));
           relative_velocity = uk * frame.axis;
-          coriolis = 2 * uk * cross(p.omega, frame.axis);
         } else {
-          b.rotation = named(program, mul(r_joint, rotation_about(axis_exact, qk)));
-          b.omega = named(program, p.omega + uk * frame.axis);
-          b.alpha_rest = named(program, p.alpha_rest + uk * cross(p.omega, frame.axis));
+          joint_to_child = named(program, transpose(rotation_about(frame.axis, qk)));
         }
       }
-      b.origin = named(program, p.origin + r);
-      b.velocity = named(program, p.velocity + cross(p.omega, r) + relative_velocity);
-      b.accel_rest = named(program, p.accel_rest + cross(p.alpha_rest, r) + cross(p.omega, cross(p.omega, r)) +
+      b.to_child = named(program, mul(joint_to_child, transpose(r_origin)));
+      b.rotation = named(program, mul(p.rotation, transpose(b.to_child)));
+      b.origin = named(program, p.origin + mul(p.rotation, b.offset));
+
+      const Vec3& r = b.offset;
+      const Vec3 parent_omega = named(program, mul(b.to_child, p.omega));  // w_p in child axes
+      if (joint.moves() && !frame.prismatic) {
+        const GiNaC::ex uk = vars.u[frame.speed];
+        b.omega = named(program, parent_omega + uk * frame.axis);
+        b.alpha_rest = named(program, mul(b.to_child, p.alpha_rest) + uk * cross(parent_omega, frame.axis));
+      } else {
+        b.omega = parent_omega;
+        b.alpha_rest = named(program, mul(b.to_child, p.alpha_rest));
+      }
+      const Vec3 coriolis = 2 * cross(parent_omega, relative_velocity);
+      b.velocity = named(program, mul(b.to_child, p.velocity + cross(p.omega, r)) + relative_velocity);
+      b.accel_rest = named(program, mul(b.to_child, p.accel_rest + cross(p.alpha_rest, r) +
+                                                       cross(p.omega, cross(p.omega, r))) +
                                         coriolis);
       bodies_.push_back(std::move(b));
     }
@@ -126,28 +131,8 @@ int TreeKinematics::state_of(const std::string& body_name) const {
   return -1;
 }
 
-Vec3 TreeKinematics::point(const BodyState& b, const Vec3& local) const {
+Vec3 TreeKinematics::world_point(const BodyState& b, const Vec3& local) const {
   return named(program_, b.origin + mul(b.rotation, local));
-}
-
-Vec3 TreeKinematics::point_velocity(const BodyState& b, const Vec3& p) const {
-  return named(program_, b.velocity + cross(b.omega, p - b.origin));
-}
-
-Vec3 TreeKinematics::point_accel_rest(const BodyState& b, const Vec3& p) const {
-  const Vec3 r = p - b.origin;
-  return named(program_, b.accel_rest + cross(b.alpha_rest, r) + cross(b.omega, cross(b.omega, r)));
-}
-
-void TreeKinematics::partial_velocities(int r, Vec3& w_r, Vec3& v_r) const {
-  const JointFrame& frame = joints_[joint_of_speed_.at(r)];
-  if (frame.prismatic) {
-    w_r = zero_vec();
-    v_r = frame.axis;
-  } else {
-    w_r = frame.axis;
-    v_r = named(program_, cross(frame.origin, frame.axis));
-  }
 }
 
 }  // namespace kanegen::kinematics

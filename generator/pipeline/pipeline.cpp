@@ -44,22 +44,33 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
   const std::string hash = digest(read_file(model_path));
   out.seconds.load = seconds_since(start);
 
-  start = std::chrono::steady_clock::now();
+  // Derive and emit with each way of summing M; keep the shorter code.
   const symbolic::Variables vars(model);
-  symbolic::Program program;
-  const kane::Equations equations = kane::derive_equations(model, vars, program);
-  out.seconds.derive = seconds_since(start);
-
-  start = std::chrono::steady_clock::now();
-  codegen::EmittedModel emitted = codegen::emit_model(model, equations, vars, program, hash);
-  out.seconds.emit = seconds_since(start);
+  codegen::EmittedModel emitted;
+  std::size_t intermediates = 0;
+  int nq = 0, nu = 0;
+  for (kane::MassMatrixMethod method : {kane::MassMatrixMethod::body_frames, kane::MassMatrixMethod::world_projection}) {
+    start = std::chrono::steady_clock::now();
+    symbolic::Program program;
+    const kane::Equations equations = kane::derive_equations(model, vars, program, method);
+    out.seconds.derive += seconds_since(start);
+    start = std::chrono::steady_clock::now();
+    codegen::EmittedModel candidate = codegen::emit_model(model, equations, vars, program, hash);
+    out.seconds.emit += seconds_since(start);
+    if (emitted.files.empty() || candidate.operations.at("forward_dynamics") < emitted.operations.at("forward_dynamics")) {
+      emitted = std::move(candidate);
+      intermediates = program.size();
+      nq = equations.nq;
+      nu = equations.nu;
+    }
+  }
 
   out.name = model.name;
   out.files = std::move(emitted.files);
   out.operations = std::move(emitted.operations);
-  out.intermediates = program.size();
-  out.nq = equations.nq;
-  out.nu = equations.nu;
+  out.intermediates = intermediates;
+  out.nq = nq;
+  out.nu = nu;
   return out;
 }
 

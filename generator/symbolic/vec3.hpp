@@ -35,6 +35,13 @@ inline Mat3 mul(const Mat3& a, const Mat3& b) {
   return c;
 }
 
+inline Mat3 transpose(const Mat3& m) { return {m[0], m[3], m[6], m[1], m[4], m[7], m[2], m[5], m[8]}; }
+/// m^T v without forming the transpose.
+inline Vec3 mul_transposed(const Mat3& m, const Vec3& v) {
+  return {m[0] * v[0] + m[3] * v[1] + m[6] * v[2], m[1] * v[0] + m[4] * v[1] + m[7] * v[2],
+          m[2] * v[0] + m[5] * v[1] + m[8] * v[2]};
+}
+
 inline Vec3 named(Program& program, const Vec3& v) {
   return {program.define(v[0]), program.define(v[1]), program.define(v[2])};
 }
