@@ -36,7 +36,13 @@ struct Wrench {
 /// in the child frame (E: parent -> child axes, r: parent origin -> child origin).
 SpatialInertia to_parent(Program& program, const SpatialInertia& c, const Mat3& to_child, const Vec3& r) {
   const Vec3 h = named(program, mul_transposed(to_child, c.moment));
-  const Mat3 k = named(program, mul(transpose(to_child), mul(c.second, to_child)));
+  // E^T K E is symmetric: six entries, not nine.
+  const Mat3 ke = named(program, mul(c.second, to_child));
+  Mat3 k;
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j)
+      k[3 * i + j] = k[3 * j + i] =
+          program.define(to_child[i] * ke[j] + to_child[3 + i] * ke[3 + j] + to_child[6 + i] * ke[6 + j]);
   SpatialInertia p;
   p.mass = c.mass;
   p.moment = h + c.mass * r;
