@@ -1,0 +1,84 @@
+#include "fem/modal.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+namespace kanegen::fem {
+
+namespace {
+
+constexpr double kClusterTolerance = 1e-8;
+constexpr double kTieTolerance = 1e-6;
+
+/// Pivot rows of the n x m cluster basis V, independent of V's orthonormal basis.
+std::vector<int> cluster_pivots(Eigen::MatrixXd v) {
+  std::vector<int> pivots;
+  for (int j = 0; j < v.cols(); ++j) {
+    const Eigen::VectorXd norms = v.rowwise().norm();
+    const double largest = norms.maxCoeff();
+    int pivot = 0;
+    while (norms[pivot] < (1.0 - kTieTolerance) * largest) ++pivot;
+    pivots.push_back(pivot);
+    const Eigen::VectorXd x = v.row(pivot).transpose() / norms[pivot];
+    v -= (v * x) * x.transpose();  // project the pivot's direction out of the coefficient space
+  }
+  return pivots;
+}
+
+void canonicalize_cluster(const Eigen::MatrixXd& M, Eigen::Ref<Eigen::MatrixXd> v) {
+  const std::vector<int> pivots = cluster_pivots(v);
+  // W[pivots, :] = I; then M-orthonormalize in pivot order (keeps W_j = 0 at later pivots).
+  Eigen::MatrixXd w = v * v(pivots, Eigen::all).inverse();
+  for (int j = 0; j < w.cols(); ++j) {
+    for (int i = 0; i < j; ++i) w.col(j) -= w.col(i).dot(M * w.col(j)) * w.col(i);
+    w.col(j) /= std::sqrt(w.col(j).dot(M * w.col(j)));
+  }
+  v = w;
+}
+
+}  // namespace
+
+void canonicalize_modes(const Eigen::MatrixXd& M, const Eigen::VectorXd& eigenvalues,
+                        Eigen::MatrixXd& shapes) {
+  const int k = static_cast<int>(eigenvalues.size());
+  if (shapes.cols() != k || shapes.rows() != M.rows())
+    throw std::invalid_argument("canonicalize_modes: shapes must be n x k");
+  if (k == 0) return;
+  // Rigid-body or near-zero eigenvalues are clustered against the spectrum's scale.
+  const double floor = 1e-10 * eigenvalues.cwiseAbs().maxCoeff();
+  int begin = 0;
+  while (begin < k) {
+    int end = begin + 1;
+    while (end < k && std::abs(eigenvalues[end] - eigenvalues[end - 1]) <=
+                          kClusterTolerance * std::max(std::abs(eigenvalues[end]), floor))
+      ++end;
+    canonicalize_cluster(M, shapes.middleCols(begin, end - begin));
+    begin = end;
+  }
+}
+
+ModalBasis modal_analysis(const Eigen::MatrixXd& M, const Eigen::MatrixXd& K, int k) {
+  const int n = static_cast<int>(M.rows());
+  if (M.cols() != n || K.rows() != n || K.cols() != n)
+    throw std::invalid_argument("modal_analysis: M and K must be n x n");
+  if (k < 0 || k > n) k = n;
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(
+      K, M, Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
+  if (solver.info() != Eigen::Success)
+    throw std::runtime_error("modal_analysis: the eigensolver failed (is M positive definite?)");
+  // Canonicalize over all modes first, so that a cluster cut by k is still whole.
+  Eigen::VectorXd all_values = solver.eigenvalues();
+  Eigen::MatrixXd all_shapes = solver.eigenvectors();
+  canonicalize_modes(M, all_values, all_shapes);
+  ModalBasis basis;
+  basis.eigenvalues = all_values.head(k);
+  basis.omega = basis.eigenvalues.cwiseMax(0.0).cwiseSqrt();
+  basis.shapes = all_shapes.leftCols(k);
+  basis.reduced_mass = basis.shapes.transpose() * M * basis.shapes;
+  basis.reduced_stiffness = basis.shapes.transpose() * K * basis.shapes;
+  return basis;
+}
+
+}  // namespace kanegen::fem
