@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cli/runner_build.hpp"
+#include "cli/verify.hpp"
 #include "codegen/emitter.hpp"
 #include "model/model_error.hpp"
 #include "pipeline/pipeline.hpp"
@@ -102,6 +103,41 @@ int main(int argc, char** argv) {
   eval->add_option("--t", time, "time in s")->capture_default_str()->check(CLI::Number);
   eval->add_option("--set", eval_options.sets, "parameter value NAME=VALUE (repeatable)");
 
+  RunOptions verify_options;
+  kanegen::cli::VerifyOptions ver_options;
+  CLI::App* ver = app.add_subcommand(
+      "verify", "check the compiled kernels against an independent numeric derivation at random states");
+  add_common(ver, verify_options);
+  ver->footer(
+      "Compares M, f, udot, the energies and the outputs of the compiled kernels with a numeric derivation\n"
+      "(dual numbers, no computer algebra) at random states and parameters; checks that M is symmetric\n"
+      "positive definite and the Hessian of T in u, and the power balance d(T+V)/dt = P_nc along short\n"
+      "trajectories. Exit status 0: all agree; 1: a mismatch (named on stderr with its state). See "
+      "docs/verify.md.");
+  ver->add_option("--samples", ver_options.samples, "number of random states")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  ver->add_option("--seed", ver_options.seed, "random seed")->capture_default_str();
+  ver->add_option("--rtol", ver_options.rtol,
+                  "tolerance of the relative error measures (power balance: 100x)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  ver->add_option("--spread", ver_options.spread, "parameters drawn in default*[1-S, 1+S] (0: the defaults)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 0.99));
+  ver->add_option("--trajectories", ver_options.trajectories, "power-balance trajectories (0: none)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  ver->add_option("--duration", ver_options.duration, "length of each trajectory in s")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  ver->add_option(
+         "--kernels", ver_options.kernels_dir,
+         "verify this directory of generated files (from 'kanegen generate', possibly edited) instead of "
+         "generating the kernels afresh")
+      ->check(CLI::ExistingDirectory);
+  ver->add_flag("--json", ver_options.json, "print the report as JSON on stdout");
+
   CLI11_PARSE(app, argc, argv);
 
   try {
@@ -122,6 +158,11 @@ int main(int argc, char** argv) {
       std::vector<std::string> args{"eval", "--q", q_values, "--u", u_values, "--t", time};
       append_pairs(args, "--set", eval_options.sets);
       return kanegen::cli::run_program(runner, args);
+    }
+    if (*ver) {
+      ver_options.model = verify_options.model;
+      ver_options.build = build_options(verify_options);
+      return kanegen::cli::verify(ver_options);
     }
   } catch (const kanegen::model::ModelError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -93,10 +94,41 @@ int run_program(const std::string& program, const std::vector<std::string>& args
   return 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
 }
 
-std::string build_runner(const std::string& model_path, const BuildOptions& options) {
+namespace {
+
+/// Compiles DIR/<name>.cpp and DIR/<name>_runner.cpp with the runtime into
+/// `runner`, through a temporary name, so that a concurrent or interrupted
+/// build never leaves a broken runner in the cache. `if_failed` follows the
+/// file name in the message when the code does not compile.
+void compile_runner(const fs::path& source_dir, const std::string& name, const RuntimeLocation& runtime,
+                    const fs::path& runner, const std::string& if_failed) {
+  const fs::path temporary = runner.parent_path() / ("runner.tmp." + std::to_string(getpid()));
+  const std::vector<std::string> args{"-std=c++17",
+                                      "-O2",
+                                      "-I" + source_dir.string(),
+                                      "-I" + runtime.include_dir.string(),
+                                      (source_dir / (name + ".cpp")).string(),
+                                      (source_dir / (name + "_runner.cpp")).string(),
+                                      runtime.library.string(),
+                                      "-o",
+                                      temporary.string()};
+  if (run_program(compiler(), args) != 0)
+    throw std::runtime_error((source_dir / (name + ".cpp")).string() + ": " + if_failed);
+  fs::rename(temporary, runner);
+}
+
+RuntimeLocation checked_runtime() {
   const RuntimeLocation runtime = locate_runtime();
   if (!fs::exists(runtime.library))
-    throw std::runtime_error(runtime.library.string() + ": the kanegen runtime library is missing; build or install kanegen");
+    throw std::runtime_error(runtime.library.string() +
+                             ": the kanegen runtime library is missing; build or install kanegen");
+  return runtime;
+}
+
+}  // namespace
+
+std::string build_runner(const std::string& model_path, const BuildOptions& options) {
+  const RuntimeLocation runtime = checked_runtime();
   const fs::path dir = cache_root() / cache_key(model_path, runtime, options);
   const fs::path runner = dir / "runner";
   if (fs::exists(runner)) return runner.string();
@@ -107,23 +139,68 @@ std::string build_runner(const std::string& model_path, const BuildOptions& opti
   codegen::write_files_atomically(dir.string(), generated.files);
 
   if (options.verbose)
-    std::fprintf(stderr, "kanegen: compiling %s (%ld operations in forward_dynamics) ...\n", generated.name.c_str(),
-                 generated.operations.at("forward_dynamics"));
-  // Compile to a temporary name and rename, so a concurrent or interrupted
-  // build never leaves a broken runner in the cache.
-  const fs::path temporary = dir / ("runner.tmp." + std::to_string(getpid()));
-  const std::vector<std::string> args{"-std=c++17", "-O2", "-I" + dir.string(), "-I" + runtime.include_dir.string(),
-                                      (dir / (generated.name + ".cpp")).string(),
-                                      (dir / (generated.name + "_runner.cpp")).string(), runtime.library.string(),
-                                      "-o", temporary.string()};
-  if (run_program(compiler(), args) != 0)
-    throw std::runtime_error((dir / (generated.name + ".cpp")).string() +
-                             ": the generated code did not compile (see the compiler's messages above); please "
-                             "report this as a kanegen bug");
-  fs::rename(temporary, runner);
+    std::fprintf(stderr, "kanegen: compiling %s (%ld operations in forward_dynamics) ...\n",
+                 generated.name.c_str(), generated.operations.at("forward_dynamics"));
+  compile_runner(dir, generated.name, runtime, runner,
+                 "the generated code did not compile (see the compiler's messages above); please report this "
+                 "as a kanegen bug");
   if (options.verbose)
     std::fprintf(stderr, "kanegen: ready in %.1f s (cached in %s)\n",
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), dir.c_str());
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                 dir.c_str());
+  return runner.string();
+}
+
+std::string build_runner_from_directory(const std::string& kernels_dir, const BuildOptions& options) {
+  const fs::path source(kernels_dir);
+  if (!fs::is_directory(source)) throw std::runtime_error(kernels_dir + ": no such directory");
+  // The model name from the one <name>_runner.cpp; its files are keyed by content.
+  std::string name;
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(source)) {
+    if (!entry.is_regular_file()) continue;
+    const std::string file = entry.path().filename().string();
+    const std::string suffix = "_runner.cpp";
+    if (file.size() > suffix.size() &&
+        file.compare(file.size() - suffix.size(), suffix.size(), suffix) == 0) {
+      if (!name.empty())
+        throw std::runtime_error(kernels_dir + ": more than one *_runner.cpp; keep one model per directory");
+      name = file.substr(0, file.size() - suffix.size());
+    }
+    if (entry.path().extension() == ".cpp" || entry.path().extension() == ".hpp")
+      files.push_back(entry.path());
+  }
+  if (name.empty())
+    throw std::runtime_error(kernels_dir +
+                             ": no <model>_runner.cpp; give a directory written by 'kanegen generate'");
+  for (const char* ext : {".hpp", ".cpp"})
+    if (!fs::exists(source / (name + ext)))
+      throw std::runtime_error(kernels_dir + ": " + name + ext + " is missing next to " + name +
+                               "_runner.cpp");
+
+  const RuntimeLocation runtime = checked_runtime();
+  std::sort(files.begin(), files.end());
+  std::string bytes = "kernels-directory\n";
+  for (const fs::path& f : files) bytes += f.filename().string() + "\n" + pipeline::read_file(f.string());
+  bytes += compiler();
+  for (const auto& entry : fs::recursive_directory_iterator(runtime.include_dir / "kanegen"))
+    if (entry.is_regular_file()) bytes += pipeline::read_file(entry.path().string());
+  bytes += pipeline::read_file(runtime.library.string());
+  const fs::path dir = cache_root() / ("kernels-" + pipeline::digest(bytes));
+  const fs::path runner = dir / "runner";
+  if (fs::exists(runner)) return runner.string();
+
+  const auto start = std::chrono::steady_clock::now();
+  if (options.verbose)
+    std::fprintf(stderr, "kanegen: compiling %s from %s ...\n", name.c_str(), kernels_dir.c_str());
+  fs::create_directories(dir);
+  compile_runner(source, name, runtime, runner,
+                 "the code did not compile (see the compiler's messages above); the files in " + kernels_dir +
+                     " must be as written by 'kanegen generate', and edits must compile");
+  if (options.verbose)
+    std::fprintf(stderr, "kanegen: ready in %.1f s (cached in %s)\n",
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                 dir.c_str());
   return runner.string();
 }
 

@@ -19,6 +19,11 @@ struct BuildOptions {
 /// it if the cache has none. Throws model::ModelError or std::runtime_error.
 std::string build_runner(const std::string& model_path, const BuildOptions& options);
 
+/// Returns the path of a runner compiled from an existing directory of
+/// generated files (<name>.hpp, <name>.cpp, <name>_runner.cpp, as written by
+/// `kanegen generate`, possibly edited), cached by a digest of their content.
+std::string build_runner_from_directory(const std::string& kernels_dir, const BuildOptions& options);
+
 /// Runs a program with arguments, waits, and returns its exit status.
 int run_program(const std::string& program, const std::vector<std::string>& args);
 

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "batch.hpp"
 #include "kanegen/runtime/csv.hpp"
 #include "kanegen/runtime/integrators.hpp"
 #include "kanegen/runtime/text.hpp"
@@ -32,6 +33,7 @@ commands:
   simulate   integrate the equations of motion, write a CSV time series
   eval       mass matrix, forcing, accelerations and energies at one state (JSON)
   info       sizes, names, parameter defaults and initial state (JSON)
+  batch      evaluate states read as JSON lines from stdin (for kanegen verify)
 
 'PROG <command> --help' describes a command's options.
 )";
@@ -424,20 +426,34 @@ int info_command(const Model& model, ArgScanner& args, std::FILE* out) {
   return 0;
 }
 
+// ---------------------------------------------------------------- batch
+
+int batch_command(Model& model, ArgScanner& args, std::FILE* in, std::FILE* out) {
+  while (!args.done()) {
+    const std::string o = args.next_option();
+    if (o == "-h" || o == "--help") return -1;
+    args.unknown(o);
+  }
+  return run_batch(model, in, out);
+}
+
 // ---------------------------------------------------------------- dispatch
 
 // Runs the command; -1 means "print the command's help".
-int dispatch(Model& model, const std::string& command, ArgScanner& args, std::FILE* out, std::FILE* err) {
+int dispatch(Model& model, const std::string& command, ArgScanner& args, std::FILE* in, std::FILE* out,
+             std::FILE* err) {
   if (command == "simulate") return simulate_command(model, args, out, err);
   if (command == "eval") return eval_command(model, args, out);
   if (command == "info") return info_command(model, args, out);
-  throw UsageError("unknown command '" + command + "'; commands: simulate, eval, info (see --help)");
+  if (command == "batch") return batch_command(model, args, in, out);
+  throw UsageError("unknown command '" + command + "'; commands: simulate, eval, info, batch (see --help)");
 }
 
 const char* usage_for(const std::string& command) {
   if (command == "simulate") return kSimulateUsage;
   if (command == "eval") return kEvalUsage;
   if (command == "info") return kInfoUsage;
+  if (command == "batch") return kBatchUsage;
   return kMainUsage;
 }
 
@@ -450,6 +466,11 @@ std::string program_name(const std::vector<std::string>& args) {
 }  // namespace
 
 int run_model(Model& model, const std::vector<std::string>& args, std::FILE* out, std::FILE* err) {
+  return run_model(model, args, stdin, out, err);
+}
+
+int run_model(Model& model, const std::vector<std::string>& args, std::FILE* in, std::FILE* out,
+              std::FILE* err) {
   const std::string prog = program_name(args);
   const auto usage = [&](const std::string& command) {
     return replace_all(replace_all(usage_for(command), "PROG", prog), "MODEL", model.info().name);
@@ -466,7 +487,7 @@ int run_model(Model& model, const std::vector<std::string>& args, std::FILE* out
       return 0;
     }
     ArgScanner scanner(args, 2, prog + " " + command);
-    const int code = dispatch(model, command, scanner, out, err);
+    const int code = dispatch(model, command, scanner, in, out, err);
     if (code == -1) print(out, usage(command));
     return code == -1 ? 0 : code;
   } catch (const UsageError& e) {

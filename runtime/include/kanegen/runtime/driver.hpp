@@ -1,6 +1,6 @@
 // The main() of a compiled model ("runner"). A generated model's main is
 //   int main(int c, char** v) { return kanegen::runtime::run_model<kanegen_models::NAME::System>(c, v); }
-// Subcommands: simulate, eval, info (see docs/runtime.md or RUNNER --help).
+// Subcommands: simulate, eval, info, batch (see docs/runtime.md or RUNNER --help).
 #pragma once
 
 #include <cstdio>
@@ -16,13 +16,24 @@ namespace kanegen::runtime {
 /// 0 success, 1 failure while running, 2 bad command line. Never throws.
 int run_model(Model& model, const std::vector<std::string>& args, std::FILE* out, std::FILE* err);
 
-/// As above, for main(): stdout and stderr.
+/// As above, with the input of the `batch` command read from `in` (the
+/// overload without it reads stdin).
+int run_model(Model& model, const std::vector<std::string>& args, std::FILE* in, std::FILE* out,
+              std::FILE* err);
+
+/// As above, for main(): stdin, stdout and stderr.
 int run_model(Model& model, int argc, char** argv);
 
 template <class System>
 int run_model(const std::vector<std::string>& args, std::FILE* out, std::FILE* err) {
   SystemModel<System> model;
   return run_model(model, args, out, err);
+}
+
+template <class System>
+int run_model(const std::vector<std::string>& args, std::FILE* in, std::FILE* out, std::FILE* err) {
+  SystemModel<System> model;
+  return run_model(model, args, in, out, err);
 }
 
 template <class System>

@@ -1,0 +1,499 @@
+#include "cli/verify.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <random>
+#include <stdexcept>
+
+#include "cli/verify_power.hpp"
+#include "cli/verify_report.hpp"
+#include "cli/verify_runner.hpp"
+#include "model/expression_eval.hpp"
+#include "model/load.hpp"
+#include "numeric/dynamics.hpp"
+#include "numeric/instance.hpp"
+
+namespace kanegen::cli {
+namespace {
+
+using nlohmann::json;
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+/// A quantity's scale at a state is not taken below this fraction of its
+/// largest value over the run, so that a quantity that happens to vanish at
+/// one state is not held to round-off of its own (tiny) size.
+constexpr double kScaleFloor = 1e-3;
+
+std::string number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
+std::string list(const std::vector<double>& v) {
+  std::string s = "[";
+  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + number(v[i]);
+  return s + "]";
+}
+
+/// How the runner's arrays line up with the model; checked once, up front,
+/// so that kernels of another model (--kernels) are a clear error.
+struct Link {
+  std::vector<std::string> coordinates;  ///< numeric order, equal to the runner's
+  std::vector<int> parameter;            ///< runner parameter k -> index in Model::parameters
+  std::vector<int> input;                ///< runner input k -> coordinate
+  std::vector<std::string> outputs;      ///< runner output names
+};
+
+Link link_runner(const model::Model& model, const numeric::Instance& instance, const json& info) {
+  const auto mismatch = [&](const std::string& what) {
+    return std::runtime_error("the kernels do not match " + model.source_file + ": " + what);
+  };
+  Link link;
+  for (int r = 0; r < instance.coordinates(); ++r)
+    link.coordinates.push_back(instance.joints[instance.coordinate_joint[r]].name);
+  if (info["coordinates"].get<std::vector<std::string>>() != link.coordinates)
+    throw mismatch("coordinates " + info["coordinates"].dump() + ", the model's moving joints are " +
+                   json(link.coordinates).dump());
+  if (info["nu"].get<int>() != instance.coordinates())
+    throw mismatch("nu = " + info["nu"].dump() + ", expected " + std::to_string(instance.coordinates()));
+
+  for (const std::string& name : info["parameters"].get<std::vector<std::string>>()) {
+    const auto found = std::find_if(model.parameters.begin(), model.parameters.end(),
+                                    [&](const model::Parameter& p) { return p.name == name; });
+    if (found == model.parameters.end()) throw mismatch("parameter '" + name + "' is not in the model");
+    link.parameter.push_back(static_cast<int>(found - model.parameters.begin()));
+  }
+  if (link.parameter.size() != model.parameters.size())
+    throw mismatch(std::to_string(link.parameter.size()) + " parameters, the model has " +
+                   std::to_string(model.parameters.size()));
+
+  // Inputs: one per speed (tau_r on speed r, ignored if not actuated), or one per actuated joint.
+  const int ntau = info["ntau"].get<int>();
+  std::vector<int> actuated;
+  for (int r = 0; r < instance.coordinates(); ++r)
+    if (instance.joints[instance.coordinate_joint[r]].actuated) actuated.push_back(r);
+  if (ntau == instance.coordinates()) {
+    for (int r = 0; r < ntau; ++r) link.input.push_back(r);
+  } else if (ntau == static_cast<int>(actuated.size())) {
+    link.input = actuated;
+  } else {
+    throw mismatch("ntau = " + std::to_string(ntau) + ", expected one per speed or per actuated joint");
+  }
+
+  link.outputs = info["outputs"].get<std::vector<std::string>>();
+  std::vector<std::string> expected;
+  for (const numeric::OutputData& o : instance.outputs) {
+    if (o.kind != model::OutputKind::point_position) {
+      expected.push_back(o.name);
+      continue;
+    }
+    for (const char* axis : {".x", ".y", ".z"}) expected.push_back(o.name + axis);
+  }
+  if (link.outputs != expected)
+    throw mismatch("outputs " + json(link.outputs).dump() + ", expected " + json(expected).dump());
+  return link;
+}
+
+/// One random state with its parameters, the numeric reference and the
+/// generated kernels' values.
+struct Sample {
+  model::ParameterValues parameters;
+  numeric::Instance instance;
+  numeric::State state;
+  std::vector<double> runner_tau, runner_p;
+  numeric::Evaluation reference;
+
+  std::vector<double> mass_matrix, forcing, udot, outputs, hessian;
+  double kinetic = 0, potential = 0;
+  int pivot = 0;
+};
+
+class Sampler {
+ public:
+  Sampler(const model::Model& model, const Link& link, unsigned long seed, double spread)
+      : model_(model), link_(link), rng_(seed), spread_(spread) {}
+
+  Sample draw() {
+    Sample s;
+    for (const model::Parameter& p : model_.parameters)
+      s.parameters[p.name] = p.value != 0 ? p.value * uniform(1 - spread_, 1 + spread_) : uniform(0, spread_);
+    s.instance = numeric::instantiate(model_, s.parameters);
+    const int n = s.instance.coordinates();
+    s.state.t = uniform(0, 10);
+    for (int r = 0; r < n; ++r) {
+      const bool slide =
+          s.instance.joints[s.instance.coordinate_joint[r]].motion == numeric::Motion::translation;
+      s.state.q.push_back(slide ? uniform(-1, 1) : uniform(-kPi, kPi));
+      s.state.u.push_back(uniform(-2, 2));
+    }
+    // Inputs that accelerate each joint by up to 10 per s^2 on its own, so
+    // they are as large as the other forces and do not drown them.
+    s.state.tau.assign(n, 0.0);
+    const numeric::Evaluation unforced = numeric::evaluate(s.instance, s.state);
+    for (int r = 0; r < n; ++r) s.state.tau[r] = 10 * unforced.mass_matrix[r * n + r] * uniform(-1, 1);
+    s.reference = numeric::evaluate(s.instance, s.state);
+    for (int r : link_.input) s.runner_tau.push_back(s.state.tau[r]);
+    for (int k : link_.parameter) s.runner_p.push_back(s.parameters.at(model_.parameters[k].name));
+    return s;
+  }
+
+ private:
+  double uniform(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng_); }
+
+  const model::Model& model_;
+  const Link& link_;
+  std::mt19937_64 rng_;
+  double spread_;
+};
+
+std::vector<double> flatten(const json& rows) {
+  std::vector<double> flat;
+  for (const json& row : rows)
+    for (const json& x : row) flat.push_back(x.is_null() ? std::nan("") : x.get<double>());
+  return flat;
+}
+
+std::vector<double> numbers(const json& a) {
+  std::vector<double> v;
+  for (const json& x : a) v.push_back(x.is_null() ? std::nan("") : x.get<double>());
+  return v;
+}
+
+double scalar(const json& x) { return x.is_null() ? std::nan("") : x.get<double>(); }
+
+void evaluate_generated(RunnerProcess& runner, Sample& s) {
+  const json reply = batch_request(runner, json{{"t", s.state.t},
+                                                {"q", s.state.q},
+                                                {"u", s.state.u},
+                                                {"tau", s.runner_tau},
+                                                {"p", s.runner_p},
+                                                {"kinetic_energy_hessian", true}});
+  s.pivot = reply["pivot"].get<int>();
+  if (s.pivot == 0) s.udot = numbers(reply["udot"]);
+  s.mass_matrix = flatten(reply["mass_matrix"]);
+  s.forcing = numbers(reply["forcing"]);
+  s.outputs = numbers(reply["outputs"]);
+  s.hessian = flatten(reply["kinetic_energy_hessian"]);
+  s.kinetic = scalar(reply["kinetic_energy"]);
+  s.potential = scalar(reply["potential_energy"]);
+}
+
+std::string describe(const model::Model& model, const Sample& s) {
+  std::string text = "t=" + number(s.state.t) + ", q=" + list(s.state.q) + ", u=" + list(s.state.u) +
+                     ", tau=" + list(s.state.tau);
+  if (!model.parameters.empty()) {
+    text += ", parameters";
+    for (const model::Parameter& p : model.parameters)
+      text += " " + p.name + "=" + number(s.parameters.at(p.name));
+  }
+  return text;
+}
+
+/// The comparisons of the generated values with the numeric reference and
+/// the reference-free checks, one report row each.
+class Comparison {
+ public:
+  Comparison(const Link& link, const std::vector<Sample>& samples, double rtol)
+      : link_(link), samples_(samples), rtol_(rtol) {}
+
+  /// A generated quantity against a reference one at every sample.
+  Row vectors(const std::string& quantity, const std::string& against,
+              const std::function<std::vector<double>(const Sample&)>& generated,
+              const std::function<std::vector<double>(const Sample&)>& reference,
+              const EntryName& name) const {
+    Row row(quantity, against, rtol_);
+    double run = 0;
+    for (const Sample& s : samples_) run = std::max(run, max_abs(reference(s)));
+    for (std::size_t i = 0; i < samples_.size(); ++i) {
+      const std::vector<double> b = reference(samples_[i]);
+      row.consider(compare(generated(samples_[i]), b, scale(max_abs(b), run), name, static_cast<int>(i)));
+      ++row.compared;
+    }
+    return row;
+  }
+
+  /// udot by its normwise backward error in the numeric system,
+  /// |M udot - f| / (|M| |udot| + |f|) (infinity norms): round-off level
+  /// whatever the conditioning of M, which the forward error is not.
+  Row udot() const {
+    Row row("udot", "numeric M udot = f", rtol_);
+    const int n = static_cast<int>(link_.coordinates.size());
+    for (std::size_t i = 0; i < samples_.size(); ++i) {
+      const Sample& s = samples_[i];
+      ++row.compared;
+      Worst w;
+      w.where = static_cast<int>(i);
+      if (s.pivot != 0) {
+        w.abs = w.rel = kInfinity;
+        w.entry = "(the generated LDL^T stopped at pivot " + std::to_string(s.pivot) + ")";
+        row.consider(w);
+        continue;
+      }
+      const std::vector<double>& M = s.reference.mass_matrix;
+      double residual = 0, norm_m = 0;
+      for (int r = 0; r < n; ++r) {
+        double row_sum = 0, sum = -s.reference.forcing[r];
+        for (int c = 0; c < n; ++c) {
+          sum += M[r * n + c] * s.udot[c];
+          row_sum += std::abs(M[r * n + c]);
+        }
+        residual = std::isnan(sum) ? sum : std::max(residual, std::abs(sum));
+        norm_m = std::max(norm_m, row_sum);
+      }
+      const std::vector<double> reference =
+          s.reference.udot.empty() ? std::vector<double>(n, std::nan("")) : s.reference.udot;
+      w = compare(s.udot, reference, 1.0, coordinate_name(), static_cast<int>(i));
+      w.rel = residual / (norm_m * max_abs(s.udot) + max_abs(s.reference.forcing));
+      row.consider(w);
+    }
+    return row;
+  }
+
+  Row symmetry() const {
+    return vectors(
+        "M symmetric", "M transposed", [](const Sample& s) { return s.mass_matrix; },
+        [&](const Sample& s) { return transposed(s.mass_matrix); }, matrix_name());
+  }
+
+  /// Every eigenvalue of the generated M positive; the note gives the smallest
+  /// ratio of smallest to largest eigenvalue met (1 / condition number).
+  Row positive_definite() const {
+    Row row("M positive definite", "eigenvalues > 0", 0.0);
+    const int n = static_cast<int>(link_.coordinates.size());
+    double smallest = kInfinity, eigenvalue = 0;
+    int at = -1;
+    for (std::size_t i = 0; i < samples_.size(); ++i) {
+      const Eigen::MatrixXd M = Eigen::Map<const Eigen::MatrixXd>(samples_[i].mass_matrix.data(), n, n);
+      const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (M + M.transpose()),
+                                                               Eigen::EigenvaluesOnly);
+      const double low = eig.eigenvalues().minCoeff(), high = eig.eigenvalues().maxCoeff();
+      const double largest = std::max(std::abs(low), std::abs(high));
+      const double ratio = eig.info() == Eigen::Success && largest > 0 ? low / largest : std::nan("");
+      ++row.compared;
+      if (!(ratio >= smallest)) {
+        smallest = ratio;
+        eigenvalue = low;
+        at = static_cast<int>(i);
+      }
+      if (std::isnan(ratio)) break;
+    }
+    Worst w;
+    w.where = at;
+    w.rel = w.abs = smallest > 0 ? 0.0 : kInfinity;
+    w.entry = "(smallest eigenvalue " + number(eigenvalue) + ")";
+    w.generated = eigenvalue;
+    row.worst = w;
+    char note[96];
+    std::snprintf(note, sizeof note, "smallest eigenvalue ratio %.3g (sample %d, eigenvalue %.3g)", smallest,
+                  at, eigenvalue);
+    row.note = note;
+    if (!row.passed())
+      row.failure = "M positive definite: smallest eigenvalue " + number(eigenvalue) + " of the generated M";
+    return row;
+  }
+
+  /// M against the Hessian of the generated kinetic energy in u (exact
+  /// second differences of a quadratic, computed by the runner).
+  Row kinetic_hessian() const {
+    return vectors(
+        "d2T/du2", "generated M", [](const Sample& s) { return s.hessian; },
+        [](const Sample& s) { return s.mass_matrix; }, matrix_name());
+  }
+
+  EntryName coordinate_name() const {
+    return [this](int r) { return "[" + std::to_string(r) + "] (" + link_.coordinates[r] + ")"; };
+  }
+  EntryName matrix_name() const {
+    const int n = static_cast<int>(link_.coordinates.size());
+    return [this, n](int k) {
+      return "[" + std::to_string(k / n) + "," + std::to_string(k % n) + "] (" + link_.coordinates[k / n] +
+             ", " + link_.coordinates[k % n] + ")";
+    };
+  }
+  EntryName output_name() const {
+    return [this](int k) { return "[" + std::to_string(k) + "] (" + link_.outputs[k] + ")"; };
+  }
+
+ private:
+  static double scale(double local, double run) {
+    const double s = std::max(local, kScaleFloor * run);
+    return s == 0 ? 1.0 : s;
+  }
+
+  std::vector<double> transposed(const std::vector<double>& m) const {
+    const int n = static_cast<int>(link_.coordinates.size());
+    std::vector<double> t(m.size());
+    for (int r = 0; r < n; ++r)
+      for (int c = 0; c < n; ++c) t[c * n + r] = m[r * n + c];
+    return t;
+  }
+
+  const Link& link_;
+  const std::vector<Sample>& samples_;
+  double rtol_;
+};
+
+/// The runner's parameter defaults, q0 and u0 against the model file.
+Row defaults_row(const model::Model& model, const Link& link, const json& info, double rtol) {
+  std::vector<double> generated, reference;
+  std::vector<std::string> names;
+  const std::vector<double> p = info["parameter_defaults"].get<std::vector<double>>();
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    generated.push_back(p[k]);
+    reference.push_back(model.parameters[link.parameter[k]].value);
+    names.push_back("parameter " + model.parameters[link.parameter[k]].name);
+  }
+  const std::vector<double> q0 = info["q0"].get<std::vector<double>>(),
+                            u0 = info["u0"].get<std::vector<double>>();
+  int r = 0;
+  for (const model::Joint& j : model.joints) {
+    if (!j.moves()) continue;
+    generated.insert(generated.end(), {q0.at(r), u0.at(r)});
+    reference.insert(reference.end(), {j.q0, j.u0});
+    names.insert(names.end(), {"q0 " + j.name, "u0 " + j.name});
+    ++r;
+  }
+  Row row("defaults", "model file", rtol);
+  row.where_kind = "info";
+  row.consider(compare(
+      generated, reference, std::max(1.0, max_abs(reference)), [&](int k) { return names[k]; }, 0));
+  row.compared = 1;
+  return row;
+}
+
+std::string failure_message(const Row& r, const std::string& state) {
+  if (!r.failure.empty())
+    return r.failure + " at " + r.where_kind + " " + std::to_string(r.worst.where) +
+           (state.empty() ? "" : "; " + state);
+  char errors[128];
+  std::snprintf(errors, sizeof errors, " (abs error %.3g, error measure %.3g > tolerance %.3g)", r.worst.abs,
+                r.worst.rel, r.tolerance);
+  std::string m = r.quantity + " " + r.worst.entry + ": generated " + number(r.worst.generated) + ", " +
+                  r.against + " " + number(r.worst.numeric) + errors + " at " + r.where_kind + " " +
+                  std::to_string(r.worst.where);
+  return state.empty() ? m : m + "; " + state;
+}
+
+}  // namespace
+
+int verify(const VerifyOptions& o) {
+  if (o.samples < 1) throw std::invalid_argument("--samples must be at least 1");
+  if (!(o.rtol > 0)) throw std::invalid_argument("--rtol must be positive");
+  if (!(o.spread >= 0 && o.spread < 1)) throw std::invalid_argument("--spread must be in [0, 1)");
+  if (o.trajectories < 0 || !(o.duration > 0))
+    throw std::invalid_argument("--trajectories >= 0, --duration > 0");
+  const auto start = std::chrono::steady_clock::now();
+  const auto progress = [&](const std::string& line) {
+    if (o.build.verbose) std::fprintf(stderr, "kanegen: verify: %s\n", line.c_str());
+  };
+
+  const model::Model model = model::load_model(o.model, o.build.load);
+  const std::string runner = o.kernels_dir.empty() ? build_runner(o.model, o.build)
+                                                   : build_runner_from_directory(o.kernels_dir, o.build);
+  const json info = runner_info(runner);
+  const Link link =
+      link_runner(model, numeric::instantiate(model, model::default_parameter_values(model)), info);
+
+  progress(std::to_string(o.samples) + " random states of " + model.name +
+           " against the numeric derivation ...");
+  RunnerProcess process(runner, {"batch"});
+  Sampler sampler(model, link, o.seed, o.spread);
+  std::vector<Sample> samples;
+  for (int i = 0; i < o.samples; ++i) {
+    samples.push_back(sampler.draw());
+    evaluate_generated(process, samples.back());
+  }
+
+  const Comparison c(link, samples, o.rtol);
+  std::vector<Row> rows;
+  rows.push_back(defaults_row(model, link, info, o.rtol));
+  rows.push_back(c.vectors(
+      "mass_matrix", "numeric M", [](const Sample& s) { return s.mass_matrix; },
+      [](const Sample& s) { return s.reference.mass_matrix; }, c.matrix_name()));
+  rows.push_back(c.vectors(
+      "forcing", "numeric f", [](const Sample& s) { return s.forcing; },
+      [](const Sample& s) { return s.reference.forcing; }, c.coordinate_name()));
+  rows.push_back(c.udot());
+  rows.push_back(c.vectors(
+      "kinetic_energy", "numeric T", [](const Sample& s) { return std::vector<double>{s.kinetic}; },
+      [](const Sample& s) { return std::vector<double>{s.reference.kinetic_energy}; },
+      [](int) { return std::string(); }));
+  rows.push_back(c.vectors(
+      "potential_energy", "numeric V", [](const Sample& s) { return std::vector<double>{s.potential}; },
+      [](const Sample& s) { return std::vector<double>{s.reference.potential_energy}; },
+      [](int) { return std::string(); }));
+  rows.push_back(c.vectors(
+      "outputs", "numeric outputs", [](const Sample& s) { return s.outputs; },
+      [](const Sample& s) { return s.reference.outputs; }, c.output_name()));
+  if (link.outputs.empty()) {
+    rows.back().applicable = false;
+    rows.back().note = "the model has no outputs";
+  }
+  rows.push_back(c.symmetry());
+  rows.push_back(c.positive_definite());
+  rows.push_back(c.kinetic_hessian());
+
+  Row power("power balance", "integral of numeric P_nc", 100 * o.rtol);
+  power.where_kind = "trajectory";
+  const int trajectories = std::min(o.trajectories, o.samples);
+  if (trajectories > 0) {
+    char line[96];
+    std::snprintf(line, sizeof line, "%d trajectories of %g s for the power balance ...", trajectories,
+                  o.duration);
+    progress(line);
+    for (int k = 0; k < trajectories; ++k) {
+      const Sample& s = samples[k];
+      const TrajectoryStart from{&s.instance, s.state, s.runner_tau, s.runner_p};
+      power.consider(power_balance(process, from, o.duration, k, &power.compared));
+    }
+  } else {
+    power.applicable = false;
+    power.note = "--trajectories 0";
+  }
+  rows.push_back(power);
+  // Constraint Jacobians are compared with central differences of their
+  // functions (numeric/finite_difference.hpp) once the kernels emit any:
+  // one more row per Jacobian, evaluated through the batch protocol.
+  Row jacobians("Jacobians", "finite differences", o.rtol);
+  jacobians.applicable = false;
+  jacobians.note = "none emitted (rigid tree)";
+  rows.push_back(jacobians);
+  process.finish();
+
+  std::vector<std::string> failures;
+  for (const Row& r : rows) {
+    if (r.passed()) continue;
+    const bool at_sample = r.where_kind == "sample" || r.where_kind == "trajectory";
+    const std::string state = !at_sample || r.worst.where < 0
+                                  ? std::string()
+                                  : (r.where_kind == "trajectory" ? "from state " : "state ") +
+                                        describe(model, samples[r.worst.where]);
+    failures.push_back(failure_message(r, state));
+  }
+
+  ReportHeader header{model.name,
+                      static_cast<int>(link.coordinates.size()),
+                      static_cast<int>(model.parameters.size()),
+                      o.samples,
+                      o.seed,
+                      o.rtol,
+                      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
+  if (o.json) {
+    std::printf("%s\n", report_json(header, rows, failures).dump(2).c_str());
+  } else {
+    print_table(stdout, header, rows);
+    std::printf("%s: %s in %.2f s\n", model.name.c_str(), failures.empty() ? "verified" : "MISMATCH",
+                header.seconds);
+  }
+  std::fflush(stdout);
+  for (const std::string& f : failures) std::fprintf(stderr, "error: %s\n", f.c_str());
+  return failures.empty() ? 0 : 1;
+}
+
+}  // namespace kanegen::cli

@@ -1,0 +1,300 @@
+#include "batch.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "kanegen/runtime/text.hpp"
+
+namespace kanegen::runtime {
+namespace {
+
+// ---------------------------------------------------------------- request
+
+/// A value of the flat request object: a number, an array of numbers, a
+/// string or a boolean (all the protocol needs; nesting is an error).
+struct Value {
+  enum Kind { number, array, string, boolean } kind = number;
+  double x = 0;
+  std::vector<double> xs;
+  std::string text;
+  bool flag = false;
+};
+
+class RequestParser {
+ public:
+  explicit RequestParser(const std::string& line) : s_(line) {}
+
+  std::map<std::string, Value> object() {
+    std::map<std::string, Value> members;
+    expect('{');
+    if (peek() == '}') {
+      ++at_;
+    } else {
+      for (;;) {
+        const std::string key = string();
+        expect(':');
+        if (!members.emplace(key, value()).second) fail("key \"" + key + "\" given twice");
+        if (peek() == ',') {
+          ++at_;
+          continue;
+        }
+        expect('}');
+        break;
+      }
+    }
+    if (peek() != '\0') fail("text after the object");
+    return members;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& what) const {
+    throw std::invalid_argument("malformed request at column " + std::to_string(at_ + 1) + ": " + what);
+  }
+  char peek() {
+    while (at_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[at_]))) ++at_;
+    return at_ < s_.size() ? s_[at_] : '\0';
+  }
+  void expect(char c) {
+    if (peek() != c) fail(std::string("'") + c + "' expected");
+    ++at_;
+  }
+  std::string string() {
+    expect('"');
+    std::string text;
+    while (at_ < s_.size() && s_[at_] != '"') {
+      if (s_[at_] == '\\') fail("escapes are not supported");
+      text += s_[at_++];
+    }
+    if (at_ >= s_.size()) fail("unterminated string");
+    ++at_;
+    return text;
+  }
+  double number() {
+    const size_t start = at_;
+    while (at_ < s_.size() && (std::isdigit(static_cast<unsigned char>(s_[at_])) || s_[at_] == '-' ||
+                               s_[at_] == '+' || s_[at_] == '.' || s_[at_] == 'e' || s_[at_] == 'E'))
+      ++at_;
+    double x = 0;
+    if (!parse_number(std::string_view(s_).substr(start, at_ - start), &x)) {
+      at_ = start;
+      fail("number expected");
+    }
+    return x;
+  }
+  bool word(const char* w) {
+    const size_t n = std::char_traits<char>::length(w);
+    if (s_.compare(at_, n, w) != 0) return false;
+    at_ += n;
+    return true;
+  }
+  Value value() {
+    Value v;
+    const char c = peek();
+    if (c == '"') {
+      v.kind = Value::string;
+      v.text = string();
+    } else if (c == '[') {
+      ++at_;
+      v.kind = Value::array;
+      if (peek() == ']') {
+        ++at_;
+        return v;
+      }
+      for (;;) {
+        peek();
+        v.xs.push_back(number());
+        if (peek() == ',') {
+          ++at_;
+          continue;
+        }
+        expect(']');
+        break;
+      }
+    } else if (word("true")) {
+      v.kind = Value::boolean;
+      v.flag = true;
+    } else if (word("false")) {
+      v.kind = Value::boolean;
+    } else {
+      v.x = number();
+    }
+    return v;
+  }
+
+  const std::string& s_;
+  size_t at_ = 0;
+};
+
+enum class Selection { all, udot, energy };
+
+struct Request {
+  double t = 0;
+  std::vector<double> q, u, tau, p;
+  bool has_p = false;
+  Selection selection = Selection::all;
+  bool hessian = false;
+};
+
+std::vector<double> numbers(const std::map<std::string, Value>& m, const char* key, int n, bool required) {
+  const auto found = m.find(key);
+  if (found == m.end()) {
+    if (required) throw std::invalid_argument(std::string("missing \"") + key + "\"");
+    return std::vector<double>(static_cast<size_t>(n), 0.0);
+  }
+  if (found->second.kind != Value::array)
+    throw std::invalid_argument(std::string("\"") + key + "\" must be an array of numbers");
+  if (static_cast<int>(found->second.xs.size()) != n)
+    throw std::invalid_argument(std::string("\"") + key + "\" needs " + std::to_string(n) +
+                                " value(s), got " + std::to_string(found->second.xs.size()));
+  return found->second.xs;
+}
+
+Request parse_request(const std::string& line, const ModelInfo& info) {
+  const std::map<std::string, Value> m = RequestParser(line).object();
+  for (const auto& member : m) {
+    const std::string& key = member.first;
+    static const char* const known[] = {"t", "q", "u", "tau", "p", "eval", "kinetic_energy_hessian"};
+    if (std::none_of(std::begin(known), std::end(known), [&](const char* k) { return key == k; }))
+      throw std::invalid_argument("unknown key \"" + key +
+                                  "\"; known: t, q, u, tau, p, eval, kinetic_energy_hessian");
+  }
+  Request r;
+  if (const auto t = m.find("t"); t != m.end()) {
+    if (t->second.kind != Value::number) throw std::invalid_argument("\"t\" must be a number");
+    r.t = t->second.x;
+  }
+  r.q = numbers(m, "q", info.nq, true);
+  r.u = numbers(m, "u", info.nu, true);
+  r.tau = numbers(m, "tau", info.ntau, false);
+  r.has_p = m.count("p") > 0;
+  r.p = numbers(m, "p", info.np, false);
+  if (const auto e = m.find("eval"); e != m.end()) {
+    const std::string& s = e->second.text;
+    if (e->second.kind != Value::string || (s != "all" && s != "udot" && s != "energy"))
+      throw std::invalid_argument("\"eval\" must be \"all\", \"udot\" or \"energy\"");
+    r.selection = s == "udot" ? Selection::udot : s == "energy" ? Selection::energy : Selection::all;
+  }
+  if (const auto h = m.find("kinetic_energy_hessian"); h != m.end()) {
+    if (h->second.kind != Value::boolean)
+      throw std::invalid_argument("\"kinetic_energy_hessian\" must be true or false");
+    r.hessian = h->second.flag;
+  }
+  return r;
+}
+
+// ---------------------------------------------------------------- response
+
+std::string numbers_json(const double* v, int n) {
+  std::string s = "[";
+  for (int i = 0; i < n; ++i) s += (i ? "," : "") + json_number(v[i]);
+  return s + "]";
+}
+
+std::string matrix_json(const std::vector<double>& m, int n) {
+  std::string s = "[";
+  for (int i = 0; i < n; ++i) s += (i ? "," : "") + numbers_json(m.data() + static_cast<size_t>(i) * n, n);
+  return s + "]";
+}
+
+/// H_rs = T(e_r + e_s) - T(e_r) - T(e_s) + T(0): exact for a quadratic T.
+std::vector<double> kinetic_hessian(const Model& model, const double* q, int n) {
+  std::vector<double> u(static_cast<size_t>(std::max(n, 1)), 0.0), single(n), h(static_cast<size_t>(n) * n);
+  const double t0 = model.kinetic_energy(q, u.data());
+  for (int r = 0; r < n; ++r) {
+    u[r] = 1.0;
+    single[r] = model.kinetic_energy(q, u.data());
+    u[r] = 0.0;
+  }
+  for (int r = 0; r < n; ++r) {
+    for (int s = r; s < n; ++s) {
+      u[r] += 1.0;
+      u[s] += 1.0;
+      const double both = model.kinetic_energy(q, u.data());
+      u[r] = u[s] = 0.0;
+      h[r * n + s] = h[s * n + r] = both - single[r] - single[s] + t0;
+    }
+  }
+  return h;
+}
+
+std::string respond(Model& model, const Request& r, const std::vector<double>& defaults) {
+  const ModelInfo& info = model.info();
+  for (int k = 0; k < info.np; ++k)
+    model.set_parameter(info.parameter_names[k], r.has_p ? r.p[k] : defaults[k]);
+  const int n = info.nu;
+  const size_t m = static_cast<size_t>(std::max(n, 1));
+  std::vector<double> q = r.q, u = r.u, tau = r.tau;
+  q.resize(std::max<size_t>(q.size(), 1));
+  u.resize(m);
+  tau.resize(std::max<size_t>(tau.size(), 1));
+  std::string out = "{";
+  const auto field = [&](const char* key, const std::string& value) {
+    out += (out.size() > 1 ? ",\"" : "\"") + std::string(key) + "\":" + value;
+  };
+  if (r.selection != Selection::energy) {
+    std::vector<double> udot(m);
+    const int pivot = model.forward_dynamics(r.t, q.data(), u.data(), tau.data(), udot.data());
+    field("udot", pivot == 0 ? numbers_json(udot.data(), n) : "null");
+    field("pivot", std::to_string(pivot));
+  }
+  if (r.selection == Selection::all) {
+    std::vector<double> M(m * m), f(m), y(static_cast<size_t>(std::max(info.ny, 1)));
+    model.mass_matrix(q.data(), M.data());
+    model.forcing(r.t, q.data(), u.data(), tau.data(), f.data());
+    model.outputs(r.t, q.data(), u.data(), y.data());
+    field("mass_matrix", matrix_json(M, n));
+    field("forcing", numbers_json(f.data(), n));
+    field("outputs", numbers_json(y.data(), info.ny));
+  }
+  if (r.selection != Selection::udot) {
+    field("kinetic_energy", json_number(model.kinetic_energy(q.data(), u.data())));
+    field("potential_energy", json_number(model.potential_energy(q.data())));
+  }
+  if (r.hessian) field("kinetic_energy_hessian", matrix_json(kinetic_hessian(model, q.data(), n), n));
+  return out + "}\n";
+}
+
+/// One line without its newline; false at end of input.
+bool read_line(std::FILE* in, std::string& line) {
+  line.clear();
+  char buf[4096];
+  while (std::fgets(buf, sizeof buf, in)) {
+    line += buf;
+    if (!line.empty() && line.back() == '\n') {
+      line.pop_back();
+      return true;
+    }
+  }
+  return !line.empty();
+}
+
+}  // namespace
+
+int run_batch(Model& model, std::FILE* in, std::FILE* out) {
+  const ModelInfo& info = model.info();
+  std::vector<double> defaults(static_cast<size_t>(std::max(info.np, 1)));
+  for (int k = 0; k < info.np; ++k) defaults[k] = model.parameter(k);
+  int code = 0;
+  std::string line;
+  while (read_line(in, line)) {
+    if (std::all_of(line.begin(), line.end(),
+                    [](char c) { return std::isspace(static_cast<unsigned char>(c)); }))
+      continue;
+    std::string reply;
+    try {
+      reply = respond(model, parse_request(line, info), defaults);
+    } catch (const std::exception& e) {
+      reply = "{\"error\":" + json_string(e.what()) + "}\n";
+      code = 1;
+    }
+    std::fputs(reply.c_str(), out);
+    std::fflush(out);
+  }
+  return code;
+}
+
+}  // namespace kanegen::runtime

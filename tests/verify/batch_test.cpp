@@ -1,0 +1,119 @@
+// The runner's `batch` command (what kanegen verify talks to), in-process
+// on the generated simple pendulum: answers, selections, parameters per
+// line, the kinetic-energy Hessian, and bad lines.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdio>
+#include <kanegen/runtime/driver.hpp>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "simple_pendulum.hpp"
+
+namespace {
+
+using nlohmann::json;
+
+struct Outcome {
+  int code;
+  std::vector<json> replies;
+  std::string err;
+};
+
+std::string read_all(std::FILE* f) {
+  std::string s;
+  std::rewind(f);
+  char buf[4096];
+  for (size_t got; (got = std::fread(buf, 1, sizeof buf, f)) > 0;) s.append(buf, got);
+  std::fclose(f);
+  return s;
+}
+
+Outcome batch(const std::string& input, std::vector<std::string> extra = {}) {
+  std::FILE* in = std::tmpfile();
+  std::FILE* out = std::tmpfile();
+  std::FILE* err = std::tmpfile();
+  REQUIRE((in && out && err));
+  std::fputs(input.c_str(), in);
+  std::rewind(in);
+  std::vector<std::string> args{"simple_pendulum_runner", "batch"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  const int code = kanegen::runtime::run_model<kanegen_models::simple_pendulum::System>(args, in, out, err);
+  std::fclose(in);
+  Outcome o{code, {}, read_all(err)};
+  std::istringstream lines(read_all(out));
+  for (std::string line; std::getline(lines, line);) o.replies.push_back(json::parse(line));
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("batch answers each line with M, f, udot, energies and outputs", "[batch]") {
+  const double q = 0.3, u = -1.2, tau = 0.5, m = 1.5, l = 0.8, g = 9.0;
+  const Outcome o = batch(
+      "{\"t\": 0, \"q\": [0.3], \"u\": [-1.2], \"tau\": [0.5], \"p\": [1.5, 0.8, 9.0], "
+      "\"kinetic_energy_hessian\": true}\n"
+      "{\"q\": [0.3], \"u\": [-1.2]}\n");
+  REQUIRE(o.code == 0);
+  REQUIRE(o.replies.size() == 2);
+  const json& a = o.replies[0];
+  CHECK(a["mass_matrix"][0][0].get<double>() == Approx(m * l * l));
+  CHECK(a["forcing"][0].get<double>() == Approx(-m * g * l * std::sin(q) + tau));
+  CHECK(a["udot"][0].get<double>() == Approx((-m * g * l * std::sin(q) + tau) / (m * l * l)));
+  CHECK(a["pivot"].get<int>() == 0);
+  CHECK(a["kinetic_energy"].get<double>() == Approx(0.5 * m * l * l * u * u));
+  CHECK(a["potential_energy"].get<double>() == Approx(-m * g * l * std::cos(q)));
+  CHECK(a["outputs"].size() == 4);
+  CHECK(a["kinetic_energy_hessian"][0][0].get<double>() == Approx(m * l * l).epsilon(1e-14));
+  // Without "p" the line uses the defaults again (m = 1, l = 1, g = 9.81), not the previous line's values.
+  CHECK(o.replies[1]["mass_matrix"][0][0].get<double>() == Approx(1.0));
+  CHECK_FALSE(o.replies[1].contains("kinetic_energy_hessian"));
+}
+
+TEST_CASE("batch selections: udot only, energy only", "[batch]") {
+  const Outcome o = batch(
+      "{\"q\": [0.3], \"u\": [1], \"eval\": \"udot\"}\n\n{\"q\": [0.3], \"u\": [1], \"eval\": \"energy\"}\n");
+  REQUIRE(o.code == 0);
+  REQUIRE(o.replies.size() == 2);  // the blank line is skipped
+  CHECK(o.replies[0].size() == 2);
+  CHECK(o.replies[0].contains("udot"));
+  CHECK(o.replies[0].contains("pivot"));
+  CHECK(o.replies[1].size() == 2);
+  CHECK(o.replies[1].contains("kinetic_energy"));
+  CHECK(o.replies[1].contains("potential_energy"));
+}
+
+TEST_CASE("batch: a bad line gives an error answer, the others are still answered", "[batch]") {
+  const char* bad[] = {
+      "{\"q\": [0.3]}",                               // u missing
+      "{\"q\": [0.3, 1], \"u\": [1]}",                // wrong count
+      "{\"q\": [0.3], \"u\": [1], \"x\": 1}",         // unknown key
+      "{\"q\": [0.3], \"u\": [1], \"eval\": \"M\"}",  // unknown selection
+      "{\"q\": [0.3], \"u\": [nan]}",                 // not a number
+      "[1, 2]",                                       // not an object
+      "{\"q\": [0.3], \"u\": [1]} trailing",
+      "{\"q\": [0.3], \"q\": [0.3], \"u\": [1]}",  // duplicate key
+  };
+  for (const char* line : bad) {
+    INFO(line);
+    const Outcome o = batch(std::string(line) + "\n{\"q\": [0], \"u\": [0]}\n");
+    CHECK(o.code == 1);
+    REQUIRE(o.replies.size() == 2);
+    CHECK(o.replies[0].contains("error"));
+    CHECK(o.replies[1]["udot"][0].get<double>() == 0.0);
+  }
+}
+
+TEST_CASE("batch --help describes the protocol, unknown options are usage errors", "[batch]") {
+  std::FILE* out = std::tmpfile();
+  std::FILE* err = std::tmpfile();
+  const int code = kanegen::runtime::run_model<kanegen_models::simple_pendulum::System>(
+      {"runner", "batch", "--help"}, out, err);
+  CHECK(code == 0);
+  const std::string help = read_all(out);
+  read_all(err);
+  CHECK(help.find("kinetic_energy_hessian") != std::string::npos);
+  CHECK(batch("", {"--frobnicate"}).code == 2);
+}

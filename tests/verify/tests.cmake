@@ -1,0 +1,37 @@
+# kanegen verify: the numeric derivation against closed forms, the runner's
+# batch protocol, the command line (JSON report, corruption tests), and
+# verify itself on every shipped model. Runners are cached under the build
+# tree (KANEGEN_CACHE_DIR), not in the user's cache.
+find_package(nlohmann_json REQUIRED)
+set(KANEGEN_VERIFY_CACHE ${CMAKE_CURRENT_BINARY_DIR}/verify_cache)
+
+add_executable(test_verify_unit ${CMAKE_CURRENT_LIST_DIR}/main.cpp ${CMAKE_CURRENT_LIST_DIR}/numeric_test.cpp
+                                ${CMAKE_CURRENT_LIST_DIR}/batch_test.cpp)
+target_compile_options(test_verify_unit PRIVATE ${KANEGEN_WARNINGS})
+target_compile_definitions(test_verify_unit PRIVATE KANEGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+target_link_libraries(test_verify_unit PRIVATE kanegen_numeric kanegen_model_simple_pendulum Catch2::Catch2
+                                               nlohmann_json::nlohmann_json)
+catch_discover_tests(test_verify_unit TEST_PREFIX "verify: ")
+
+add_executable(test_verify_cli ${CMAKE_CURRENT_LIST_DIR}/verify_cli_test.cpp)
+target_compile_options(test_verify_cli PRIVATE ${KANEGEN_WARNINGS})
+target_compile_definitions(test_verify_cli PRIVATE KANEGEN_EXE="$<TARGET_FILE:kanegen>"
+                                                   KANEGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+                                                   KANEGEN_CACHE="${KANEGEN_VERIFY_CACHE}"
+                                                   KANEGEN_SCRATCH_DIR="${CMAKE_CURRENT_BINARY_DIR}/verify_scratch")
+target_link_libraries(test_verify_cli PRIVATE Catch2::Catch2 nlohmann_json::nlohmann_json)
+add_dependencies(test_verify_cli kanegen kanegen_runtime)
+catch_discover_tests(test_verify_cli TEST_PREFIX "verify: ")
+
+# kanegen verify on every shipped model and on the forced cart pendulum
+# (prismatic joint, spring, damper, world and body forces).
+file(GLOB KANEGEN_VERIFY_MODELS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/models/*.json ${PROJECT_SOURCE_DIR}/models/*.urdf)
+list(APPEND KANEGEN_VERIFY_MODELS ${PROJECT_SOURCE_DIR}/tests/data/models/forced_cart_pendulum.json)
+foreach(model ${KANEGEN_VERIFY_MODELS})
+  get_filename_component(stem ${model} NAME_WE)
+  add_test(NAME "verify: model ${stem}" COMMAND kanegen verify ${model})
+  set_tests_properties("verify: model ${stem}" PROPERTIES ENVIRONMENT "KANEGEN_CACHE_DIR=${KANEGEN_VERIFY_CACHE}")
+endforeach()
+
+add_test(NAME "verify: the numeric path shares no code with the symbolic one"
+         COMMAND ${CMAKE_COMMAND} -DDIR=${PROJECT_SOURCE_DIR}/generator -P ${CMAKE_CURRENT_LIST_DIR}/check_independence.cmake)

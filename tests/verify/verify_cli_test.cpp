@@ -1,0 +1,237 @@
+// kanegen verify as a user runs it: the JSON report, --help, kernels of
+// another model, and the corruption tests: a copy of generated kernels with
+// one term altered must fail, naming the quantity.
+#define CATCH_CONFIG_MAIN
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+  int status = -1;
+  std::string out, err;
+};
+
+fs::path scratch() {
+  static const fs::path dir = [] {
+    fs::path d = fs::path(KANEGEN_SCRATCH_DIR) / std::to_string(::getpid());  // ctest runs cases in parallel
+    fs::create_directories(d);
+    return d;
+  }();
+  return dir;
+}
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void write(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
+/// Runs kanegen with a private runner cache under the build tree.
+Result kanegen(const std::string& args) {
+  const fs::path out = scratch() / "stdout.txt", err = scratch() / "stderr.txt";
+  const std::string command = std::string("KANEGEN_CACHE_DIR='" KANEGEN_CACHE "' '" KANEGEN_EXE "' ") + args +
+                              " >'" + out.string() + "' 2>'" + err.string() + "'";
+  const int raw = std::system(command.c_str());
+  Result r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+std::string source(const std::string& relative) { return std::string(KANEGEN_SOURCE_DIR) + "/" + relative; }
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+/// Generates the model's kernels into a fresh scratch directory.
+fs::path generate(const std::string& model, const std::string& name) {
+  const fs::path dir = scratch() / name;
+  fs::remove_all(dir);
+  const Result r = kanegen("generate " + source(model) + " -o " + dir.string() + " --quiet");
+  REQUIRE(r.status == 0);
+  return dir;
+}
+
+/// Replaces, inside the body of the function `function` of `file`, the first
+/// match of `pattern` by `replacement` (regex syntax, $& = the match).
+void corrupt(const fs::path& file, const std::string& function, const std::string& pattern,
+             const std::string& replacement) {
+  std::string text = slurp(file);
+  const std::size_t begin = text.find("\n" + function + "(");
+  REQUIRE(begin != std::string::npos);
+  const std::size_t end = text.find("\n}\n", begin);
+  REQUIRE(end != std::string::npos);
+  std::string body = text.substr(begin, end - begin);
+  std::smatch match;
+  INFO(function << " has no match of " << pattern << ":\n" << body);
+  REQUIRE(std::regex_search(body, match, std::regex(pattern)));
+  const std::string altered =
+      std::regex_replace(body, std::regex(pattern), replacement, std::regex_constants::format_first_only);
+  REQUIRE(altered != body);
+  write(file, text.substr(0, begin) + altered + text.substr(end));
+}
+
+}  // namespace
+
+TEST_CASE("verify --json reports every quantity and passes", "[verify]") {
+  const Result r =
+      kanegen("verify " + source("models/double_pendulum.json") + " --samples 20 --seed 5 --json");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  CHECK(j["passed"].get<bool>());
+  CHECK(j["model"] == "double_pendulum");
+  CHECK(j["samples"] == 20);
+  CHECK(j["seed"] == 5);
+  CHECK(j["failures"].empty());
+  std::vector<std::string> names;
+  for (const auto& q : j["quantities"]) {
+    names.push_back(q["quantity"]);
+    CHECK(q["passed"].get<bool>());
+    if (q["applicable"].get<bool>()) CHECK(q["rel_error"].get<double>() <= q["tolerance"].get<double>());
+  }
+  for (const char* quantity :
+       {"mass_matrix", "forcing", "udot", "kinetic_energy", "potential_energy", "outputs", "M symmetric",
+        "M positive definite", "d2T/du2", "power balance", "Jacobians"})
+    CHECK(std::find(names.begin(), names.end(), quantity) != names.end());
+  CHECK(contains(r.err, "kanegen: verify:"));  // progress on stderr
+}
+
+TEST_CASE("verify is reproducible for a seed and prints a table", "[verify]") {
+  const std::string args =
+      "verify " + source("models/simple_pendulum.json") + " --samples 10 --seed 9 --quiet";
+  const Result a = kanegen(args), b = kanegen(args);
+  REQUIRE(a.status == 0);
+  CHECK(a.err.empty());
+  CHECK(contains(a.out, "mass_matrix"));
+  CHECK(contains(a.out, "verified"));
+  // Identical apart from the timing line.
+  const auto table = [](const std::string& s) { return s.substr(0, s.rfind("verified")); };
+  CHECK(table(a.out) == table(b.out));
+}
+
+TEST_CASE("verify --help and usage errors", "[verify]") {
+  const Result top = kanegen("--help");
+  CHECK(contains(top.out, "verify"));
+  const Result help = kanegen("verify --help");
+  CHECK(help.status == 0);
+  for (const char* option : {"--samples", "--seed", "--rtol", "--json", "--kernels"})
+    CHECK(contains(help.out, option));
+  CHECK(kanegen("verify").status != 0);
+  CHECK(kanegen("verify " + source("models/simple_pendulum.json") + " --samples 0").status != 0);
+  CHECK(kanegen("verify " + source("models/simple_pendulum.json") + " --kernels /no/such/dir").status != 0);
+}
+
+TEST_CASE("verify --kernels of another model is a clear error", "[verify]") {
+  const fs::path dir = generate("models/simple_pendulum.json", "other");
+  const Result r =
+      kanegen("verify " + source("models/double_pendulum.json") + " --kernels " + dir.string() + " --quiet");
+  CHECK(r.status == 1);
+  CHECK(contains(r.err, "error: the kernels do not match"));
+}
+
+TEST_CASE("verify --kernels passes on an unaltered copy", "[verify][corruption]") {
+  const fs::path dir = generate("tests/data/models/forced_cart_pendulum.json", "clean");
+  const Result r = kanegen("verify " + source("tests/data/models/forced_cart_pendulum.json") + " --kernels " +
+                           dir.string() + " --samples 20 --quiet");
+  INFO(r.out << r.err);
+  CHECK(r.status == 0);
+}
+
+TEST_CASE("corruption: half the damping in forcing fails, naming forcing", "[verify][corruption]") {
+  const fs::path dir = generate("tests/data/models/forced_cart_pendulum.json", "damping");
+  corrupt(dir / "forced_cart_pendulum.cpp", "void forcing", "\\bp\\.c\\b", "(0.5*$&)");
+  const Result r = kanegen("verify " + source("tests/data/models/forced_cart_pendulum.json") + " --kernels " +
+                           dir.string() + " --samples 20 --quiet");
+  INFO(r.out << r.err);
+  CHECK(r.status == 1);
+  CHECK(contains(r.err, "error: forcing [1] (pivot)"));
+  CHECK(contains(r.err, "state t="));
+  CHECK(contains(r.out, "FAIL"));
+  CHECK(contains(r.out, "MISMATCH"));
+  // udot comes from forward_dynamics, a separate kernel: it still agrees.
+  CHECK_FALSE(contains(r.err, "error: udot"));
+}
+
+TEST_CASE("corruption: one literal of mass_matrix off by 1e-4 fails, naming mass_matrix",
+          "[verify][corruption]") {
+  const fs::path dir = generate("models/arm7.urdf", "literal");
+  // The first decimal literal of the kernel that is not tiny, scaled by 1 + 1e-4.
+  const fs::path file = dir / "arm7.cpp";
+  std::string text = slurp(file);
+  const std::size_t begin = text.find("\nvoid mass_matrix(");
+  REQUIRE(begin != std::string::npos);
+  const std::size_t end = text.find("\n}\n", begin);
+  const std::regex literal("\\b[0-9]+\\.[0-9]+(e[-+]?[0-9]+)?");
+  std::size_t at = std::string::npos, length = 0;
+  double value = 0;
+  for (auto it = std::sregex_iterator(text.begin() + begin, text.begin() + end, literal);
+       it != std::sregex_iterator(); ++it) {
+    value = std::stod(it->str());
+    if (value >= 0.05) {
+      at = begin + it->position();
+      length = it->length();
+      break;
+    }
+  }
+  REQUIRE(at != std::string::npos);
+  char altered[64];
+  std::snprintf(altered, sizeof altered, "%.17g", value * (1 + 1e-4));
+  write(file, text.substr(0, at) + altered + text.substr(at + length));
+  const Result r =
+      kanegen("verify " + source("models/arm7.urdf") + " --kernels " + dir.string() + " --quiet");
+  INFO(r.out << r.err);
+  CHECK(r.status == 1);
+  CHECK(contains(r.err, "error: mass_matrix"));
+  CHECK(contains(r.err, "error: d2T/du2"));  // M no longer the Hessian of the (unaltered) kinetic energy
+}
+
+TEST_CASE("corruption: a wrong term in forward_dynamics fails udot and the power balance",
+          "[verify][corruption]") {
+  const fs::path dir = generate("models/double_pendulum.json", "dynamics");
+  corrupt(dir / "double_pendulum.cpp", "int forward_dynamics", "\\bp\\.m2\\b", "(1.01*$&)");
+  const Result r = kanegen("verify " + source("models/double_pendulum.json") + " --kernels " + dir.string() +
+                           " --samples 20 --quiet");
+  INFO(r.out << r.err);
+  CHECK(r.status == 1);
+  CHECK(contains(r.err, "error: udot"));
+  CHECK(contains(r.err, "error: power balance"));
+}
+
+TEST_CASE("corruption: a wrong kinetic or potential energy fails, naming it", "[verify][corruption]") {
+  const fs::path dir = generate("models/double_pendulum.json", "energy");
+  corrupt(dir / "double_pendulum.cpp", "double potential_energy", "\\bp\\.m1\\b", "(1.001*$&)");
+  corrupt(dir / "double_pendulum.cpp", "double kinetic_energy", "\\bp\\.m2\\b", "(1.001*$&)");
+  const Result r = kanegen("verify " + source("models/double_pendulum.json") + " --kernels " + dir.string() +
+                           " --samples 20 --quiet --json");
+  CHECK(r.status == 1);
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  CHECK_FALSE(j["passed"].get<bool>());
+  std::vector<std::string> failed;
+  for (const auto& q : j["quantities"])
+    if (!q["passed"].get<bool>()) failed.push_back(q["quantity"]);
+  CHECK(std::find(failed.begin(), failed.end(), "potential_energy") != failed.end());
+  CHECK(std::find(failed.begin(), failed.end(), "kinetic_energy") != failed.end());
+  CHECK(std::find(failed.begin(), failed.end(), "d2T/du2") != failed.end());
+  CHECK(std::find(failed.begin(), failed.end(), "mass_matrix") == failed.end());
+}
