@@ -7,7 +7,11 @@ packages=(
   libginac-dev libeigen3-dev nlohmann-json3-dev catch2 libcli11-dev
   liburdfdom-dev libtinyxml2-dev libvalijson-dev
   libmujoco-dev libbenchmark-dev
+  libclang-rt-dev
 )
+# libclang-rt-dev: clang's sanitizer and libFuzzer runtimes (only recommended
+# by clang, so not pulled in with --no-install-recommends), for the
+# KANEGEN_SANITIZE and KANEGEN_BUILD_FUZZERS builds that CI runs.
 if [ "$(id -u)" -ne 0 ]; then
   echo "install-deps.sh: run as root (apt-get needs it), e.g. sudo bash scripts/install-deps.sh" >&2
   exit 1

@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
 
   RunOptions sim_options;
   std::string t_end, dt = "0.01", rtol = "1e-8", atol = "1e-10";
-  std::string integrator = "dopri5", csv;
+  std::string integrator = "dopri5", csv, max_steps = "100000";
   std::vector<std::string> q0, u0;
   bool stats = false;
   CLI::App* sim = app.add_subcommand("simulate", "generate (cached), compile and integrate the model; write CSV");
@@ -88,6 +88,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"rk4", "dopri5"}));
   sim->add_option("--rtol", rtol, "dopri5 relative tolerance")->capture_default_str()->check(CLI::PositiveNumber);
   sim->add_option("--atol", atol, "dopri5 absolute tolerance")->capture_default_str()->check(CLI::PositiveNumber);
+  sim->add_option("--max-steps", max_steps, "fail after this many integrator steps")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   sim->add_option("--set", sim_options.sets, "parameter value NAME=VALUE (repeatable)");
   sim->add_option("--q0", q0, "initial coordinate NAME=VALUE (repeatable)");
   sim->add_option("--u0", u0, "initial speed NAME=VALUE (repeatable)");
@@ -145,7 +148,7 @@ int main(int argc, char** argv) {
     if (*sim) {
       const std::string runner = kanegen::cli::build_runner(sim_options.model, build_options(sim_options));
       std::vector<std::string> args{"simulate", "--t-end", t_end, "--dt", dt, "--integrator", integrator,
-                                    "--rtol", rtol, "--atol", atol};
+                                    "--rtol", rtol, "--atol", atol, "--max-steps", max_steps};
       append_pairs(args, "--set", sim_options.sets);
       append_pairs(args, "--q0", q0);
       append_pairs(args, "--u0", u0);

@@ -1,10 +1,12 @@
 #include "cli/runner_build.hpp"
 
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -75,6 +77,19 @@ std::string cache_key(const std::string& model_path, const RuntimeLocation& runt
 
 }  // namespace
 
+namespace {
+
+// The child run_program waits for; SIGINT, SIGTERM and SIGHUP sent to kanegen
+// are passed on to it, so that a simulation stopped by the user closes its
+// output and reports where it stopped, rather than being orphaned.
+volatile pid_t g_child = 0;
+
+extern "C" void forward_signal(int signal_number) {
+  if (g_child > 0) kill(g_child, signal_number);
+}
+
+}  // namespace
+
 int run_program(const std::string& program, const std::vector<std::string>& args) {
   std::vector<char*> argv;
   argv.push_back(const_cast<char*>(program.c_str()));
@@ -87,9 +102,15 @@ int run_program(const std::string& program, const std::vector<std::string>& args
     std::fprintf(stderr, "error: cannot run %s\n", program.c_str());
     _exit(127);
   }
+  g_child = pid;
+  constexpr int kForwarded[] = {SIGINT, SIGTERM, SIGHUP};
+  void (*previous[3])(int) = {};
+  for (int i = 0; i < 3; ++i) previous[i] = std::signal(kForwarded[i], forward_signal);
   int status = 0;
   while (waitpid(pid, &status, 0) < 0) {
   }
+  for (int i = 0; i < 3; ++i) std::signal(kForwarded[i], previous[i]);
+  g_child = 0;
   if (WIFEXITED(status)) return WEXITSTATUS(status);
   return 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
 }

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdlib>
 
 #include "model/names.hpp"
 
@@ -43,6 +45,28 @@ bool is_constant(const std::string& s) {
                      [&](const char* c) { return s == c; });
 }
 
+/// A number must be a double other than infinity, and not a nonzero value
+/// that would become 0. GiNaC reads numbers exactly (it would not finish
+/// 1e-5555555555555555555), while the generated code holds doubles.
+void check_range(const std::string& number, std::size_t pos) {
+  const char* const range =
+      "doubles reach from about 1e-308 to 1e308 (2.2e-308 to 1.8e308, subnormals down to 4.9e-324): "
+      "write the value within that range, or use other units";
+  const auto e = number.find_first_of("eE");
+  if (e != std::string::npos) {
+    std::string exponent = number.substr(e + 1);
+    if (!exponent.empty() && (exponent[0] == '+' || exponent[0] == '-')) exponent.erase(0, 1);
+    exponent.erase(0, std::min(exponent.find_first_not_of('0'), exponent.size()));
+    if (exponent.size() > 3 || (!exponent.empty() && std::stoi(exponent) > 400))
+      fail(pos, "exponent of number '" + number + "' out of range in expression", range);
+  }
+  const double value = std::strtod(number.c_str(), nullptr);
+  if (!std::isfinite(value))
+    fail(pos, "number '" + number + "' is too large for a double in expression", range);
+  if (value == 0 && number.substr(0, e).find_first_of("123456789") != std::string::npos)
+    fail(pos, "number '" + number + "' is too small for a double (it would be 0) in expression", range);
+}
+
 std::vector<Token> tokenize(const std::string& text) {
   std::vector<Token> tokens;
   std::size_t i = 0;
@@ -77,6 +101,7 @@ std::vector<Token> tokenize(const std::string& text) {
           (text[j] == '.' || text[j] == '_' || std::isalpha(static_cast<unsigned char>(text[j]))))
         fail(j, "malformed number '" + text.substr(i, j - i + 1) + "' in expression",
              "write numbers like 2, 0.5 or 1e-3, and '*' for a product (2*m)");
+      check_range(text.substr(i, j - i), i);
       tokens.push_back({Token::number, text.substr(i, j - i), i});
       i = j;
     } else if (std::string("+-*/^(),").find(static_cast<char>(c)) != std::string::npos) {
@@ -229,10 +254,13 @@ std::optional<ExpressionIssue> check_expression(const std::string& text,
 }
 
 std::string describe_with_caret(const std::string& text, const ExpressionIssue& issue) {
-  // Tabs and newlines would misplace the caret; show them as spaces.
+  // Tabs, newlines and other control characters would misplace the caret
+  // or break the line; show them as spaces.
   std::string shown = text;
   std::replace_if(
-      shown.begin(), shown.end(), [](char c) { return c == '\t' || c == '\n' || c == '\r'; }, ' ');
+      shown.begin(), shown.end(),
+      [](char c) { return static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) == 0x7f; },
+      ' ');
   return issue.problem + "\n  " + shown + "\n  " + std::string(std::min(issue.column, shown.size()), ' ') +
          "^";
 }

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "model/expression_check.hpp"
+#include "model/expression_eval.hpp"
 #include "model/model_error.hpp"
 #include "model/names.hpp"
 
@@ -122,10 +123,21 @@ class Checker {
 
   void check_expressions() const {
     const std::vector<std::string> parameters = names_of(m_.parameters);
+    const ParameterValues defaults = default_parameter_values(m_);
     for_each_scalar([&](const Scalar& s) {
       if (s.is_literal) return;
       if (auto issue = check_expression(s.text, parameters))
         error(s.where, describe_with_caret(s.text, *issue), issue->fix);
+      // As for numbers: a value that is not finite (1/0, sqrt(-2), 1e400)
+      // would be folded into the generated code as inf or nan.
+      const double value = evaluate_expression(s.text, defaults);
+      if (!std::isfinite(value))
+        error(s.where,
+              "expression '" + s.text + "' is " +
+                  (std::isnan(value) ? "not a real number (NaN)" : "infinite") +
+                  " at the parameters' default values",
+              "check it and the defaults under /parameters: a division by zero, the square root or logarithm "
+              "of a negative number, or a value beyond 1e308 are the usual causes");
     });
   }
 

@@ -5,7 +5,9 @@
 #include <urdf_parser/urdf_parser.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <vector>
 
 #include "model/json_document.hpp"
@@ -45,14 +47,29 @@ std::string xml_error(const tinyxml2::XMLDocument& document) {
     case tinyxml2::XML_ERROR_EMPTY_DOCUMENT:
       what = "the file is empty";
       break;
+    case tinyxml2::XML_ERROR_PARSING_DECLARATION:
+      what = "malformed or misplaced <?...?> declaration";
+      break;
+    case tinyxml2::XML_ERROR_PARSING_COMMENT:
+      what = "unclosed comment";
+      break;
+    case tinyxml2::XML_ERROR_PARSING_TEXT:
+      what = "malformed text or entity";
+      break;
     default:
       what = document.ErrorName();
   }
   const std::string raw = document.ErrorStr();
   const auto line = raw.find("Line number=");
   const auto detail = line == std::string::npos ? std::string::npos : raw.find(": ", line);
-  return "malformed XML: " + what +
-         (detail == std::string::npos ? std::string() : " (" + raw.substr(detail + 2) + ")");
+  if (detail == std::string::npos) return "malformed XML: " + what;
+  // tinyxml2 quotes the text where parsing stopped, which may run over many
+  // lines: keep the message one line and short.
+  std::string quoted = raw.substr(detail + 2);
+  std::replace_if(
+      quoted.begin(), quoted.end(), [](char c) { return c == '\n' || c == '\r' || c == '\t'; }, ' ');
+  if (quoted.size() > 80) quoted = quoted.substr(0, 77) + "...";
+  return "malformed XML: " + what + " (" + quoted + ")";
 }
 
 /// What tinyxml2 gives and urdfdom hides: element order (urdfdom keeps
@@ -111,6 +128,59 @@ void check_joint_elements(const UrdfIndex& index, const std::string& file) {
     if (j.xml->FirstChildElement("mimic"))
       throw ModelError(file, j.place + "/mimic", "mimic joints are not supported",
                        "remove <mimic> (the joint then gets its own coordinate)");
+  }
+}
+
+/// The link a joint's <parent> or <child> names, or "" if absent (urdfdom reports that).
+std::string joint_link(const Element& joint, const char* tag) {
+  const tinyxml2::XMLElement* e = joint.xml->FirstChildElement(tag);
+  const char* link = e ? e->Attribute("link") : nullptr;
+  return link ? link : "";
+}
+
+/// The joints must form a tree. Checked here because urdfdom, given a link
+/// that is its own parent, a link with two parent joints or a cycle, fails
+/// with a terse message and leaks the links it had connected.
+void check_joint_tree(const UrdfIndex& index, const std::string& file) {
+  std::map<std::string, const Element*> parent_joint;  // link -> the joint whose child it is
+  std::map<std::string, std::string> parent_link;      // link -> its parent link
+  for (const Element& j : index.joints) {
+    const std::string parent = joint_link(j, "parent"), child = joint_link(j, "child");
+    if (parent.empty() || child.empty()) continue;
+    if (parent == child)
+      throw ModelError(file, j.place + "/child",
+                       "joint '" + j.name + "' connects link '" + child + "' to itself",
+                       "give it another parent link");
+    const auto [other, fresh] = parent_joint.emplace(child, &j);
+    if (!fresh)
+      throw ModelError(
+          file, j.place + "/child",
+          "link '" + child + "' is already the child of joint '" + other->second->name + "' (" +
+              other->second->place.substr(0, other->second->place.find(':')) + ")",
+          "a link hangs from exactly one joint (closed loops are not supported), so remove one of "
+          "the joints");
+    parent_link[child] = parent;
+  }
+  // Each link has at most one parent, so following parents either ends at a
+  // root or runs into a cycle; each link is walked over once.
+  std::map<std::string, int> state;  // 1: on the current walk, 2: done
+  for (const auto& entry : parent_link) {
+    std::vector<std::string> walk;
+    std::string at = entry.first;
+    while (parent_link.count(at) && !state.count(at)) {
+      state[at] = 1;
+      walk.push_back(at);
+      at = parent_link.at(at);
+    }
+    if (state.count(at) && state.at(at) == 1) {  // back on this walk: a cycle through `at`
+      std::vector<std::string> cycle(std::find(walk.begin(), walk.end(), at), walk.end());
+      cycle.push_back(at);  // each link followed by its parent, back to the first
+      throw ModelError(file, parent_joint.at(at)->place + "/parent",
+                       "joints form a cycle: " + join(cycle, " -> "),
+                       "each chain of parents must end at the root link: make one of these links hang from a "
+                       "link outside the cycle");
+    }
+    for (const std::string& link : walk) state[link] = 2;
   }
 }
 
@@ -239,6 +309,7 @@ Model load_urdf_model(const std::string& path, const LoadOptions& options) {
   UrdfIndex index;
   index_urdf(text, path, index);
   check_joint_elements(index, path);
+  check_joint_tree(index, path);
   const urdf::ModelInterfaceSharedPtr robot = parse_with_urdfdom(text, index, path);
 
   Model m;
@@ -248,9 +319,24 @@ Model load_urdf_model(const std::string& path, const LoadOptions& options) {
   const std::string gravity_place = index.robot_place + " (gravity: load option)";
   m.gravity = literal_vec3(0, 0, 0, gravity_place);
   for (int k = 0; k < 3; ++k) m.gravity[k].value = options.urdf_gravity[k];
-  for (const Element& e : index.links)
-    if (e.name != m.ground) m.bodies.push_back(read_link(*robot->getLink(e.name), e));
-  for (const Element& e : index.joints) m.joints.push_back(read_joint(*robot->getJoint(e.name), e, options));
+  // The two XML readers must agree on every name; they differ on malformed
+  // entities ("j&1"), where urdfdom would otherwise hand back no element.
+  const auto unread = [&](const Element& e) {
+    return ModelError(
+        path, e.place + "/name", "urdfdom reads this name differently ('" + e.name + "')",
+        "write names without '&', '<' and XML entities (letters, digits, '_', '-' and '.' are safe)");
+  };
+  for (const Element& e : index.links) {
+    if (e.name == m.ground) continue;
+    const urdf::LinkConstSharedPtr link = robot->getLink(e.name);
+    if (!link) throw unread(e);
+    m.bodies.push_back(read_link(*link, e));
+  }
+  for (const Element& e : index.joints) {
+    const urdf::JointConstSharedPtr joint = robot->getJoint(e.name);
+    if (!joint) throw unread(e);
+    m.joints.push_back(read_joint(*joint, e, options));
+  }
   check_model(m, index.robot_place);
   return m;
 }

@@ -3,6 +3,7 @@
 #include "kanegen/runtime/driver.hpp"
 
 #include <algorithm>
+#include <csignal>
 #include <memory>
 #include <optional>
 #include <set>
@@ -208,6 +209,42 @@ void print(std::FILE* stream, const std::string& text) {
 
 // ---------------------------------------------------------------- simulate
 
+// The signal that asked a simulation to stop (SIGINT, SIGTERM or SIGHUP), or 0.
+// The integration checks it at every right-hand side and every output row, so
+// a stopped run still closes its CSV with every row computed and says where.
+volatile std::sig_atomic_t g_stop_signal = 0;
+
+extern "C" void request_stop(int signal_number) { g_stop_signal = signal_number; }
+
+const char* signal_name(int signal_number) {
+  switch (signal_number) {
+    case SIGINT: return "SIGINT";
+    case SIGTERM: return "SIGTERM";
+    case SIGHUP: return "SIGHUP";
+    default: return "a signal";
+  }
+}
+
+// Installs request_stop for the lifetime of a simulation, then restores the
+// previous handlers.
+class StopOnSignal {
+ public:
+  StopOnSignal() {
+    g_stop_signal = 0;
+    for (int i = 0; i < kCount; ++i) previous_[i] = std::signal(kSignals[i], request_stop);
+  }
+  ~StopOnSignal() {
+    for (int i = 0; i < kCount; ++i) std::signal(kSignals[i], previous_[i]);
+  }
+  StopOnSignal(const StopOnSignal&) = delete;
+  StopOnSignal& operator=(const StopOnSignal&) = delete;
+
+ private:
+  static constexpr int kCount = 3;
+  static constexpr int kSignals[kCount] = {SIGINT, SIGTERM, SIGHUP};
+  void (*previous_[kCount])(int) = {};
+};
+
 struct SimulateArgs {
   IntegrationOptions opt;
   Method method = Method::kDopri5;
@@ -301,16 +338,23 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
   std::vector<double> tau(static_cast<size_t>(std::max(info.ntau, 1)), 0.0);
   std::vector<double> row(1 + n + std::max(info.ny, 1));
   std::string why;  // the reason the right-hand side failed, for the message
+  const StopOnSignal stop_on_signal;
+  double t_last_row = 0.0;
+  long rows = 0;
   const Rhs rhs = [&](double t, const double* xs, double* xdot) {
+    if (g_stop_signal != 0) return false;
     model.coordinate_rates(xs, xs + nq, xdot);
     const int pivot = model.forward_dynamics(t, xs, xs + nq, tau.data(), xdot + nq);
     if (pivot != 0) why = pivot_message(pivot);
     return pivot == 0;
   };
   const Observer observer = [&](double t, const double* xs) {
+    if (g_stop_signal != 0) return false;
     row[0] = t;
     std::copy(xs, xs + n, row.begin() + 1);
     model.outputs(t, xs, xs + nq, row.data() + 1 + n);
+    t_last_row = t;
+    ++rows;
     return csv->write_row(row.data(), 1 + n + info.ny);
   };
   IntegrationOptions opt = a.opt;
@@ -322,6 +366,13 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
                  format_double(r.t).c_str());
   }
   const bool closed = csv->close();
+  if (g_stop_signal != 0) {
+    const int signal_number = g_stop_signal;
+    print(err, std::string("error: interrupted by ") + signal_name(signal_number) + "; " + std::to_string(rows) +
+                   " rows written" + (to_stdout ? "" : " to " + a.output) + ", up to t=" + format_double(t_last_row) +
+                   " of t_end=" + format_double(a.opt.t_end) + "\n");
+    return 128 + signal_number;
+  }
   if (r.status == Status::kInvalidArgument) throw UsageError(r.message);
   if (!r.ok())
     throw RunError(r.status == Status::kRhsFailed && !why.empty() ? why + "; " + r.message : r.message);
