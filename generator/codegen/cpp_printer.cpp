@@ -184,6 +184,7 @@ class Printer {
       case Op::tan: return call("std::tan", n);
       case Op::exp: return call("std::exp", n);
       case Op::log: return call("std::log", n);
+      case Op::abs: return call("std::abs", n);
     }
     return "";
   }

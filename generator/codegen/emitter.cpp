@@ -42,10 +42,14 @@ struct KernelText {
   long operations;
 };
 
-/// M udot = f solved by an LDL^T unrolled for this model: the entries of M
-/// are locals m<i>_<j>, udot holds f on entry; entries that are zero by the
-/// tree's structure (and do not fill in) are left out.
-KernelText unrolled_ldlt(const std::vector<bool>& nonzero_m, int n) {
+/// M udot = f solved by an LDL^T unrolled for this model, over the speeds
+/// `solved` (those not prescribed): the entries of M are locals m<i>_<j>
+/// (i, j indices into `solved`), udot holds the right-hand side on entry;
+/// entries that are zero by the tree's structure (and do not fill in) are
+/// left out.
+KernelText unrolled_ldlt(const std::vector<bool>& nonzero_m, const std::vector<int>& solved) {
+  const int n = static_cast<int>(solved.size());
+  auto u = [&](int i) { return "udot[" + std::to_string(solved[i]) + "]"; };
   std::vector<bool> nz(nonzero_m);  // structure of L, lower triangle, row-major
   auto m = [](int i, int j) { return "m" + std::to_string(i) + "_" + std::to_string(j); };
   auto l = [](int i, int j) { return "l" + std::to_string(i) + "_" + std::to_string(j); };
@@ -81,15 +85,15 @@ KernelText unrolled_ldlt(const std::vector<bool>& nonzero_m, int n) {
   for (int i = 0; i < n; ++i)
     for (int k = 0; k < i; ++k)
       if (nz[i * n + k]) {
-        s += "  udot[" + std::to_string(i) + "] -= " + l(i, k) + "*udot[" + std::to_string(k) + "];\n";
+        s += "  " + u(i) + " -= " + l(i, k) + "*" + u(k) + ";\n";
         ops += 2;
       }
-  for (int i = 0; i < n; ++i) s += "  udot[" + std::to_string(i) + "] *= inv_" + d(i) + ";\n";
+  for (int i = 0; i < n; ++i) s += "  " + u(i) + " *= inv_" + d(i) + ";\n";
   ops += n;
   for (int i = n - 1; i >= 0; --i)
     for (int k = i + 1; k < n; ++k)
       if (nz[k * n + i]) {
-        s += "  udot[" + std::to_string(i) + "] -= " + l(k, i) + "*udot[" + std::to_string(k) + "];\n";
+        s += "  " + u(i) + " -= " + l(k, i) + "*" + u(k) + ";\n";
         ops += 2;
       }
   return {s, ops};
@@ -127,23 +131,52 @@ EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, co
   ExpressionGraph graph(vars, program);
   const int n = eq.nu;
   std::vector<Assignment> mass, force, dynamics, rates, outputs;
-  std::vector<bool> nonzero_m(static_cast<std::size_t>(n) * n, false);
+  // Prescribed speeds get their given acceleration; the others are solved for.
+  std::vector<int> solved, local(n, -1);
+  for (int i = 0; i < n; ++i)
+    if (!vars.prescribed_acceleration.count(i)) {
+      local[i] = static_cast<int>(solved.size());
+      solved.push_back(i);
+    }
+  const int ns = static_cast<int>(solved.size());
+  std::vector<bool> nonzero_m(static_cast<std::size_t>(ns) * ns, false);
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
       const std::string index = std::to_string(i * n + j);
       const int node = graph.add(eq.mass_matrix[i * n + j]);
       mass.push_back({"M[" + index + "]", node});
-      if (j <= i) {
+      const int li = local[i], lj = local[j];
+      if (li >= 0 && lj >= 0 && lj <= li) {
         const Node& entry = graph.node(node);
-        nonzero_m[i * n + j] = !(entry.op == Op::number && entry.value == 0.0);
-        if (nonzero_m[i * n + j])
-          dynamics.push_back({"const double m" + std::to_string(i) + "_" + std::to_string(j), node});
+        nonzero_m[li * ns + lj] = !(entry.op == Op::number && entry.value == 0.0);
+        if (nonzero_m[li * ns + lj])
+          dynamics.push_back({"const double m" + std::to_string(li) + "_" + std::to_string(lj), node});
       }
     }
   for (int i = 0; i < n; ++i) {
     const int node = graph.add(eq.forcing[i]);
     force.push_back({"f[" + std::to_string(i) + "]", node});
-    dynamics.push_back({"udot[" + std::to_string(i) + "]", node});
+    if (local[i] < 0) continue;
+    GiNaC::ex rhs = eq.forcing[i];  // f_i - sum_p M_ip a_p over the prescribed speeds p
+    for (const auto& [p, a] : vars.prescribed_acceleration) rhs -= eq.mass_matrix[i * n + p] * a;
+    dynamics.push_back({"udot[" + std::to_string(i) + "]", vars.prescribed_acceleration.empty() ? node : graph.add(rhs)});
+  }
+  // The given accelerations, piece by piece, before everything else.
+  std::string prescribed_text;
+  long prescribed_operations = 0;
+  for (const kane::PrescribedSpeed& ps : eq.prescribed) {
+    const std::string a = "ap" + std::to_string(ps.speed);
+    prescribed_text += "  double " + a + " = 0.0;  // prescribed acceleration of " + eq.speed_names[ps.speed] + "\n";
+    for (std::size_t k = 0; k < ps.pieces.size(); ++k) {
+      const kane::PrescribedSpeed::Piece& piece = ps.pieces[k];
+      const PrintedKernel printed =
+          print_kernel(graph, {{a, graph.add(piece.acceleration)}}, "    ", "x" + a + "_" + std::to_string(k) + "_");
+      prescribed_operations += printed.operations;
+      prescribed_text += std::string(k == 0 ? "  " : " else ") +
+                         (piece.has_until ? "if (t < " + format_double(piece.until) + ") " : "") + "{\n" +
+                         printed.body + "  }";
+    }
+    prescribed_text += "\n";
   }
   for (int i = 0; i < eq.nq; ++i) rates.push_back({"qdot[" + std::to_string(i) + "]", graph.add(eq.coordinate_rates[i])});
   for (std::size_t i = 0; i < eq.outputs.size(); ++i)
@@ -158,9 +191,12 @@ EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, co
       {"potential_energy", kernel(graph, {{"V", graph.add(eq.potential_energy)}})},
       {"outputs", kernel(graph, outputs)},
   };
-  const KernelText solve = unrolled_ldlt(nonzero_m, n);
+  KernelText solve = unrolled_ldlt(nonzero_m, solved);
+  for (const kane::PrescribedSpeed& ps : eq.prescribed)
+    solve.body += "  udot[" + std::to_string(ps.speed) + "] = ap" + std::to_string(ps.speed) + ";\n";
   const long ldlt = solve.operations;
-  kernels["forward_dynamics"].operations += ldlt;
+  kernels["forward_dynamics"].operations += ldlt + prescribed_operations;
+  kernels["forward_dynamics"].body = prescribed_text + kernels["forward_dynamics"].body;
 
   EmittedModel emitted;
   std::string counts;
@@ -182,12 +218,8 @@ EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, co
                " = value;\n    return true;\n  }\n";
     getters += "    case " + std::to_string(i) + ": return p." + par.name + ";\n";
   }
-  std::vector<double> q0, u0;
-  for (const model::Joint& j : model.joints)
-    if (j.moves()) {
-      q0.push_back(j.q0);
-      u0.push_back(j.u0);
-    }
+  const std::vector<double>& q0 = eq.q0;
+  const std::vector<double>& u0 = eq.u0;
   const std::string file = std::filesystem::path(model.source_file).filename().string();
   const std::map<std::string, std::string> values{
       {"MODEL_NAME", model.name},
@@ -198,12 +230,12 @@ EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, co
       {"PARAMS_FIELDS", fields},
       {"NQ", std::to_string(eq.nq)},
       {"NU", std::to_string(n)},
-      {"NTAU", std::to_string(n)},
+      {"NTAU", std::to_string(eq.input_names.size())},
       {"NY", std::to_string(output_names.size())},
       {"NP", std::to_string(param_names.size())},
       {"NQ_ARRAY", array_size(eq.nq)},
       {"NU_ARRAY", array_size(n)},
-      {"NTAU_ARRAY", array_size(n)},
+      {"NTAU_ARRAY", array_size(eq.input_names.size())},
       {"NY_ARRAY", array_size(output_names.size())},
       {"NP_ARRAY", array_size(param_names.size())},
       {"COORDINATE_NAMES", quoted_list(eq.coordinate_names)},

@@ -47,6 +47,7 @@ double ExpressionGraph::fold(const Node& n) const {
     case Op::tan: return std::tan(arg(0));
     case Op::exp: return std::exp(arg(0));
     case Op::log: return std::log(arg(0));
+    case Op::abs: return std::abs(arg(0));
     default: return n.value;
   }
 }
@@ -207,7 +208,7 @@ int ExpressionGraph::convert(const GiNaC::ex& e) {
   } else if (GiNaC::is_a<GiNaC::function>(e)) {
     const std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
     static const std::map<std::string, Op> functions{{"sin", Op::sin}, {"cos", Op::cos}, {"tan", Op::tan},
-                                                     {"exp", Op::exp}, {"log", Op::log}};
+                                                     {"exp", Op::exp}, {"log", Op::log}, {"abs", Op::abs}};
     auto f = functions.find(name);
     if (f == functions.end()) throw std::logic_error("expression graph: unsupported function " + name);
     Node n;

@@ -18,7 +18,7 @@
 
 namespace kanegen::codegen {
 
-enum class Op { number, input, add, mul, power, sin, cos, tan, exp, log, sqrt };
+enum class Op { number, input, add, mul, power, sin, cos, tan, exp, log, sqrt, abs };
 
 struct Node {
   Op op = Op::number;

@@ -2,7 +2,10 @@
 
 #include <map>
 
+#include "kane/flexible_body.hpp"
+#include "kane/node_outputs.hpp"
 #include "kinematics/tree_kinematics.hpp"
+#include "model/model_error.hpp"
 #include "symbolic/vec3.hpp"
 
 namespace kanegen::kane {
@@ -63,12 +66,18 @@ Wrench to_parent(Program& program, const Wrench& w, const Mat3& to_child, const 
 }  // namespace
 
 Equations derive_equations(const model::Model& model, const symbolic::Variables& vars, symbolic::Program& program,
-                           MassMatrixMethod method) {
+                           MassMatrixMethod method, const FlexibleBodies& flexible) {
+  for (const model::Joint& j : model.joints)
+    if (j.parent_node >= 0)
+      throw model::ModelError(model.source_file, j.where + "/parent_node",
+                              "joints on the nodes of a flexible body are not supported yet",
+                              "attach joint '" + j.name + "' to the body frame (remove \"parent_node\")");
   const Vec3 gravity = vec(vars, model.gravity);
   // The ground accelerates at -g: every rest acceleration then carries gravity.
   const kinematics::TreeKinematics tree(model, vars, program, zero_vec() - gravity);
   Equations eq;
   eq.nq = eq.nu = static_cast<int>(vars.q.size());
+  std::map<std::size_t, FlexibleTerms> elastic;  // by state index
   const int n = eq.nu;
   eq.mass_matrix.assign(n * n, 0);
   eq.forcing.assign(n, 0);
@@ -97,7 +106,7 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
     Vec3 force = zero_vec() - mass * com_accel;
     Vec3 torque = zero_vec() - mul(central, b.alpha_rest) - cross(b.omega, spin);
     for (const model::PointForce& pf : model.forces) {
-      if (pf.body != body.name) continue;
+      if (pf.body != body.name || pf.node >= 0) continue;
       const Vec3 given = vec(vars, pf.force);
       const Vec3 f = pf.frame == model::ForceFrame::body ? given : named(program, mul_transposed(b.rotation, given));
       const Vec3 at = vec(vars, pf.point);
@@ -116,6 +125,40 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
 
     eq.kinetic_energy += (mass * dot(com_velocity, com_velocity) + dot(b.omega, spin)) / 2;
     eq.potential_energy -= mass * dot(gravity, tree.world_point(b, com));
+
+    if (!body.flexible) continue;
+    const int first = vars.elastic_first[b.body], count = vars.elastic_count[b.body];
+    const std::vector<ex> eta(vars.q.begin() + first, vars.q.begin() + first + count);
+    const std::vector<ex> eta_dot(vars.u.begin() + first, vars.u.begin() + first + count);
+    const fem::ModelBeam& beam = flexible.at(b.body);
+    FlexibleTerms terms = flexible_terms(beam, body.beam.geometric_stiffening, b, eta, eta_dot, program);
+    for (const model::PointForce& pf : model.forces) {
+      if (pf.body != body.name || pf.node < 0) continue;
+      // At the deformed node p = r + T eta: a force and moment about the
+      // origin on the link, and T^T f on the elastic coordinates.
+      const Eigen::MatrixXd t = beam.reduced.node_translation(beam.body, pf.node);
+      const Eigen::Vector3d r = beam.body.node_position(pf.node);
+      Vec3 at;
+      for (int a = 0; a < 3; ++a) at[a] = symbolic::number(r[a]) + linear_combination(t.row(a).transpose(), eta);
+      at = named(program, at);
+      const Vec3 given = vec(vars, pf.force);
+      const Vec3 f = pf.frame == model::ForceFrame::body ? given : named(program, mul_transposed(b.rotation, given));
+      terms.force = terms.force + f;
+      terms.moment = terms.moment + cross(at, f);
+      for (int k = 0; k < count; ++k)
+        terms.elastic_forcing[k] += symbolic::number(t(0, k)) * f[0] + symbolic::number(t(1, k)) * f[1] +
+                                    symbolic::number(t(2, k)) * f[2];
+      if (pf.frame == model::ForceFrame::world) eq.potential_energy -= dot(given, tree.world_point(b, at));
+    }
+    wrench[i].force = wrench[i].force + terms.force;
+    wrench[i].moment = wrench[i].moment + terms.moment;
+    inertia[i].mass += terms.mass;
+    inertia[i].moment = inertia[i].moment + terms.first_moment;
+    for (int k = 0; k < 9; ++k) inertia[i].second[k] += terms.second_moment[k];
+    eq.kinetic_energy += terms.kinetic_energy;
+    eq.potential_energy += terms.strain_energy -
+                           dot(gravity, terms.mass * b.origin + mul(b.rotation, terms.first_moment));
+    elastic.emplace(i, std::move(terms));
   }
 
   // Composite bodies and subtree wrenches, leaves first, each in its own frame.
@@ -158,22 +201,10 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
   auto project = [](const kinematics::JointFrame& frame, const Vec3& moment, const Vec3& force) {
     return frame.prismatic ? dot(frame.axis, force) : dot(frame.axis, moment);
   };
-  for (std::size_t i = 0; i < states.size(); ++i) {
+  // Row s of M from the momentum (angular, linear), about state i's origin
+  // in its axes, of everything that moves with u_s = 1 alone.
+  const auto spread = [&](int s, std::size_t i, Vec3 angular, Vec3 linear) {
     const kinematics::BodyState& b = states[i];
-    const kinematics::JointFrame& joint = tree.joints()[b.joint];
-    if (joint.speed < 0) continue;
-    const int s = joint.speed;
-    eq.forcing[s] = project(joint, wrench[i].moment, wrench[i].force);
-
-    const SpatialInertia& c = inertia[i];
-    Vec3 angular, linear;
-    if (joint.prismatic) {
-      linear = named(program, c.mass * joint.axis);
-      angular = named(program, cross(c.moment, joint.axis));
-    } else {
-      angular = named(program, mul(c.second, joint.axis));
-      linear = named(program, cross(joint.axis, c.moment));
-    }
     if (method == MassMatrixMethod::world_projection) {
       // The momentum in world axes about the world origin, met by each
       // ancestor's partial velocities at the world origin: w = a, v = o x a.
@@ -186,9 +217,8 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
             frame.prismatic ? dot(axis.direction, p_world)
                             : dot(axis.direction, l_world) + dot(axis.moment, p_world);
       }
-      continue;
+      return;
     }
-    // Up the path: at each ancestor's frame, project on its joint.
     // Up the path: at each ancestor's frame, project on its joint.
     for (int at = static_cast<int>(i);;) {
       const kinematics::BodyState& a = states[at];
@@ -201,6 +231,29 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
       angular = up.moment;
       linear = up.force;
       at = a.parent_state;
+    }
+  };
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    const kinematics::BodyState& b = states[i];
+    const kinematics::JointFrame& joint = tree.joints()[b.joint];
+    if (joint.speed < 0) continue;
+    const int s = joint.speed;
+    eq.forcing[s] = project(joint, wrench[i].moment, wrench[i].force);
+
+    const SpatialInertia& c = inertia[i];
+    if (joint.prismatic)
+      spread(s, i, named(program, cross(c.moment, joint.axis)), named(program, c.mass * joint.axis));
+    else
+      spread(s, i, named(program, mul(c.second, joint.axis)), named(program, cross(joint.axis, c.moment)));
+  }
+  // The elastic speeds: their own block, and their coupling with the joints on the path.
+  for (const auto& [i, terms] : elastic) {
+    const int body = states[i].body, first = vars.elastic_first[body], count = vars.elastic_count[body];
+    for (int k = 0; k < count; ++k) {
+      const int r = first + k;
+      eq.forcing[r] = terms.elastic_forcing[k];
+      for (int l = 0; l < count; ++l) eq.mass_matrix[r * n + first + l] = terms.elastic_mass[k * count + l];
+      spread(r, i, terms.angular_momentum[k], terms.linear_momentum[k]);
     }
   }
 
@@ -217,9 +270,46 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
     eq.coordinate_names.push_back(joint.name);
     eq.speed_names.push_back(joint.name + "_dot");
     eq.input_names.push_back(joint.name + "_tau");
+    if (!joint.is_prescribed()) {
+      eq.q0.push_back(joint.q0);
+      eq.u0.push_back(joint.u0);
+      continue;
+    }
+    PrescribedSpeed prescribed;
+    prescribed.speed = r;
+    for (std::size_t p = 0; p < joint.prescribed.size(); ++p) {
+      const model::PrescribedPiece& piece = joint.prescribed[p];
+      const ex motion = vars.time_expression(piece.q, piece.where);
+      prescribed.pieces.push_back({motion.diff(vars.t, 2), piece.has_until, piece.until});
+      if (p == 0) {  // the initial state, at the parameters' defaults
+        eq.q0.push_back(vars.at_defaults(motion, 0.0));
+        eq.u0.push_back(vars.at_defaults(motion.diff(vars.t), 0.0));
+      }
+    }
+    eq.prescribed.push_back(std::move(prescribed));
+  }
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    if (!model.bodies[b].flexible) continue;
+    const std::vector<std::string>& names = flexible.at(static_cast<int>(b)).reduced.names;
+    for (int k = 0; k < vars.elastic_count[b]; ++k) {
+      eq.coordinate_rates.push_back(vars.u[vars.elastic_first[b] + k]);
+      eq.coordinate_names.push_back(model.bodies[b].name + "." + names[k]);
+      eq.speed_names.push_back(model.bodies[b].name + "." + names[k] + "_dot");
+      eq.q0.push_back(0.0);
+      eq.u0.push_back(0.0);
+    }
   }
 
   for (const model::Output& out : model.outputs) {
+    if (out.node >= 0) {
+      const int body = tree.bodies()[tree.state_of(out.body)].body;
+      const int first = vars.elastic_first[body];
+      const std::vector<ex> eta(vars.q.begin() + first, vars.q.begin() + first + vars.elastic_count[body]);
+      const NodeOutputs node = node_outputs(model.bodies[body], flexible.at(body), out, eta);
+      eq.outputs.insert(eq.outputs.end(), node.values.begin(), node.values.end());
+      eq.output_names.insert(eq.output_names.end(), node.names.begin(), node.names.end());
+      continue;
+    }
     if (out.kind == model::OutputKind::point_position) {
       const int state = tree.state_of(out.body);
       Vec3 p = vec(vars, out.point);

@@ -4,17 +4,33 @@
 
 #include <ginac/ginac.h>
 
+#include <map>
 #include <string>
 #include <vector>
 
+#include "fem/model_beam.hpp"
 #include "model/model.hpp"
 #include "symbolic/program.hpp"
 #include "symbolic/variables.hpp"
 
 namespace kanegen::kane {
 
+/// A coordinate given as a function of time: its acceleration, piece by
+/// piece (the piece holds while t < until; the last for all later times).
+struct PrescribedSpeed {
+  int speed = -1;
+  struct Piece {
+    GiNaC::ex acceleration;
+    bool has_until = false;
+    double until = 0.0;
+  };
+  std::vector<Piece> pieces;
+};
+
 struct Equations {
   int nq = 0, nu = 0;
+  std::vector<double> q0, u0;               ///< the initial state
+  std::vector<PrescribedSpeed> prescribed;  ///< speeds whose u_dot is given, not solved for
   std::vector<GiNaC::ex> mass_matrix;       ///< nu*nu, row-major, symmetric
   std::vector<GiNaC::ex> forcing;           ///< nu: gravity, velocity terms, springs, dampers, forces, tau
   std::vector<GiNaC::ex> coordinate_rates;  ///< nq: q_dot as a function of u
@@ -36,7 +52,11 @@ struct Equations {
 /// shorter code.
 enum class MassMatrixMethod { body_frames, world_projection };
 
+/// The finite-element bodies, by index in Model::bodies.
+using FlexibleBodies = std::map<int, fem::ModelBeam>;
+
 Equations derive_equations(const model::Model& model, const symbolic::Variables& vars, symbolic::Program& program,
-                           MassMatrixMethod method = MassMatrixMethod::body_frames);
+                           MassMatrixMethod method = MassMatrixMethod::body_frames,
+                           const FlexibleBodies& flexible = {});
 
 }  // namespace kanegen::kane

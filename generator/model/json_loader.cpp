@@ -93,13 +93,88 @@ class JsonReader {
     Body b;
     b.name = j["name"].get<std::string>();
     b.where = place;
-    b.mass = scalar(j["mass"], place + "/mass");
+    if (!j.contains("mass") && !j.contains("flexible"))
+      error(place, "missing required key 'mass'", "add \"mass\": the mass in kg (or \"flexible\": a beam)");
+    b.mass = j.contains("mass") ? scalar(j["mass"], place + "/mass") : Scalar::number(0.0, place + "/mass");
     b.com = vec3(j, "com", place, {0, 0, 0});
     const json inertia = j.value("inertia", json::object());
     const char* keys[6] = {"ixx", "iyy", "izz", "ixy", "ixz", "iyz"};
     for (int k = 0; k < 6; ++k) b.inertia[k] = scalar(inertia, keys[k], place + "/inertia", 0.0);
+    if (j.contains("flexible")) {
+      b.flexible = true;
+      b.beam = beam(j["flexible"], place + "/flexible");
+    }
     return b;
   }
+
+  FlexibleBeam beam(const json& j, const std::string& place) const {
+    FlexibleBeam f;
+    f.where = place;
+    f.formulation = j.value("formulation", "planar") == "spatial" ? BeamFormulation::spatial : BeamFormulation::planar;
+    if (j.contains("segments") == j.contains("length"))
+      error(place, j.contains("length") ? "both 'length' and 'segments' given" : "missing 'length' (or 'segments')",
+            "give either \"length\" and \"elements\" (a beam along the body x axis) or \"segments\"");
+    if (j.contains("length")) {
+      if (!j.contains("elements"))
+        error(place, "missing required key 'elements'", "add \"elements\": the number of finite elements (1 to 200)");
+      f.segments.push_back({{j["length"].get<double>(), 0.0, 0.0}, j["elements"].get<int>(), place + "/length"});
+    } else {
+      if (j.contains("elements"))
+        error(place + "/elements", "'elements' does not apply with 'segments'",
+              "give the number of elements of each segment in the segment");
+      for (std::size_t i = 0; i < j["segments"].size(); ++i) {
+        const json& seg = j["segments"][i];
+        BeamSegment s;
+        for (int k = 0; k < 3; ++k) s.to[k] = seg["to"][k].get<double>();
+        s.elements = seg["elements"].get<int>();
+        s.where = place + "/segments/" + std::to_string(i);
+        f.segments.push_back(s);
+      }
+    }
+    const json& section = j["section"];
+    f.A = section["A"].get<double>();
+    f.Iy = section.value("Iy", 0.0);
+    f.Iz = section.value("Iz", 0.0);
+    f.J = section.value("J", 0.0);
+    f.fibre_y = section.value("fibre_y", 0.0);
+    f.fibre_z = section.value("fibre_z", 0.0);
+    const json& material = j["material"];
+    f.E = material["E"].get<double>();
+    f.density = material["density"].get<double>();
+    if (material.contains("G") && material.contains("poisson"))
+      error(place + "/material", "both 'G' and 'poisson' given", "give one of them");
+    f.G = material.contains("G")         ? material["G"].get<double>()
+          : material.contains("poisson") ? f.E / (2.0 * (1.0 + material["poisson"].get<double>()))
+                                         : 0.0;
+    const std::string support = j.value("support", "clamped");
+    f.support = support == "clamped"         ? BeamSupport::clamped
+                : support == "pinned-pinned" ? BeamSupport::pinned_pinned
+                                             : BeamSupport::free;
+    f.modes = j.value("modes", 0);
+    if (j.contains("tip")) {
+      f.tip_mass = j["tip"]["mass"].get<double>();
+      const json inertia = j["tip"].value("inertia", json::object());
+      const char* keys[6] = {"ixx", "iyy", "izz", "ixy", "ixz", "iyz"};
+      for (int k = 0; k < 6; ++k) f.tip_inertia[k] = inertia.value(keys[k], 0.0);
+    }
+    if (j.contains("damping")) {
+      const json& d = j["damping"];
+      if (d.contains("rayleigh") == d.contains("modal_ratio"))
+        error(place + "/damping", "give one of 'rayleigh' and 'modal_ratio'",
+              "write {\"rayleigh\": [alpha, beta]} or {\"modal_ratio\": zeta}");
+      if (d.contains("rayleigh")) {
+        f.rayleigh_alpha = d["rayleigh"][0].get<double>();
+        f.rayleigh_beta = d["rayleigh"][1].get<double>();
+      } else {
+        f.modal_damping = d["modal_ratio"].get<double>();
+      }
+    }
+    f.geometric_stiffening = j.value("geometric_stiffening", true);
+    return f;
+  }
+
+  /// A node given as an index or "tip" (kTipNode, resolved by check_model).
+  static int node(const json& v) { return v.is_string() ? kTipNode : v.get<int>(); }
 
   Joint joint(std::size_t i) const {
     const json& j = doc_["joints"][i];
@@ -137,6 +212,33 @@ class JsonReader {
     const json initial = j.value("initial", json::object());
     out.q0 = initial.value("q", 0.0);
     out.u0 = initial.value("u", 0.0);
+    if (j.contains("parent_node")) out.parent_node = node(j["parent_node"]);
+    if (j.contains("prescribed")) {
+      const std::string at = place + "/prescribed";
+      if (!out.moves()) error(at, "fixed joint '" + out.name + "' has no coordinate to prescribe", "remove it");
+      for (const char* key : {"spring", "damping", "actuated", "initial"})
+        if (j.contains(key))
+          error(place + "/" + key, "'" + std::string(key) + "' does not apply to prescribed joint '" + out.name + "'",
+                "remove it: the motion is given by \"prescribed\"");
+      out.actuated = false;
+      const json& p = j["prescribed"];
+      if (p.is_string()) {
+        out.prescribed.push_back({p.get<std::string>(), false, 0.0, at});
+      } else {
+        for (std::size_t i = 0; i < p.size(); ++i) {
+          const std::string piece = at + "/" + std::to_string(i);
+          const bool last = i + 1 == p.size();
+          if (last == p[i].contains("until"))
+            error(piece, last ? "the last piece has an 'until'" : "missing 'until'",
+                  last ? "remove it: the last piece holds for all later times"
+                       : "give the time the piece ends, \"until\": seconds");
+          PrescribedPiece x{p[i]["q"].get<std::string>(), !last, last ? 0.0 : p[i]["until"].get<double>(), piece + "/q"};
+          if (i > 0 && !last && !(x.until > out.prescribed.back().until))
+            error(piece + "/until", "pieces must end at increasing times", "order the pieces by time");
+          out.prescribed.push_back(x);
+        }
+      }
+    }
     return out;
   }
 
@@ -148,7 +250,10 @@ class JsonReader {
     f.name = j["name"].get<std::string>();
     f.where = place;
     f.body = j["body"].get<std::string>();
+    if (j.contains("point") && j.contains("node"))
+      error(place + "/node", "both 'point' and 'node' given", "give one: a point of the body frame, or a node");
     f.point = vec3(j, "point", place, {0, 0, 0});
+    if (j.contains("node")) f.node = node(j["node"]);
     f.force = vec3(j, "force", place, {0, 0, 0});
     f.frame = j.value("frame", "world") == "body" ? ForceFrame::body : ForceFrame::world;
     return f;
@@ -162,26 +267,37 @@ class JsonReader {
     o.name = j["name"].get<std::string>();
     o.where = place;
     const std::string type = j["type"].get<std::string>();
-    o.kind = type == "point"   ? OutputKind::point_position
-             : type == "joint" ? OutputKind::joint_coordinate
-                               : OutputKind::joint_speed;
+    o.kind = type == "point"               ? OutputKind::point_position
+             : type == "joint"             ? OutputKind::joint_coordinate
+             : type == "joint_speed"       ? OutputKind::joint_speed
+             : type == "node_displacement" ? OutputKind::node_displacement
+             : type == "axial_force"       ? OutputKind::axial_force
+             : type == "bending_moment"    ? OutputKind::bending_moment
+                                           : OutputKind::bending_stress;
+    const bool node_output = o.kind != OutputKind::point_position && o.kind != OutputKind::joint_coordinate &&
+                             o.kind != OutputKind::joint_speed;
     // Each output type takes its own keys; a key of another type is a mistake.
-    const std::vector<std::string> needed = o.kind == OutputKind::point_position
-                                                ? std::vector<std::string>{"body", "point"}
-                                                : std::vector<std::string>{"joint"};
+    const std::vector<std::string> needed = o.kind == OutputKind::point_position ? std::vector<std::string>{"body", "point"}
+                                            : node_output ? std::vector<std::string>{"body", "node"}
+                                                          : std::vector<std::string>{"joint"};
     for (const std::string& key : needed)
       if (!j.contains(key))
         error(place, "missing required key '" + key + "' for a '" + type + "' output",
               key == "joint"  ? "add \"joint\": the joint name"
               : key == "body" ? "add \"body\": the body name"
+              : key == "node" ? "add \"node\": a node index of the flexible body, or \"tip\""
                               : "add \"point\": [x, y, z] in the body frame");
-    for (const char* key : {"body", "point", "joint"})
+    for (const char* key : {"body", "point", "joint", "node"})
       if (j.contains(key) && std::find(needed.begin(), needed.end(), key) == needed.end())
         error(place + "/" + key, "'" + std::string(key) + "' does not apply to a '" + type + "' output",
-              "remove it (a point output takes body and point, joint and joint_speed take joint)");
+              "remove it (a point output takes body and point, joint and joint_speed take joint, the node "
+              "outputs take body and node)");
     if (o.kind == OutputKind::point_position) {
       o.body = j["body"].get<std::string>();
       o.point = vec3(j, "point", place, {0, 0, 0});
+    } else if (node_output) {
+      o.body = j["body"].get<std::string>();
+      o.node = node(j["node"]);
     } else {
       o.joint = j["joint"].get<std::string>();
     }

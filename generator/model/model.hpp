@@ -42,13 +42,68 @@ struct Parameter {
   std::string where;
 };
 
-/// A rigid body. Frame: the body frame is the child frame of the joint that
-/// carries it. Inertia is about the centre of mass, in body-frame axes.
+enum class BeamFormulation { planar, spatial };
+enum class BeamSupport { clamped, pinned_pinned, free };
+
+/// A straight run of equal beam elements, from the end of the previous run
+/// (the body frame's origin for the first) to `to`, in the body frame.
+struct BeamSegment {
+  std::array<double, 3> to{0.0, 0.0, 0.0};
+  int elements = 0;
+  std::string where;
+};
+
+/// The finite-element beam of a flexible body, in its link (body) frame.
+/// Its data are numbers: the element matrices and the modal basis are
+/// computed when the code is generated. Nodes are numbered from 0 at the
+/// frame's origin along the segments.
+struct FlexibleBeam {
+  BeamFormulation formulation = BeamFormulation::planar;
+  std::vector<BeamSegment> segments;
+  double A = 0.0, Iy = 0.0, Iz = 0.0, J = 0.0;  ///< section: m^2, m^4
+  double fibre_y = 0.0, fibre_z = 0.0;          ///< distance to the extreme fibre (stress outputs), m
+  double E = 0.0, G = 0.0, density = 0.0;       ///< Pa, Pa, kg/m^3
+  BeamSupport support = BeamSupport::clamped;
+  int modes = 0;  ///< 0: nodal coordinates; k: the first k modes
+  double tip_mass = 0.0;
+  std::array<double, 6> tip_inertia{};  ///< about the last node, body axes: ixx, iyy, izz, ixy, ixz, iyz
+  double rayleigh_alpha = 0.0, rayleigh_beta = 0.0;  ///< damping alpha M + beta K
+  double modal_damping = 0.0;                        ///< damping ratio of every mode (modal coordinates)
+  bool geometric_stiffening = true;
+  std::string where;
+
+  int num_elements() const {
+    int n = 0;
+    for (const BeamSegment& s : segments) n += s.elements;
+    return n;
+  }
+  int num_nodes() const { return num_elements() + 1; }
+};
+
+/// A body. Frame: the body frame is the child frame of the joint that
+/// carries it. Inertia is about the centre of mass, in body-frame axes. A
+/// flexible body adds a finite-element beam to this rigid part (which may
+/// be massless).
 struct Body {
   std::string name;
   Scalar mass;
   Vec3 com;                       ///< centre of mass in the body frame
   std::array<Scalar, 6> inertia;  ///< ixx, iyy, izz, ixy, ixz, iyz
+  bool flexible = false;
+  FlexibleBeam beam;  ///< when flexible
+  std::string where;
+};
+
+/// A node index meaning a flexible body's last node ("tip" in a model file),
+/// until check_model resolves it.
+constexpr int kTipNode = -2;
+
+/// One piece of a prescribed motion: q(t) = `q` while t < `until` (the last
+/// piece has no end).
+struct PrescribedPiece {
+  std::string q;  ///< expression in t and the parameters
+  bool has_until = false;
+  double until = 0.0;
   std::string where;
 };
 
@@ -72,24 +127,41 @@ struct Joint {
   bool actuated = true;  ///< has an input torque/force tau
   double q0 = 0.0;       ///< initial coordinate
   double u0 = 0.0;       ///< initial speed
+  /// The node of a flexible parent the joint sits on (-1: the parent's
+  /// frame). The joint frame then moves and turns with the node.
+  int parent_node = -1;
+  /// A coordinate given as a function of time: no state, its speed and
+  /// acceleration are the derivatives. Empty: a free coordinate.
+  std::vector<PrescribedPiece> prescribed;
   std::string where;
 
   bool moves() const { return type != JointType::fixed; }
+  bool is_prescribed() const { return !prescribed.empty(); }
 };
 
 enum class ForceFrame { world, body };
 
-/// A constant force applied at a point fixed in a body.
+/// A constant force applied at a point fixed in a body, or at a node of a
+/// flexible body.
 struct PointForce {
   std::string name;
   std::string body;
-  Vec3 point;  ///< in the body frame
-  Vec3 force;  ///< in `frame` axes
+  Vec3 point;     ///< in the body frame
+  int node = -1;  ///< or: at this node of a flexible body, moving with it
+  Vec3 force;     ///< in `frame` axes
   ForceFrame frame = ForceFrame::world;
   std::string where;
 };
 
-enum class OutputKind { point_position, joint_coordinate, joint_speed };
+enum class OutputKind {
+  point_position,
+  joint_coordinate,
+  joint_speed,
+  node_displacement,  ///< NAME.x, .y, .z: the node's elastic displacement, body axes
+  axial_force,        ///< N at the node (tension positive)
+  bending_moment,     ///< planar: M_z; spatial: NAME.y, NAME.z (M_y, M_z)
+  bending_stress      ///< peak |N/A| + |M_z| fibre_y/Iz (+ |M_y| fibre_z/Iy) at the node
+};
 
 /// A named quantity written by `simulate`. A point position expands to the
 /// three columns NAME.x, NAME.y, NAME.z (world frame).
@@ -99,6 +171,7 @@ struct Output {
   std::string body;   ///< for point_position
   Vec3 point;         ///< for point_position, in the body frame
   std::string joint;  ///< for joint_coordinate / joint_speed
+  int node = -1;      ///< for the node outputs of a flexible body
   std::string where;
 };
 

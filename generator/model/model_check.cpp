@@ -51,6 +51,7 @@ class Checker {
     check_joints();
     check_tree();
     check_references();
+    check_flexible();
     check_moving_mass();
   }
 
@@ -121,7 +122,24 @@ class Checker {
     }
   }
 
+  void check_prescribed() const {
+    std::vector<std::string> names = names_of(m_.parameters);
+    names.push_back("t");
+    ParameterValues values = default_parameter_values(m_);
+    for (const Joint& j : m_.joints)
+      for (const PrescribedPiece& piece : j.prescribed) {
+        if (auto issue = check_expression(piece.q, names))
+          error(piece.where, describe_with_caret(piece.q, *issue), issue->fix + " (and t, the time)");
+        values["t"] = piece.has_until ? piece.until : 0.0;
+        const double value = evaluate_expression(piece.q, values);
+        if (!std::isfinite(value))
+          error(piece.where, "prescribed motion '" + piece.q + "' is not finite at t = " + format(values["t"]),
+                "check it at the parameters' default values");
+      }
+  }
+
   void check_expressions() const {
+    check_prescribed();
     const std::vector<std::string> parameters = names_of(m_.parameters);
     const ParameterValues defaults = default_parameter_values(m_);
     for_each_scalar([&](const Scalar& s) {
@@ -273,7 +291,7 @@ class Checker {
         error(at(f.where, "body"), "force '" + f.name + "' names unknown body '" + f.body + "'",
               unknown_body_fix(f.body, false));
     for (const Output& o : m_.outputs) {
-      if (o.kind == OutputKind::point_position) {
+      if (o.kind == OutputKind::point_position || o.node != -1) {
         if (!bodies.count(o.body))
           error(at(o.where, "body"), "output '" + o.name + "' names unknown body '" + o.body + "'",
                 unknown_body_fix(o.body, false));
@@ -293,9 +311,108 @@ class Checker {
     }
   }
 
+  static constexpr int kMaxElements = 1000;
+
+  int free_coordinates(const FlexibleBeam& f) const {
+    const int per_node = f.formulation == BeamFormulation::planar ? 3 : 6;
+    const int fixed = f.support == BeamSupport::clamped         ? per_node
+                      : f.support == BeamSupport::pinned_pinned ? (per_node == 3 ? 3 : 6)
+                                                                : 0;
+    return f.num_nodes() * per_node - fixed;
+  }
+
+  void check_beam(const Body& b) const {
+    const FlexibleBeam& f = b.beam;
+    const bool planar = f.formulation == BeamFormulation::planar;
+    const std::string section = at(f.where, "section"), material = at(f.where, "material");
+    if (f.Iz <= 0)
+      error(section, "missing 'Iz' of the beam of body '" + b.name + "'",
+            "give \"Iz\": int y^2 dA in m^4 (bending in the body x-y plane)");
+    if (!planar) {
+      if (f.Iy <= 0) error(section, "missing 'Iy' of the spatial beam of body '" + b.name + "'", "give \"Iy\": int z^2 dA in m^4");
+      if (f.J <= 0) error(section, "missing 'J' of the spatial beam of body '" + b.name + "'", "give \"J\", the torsion constant in m^4");
+      if (f.G <= 0)
+        error(material, "missing 'G' of the spatial beam of body '" + b.name + "'",
+              "give \"G\" (Pa) or \"poisson\", for the torsional stiffness");
+    }
+    if (f.num_elements() > kMaxElements)
+      error(f.where, "the beam of body '" + b.name + "' has " + std::to_string(f.num_elements()) + " elements, more than the limit of " +
+                         std::to_string(kMaxElements),
+            "use fewer elements, or modal reduction (\"modes\") for a fine mesh");
+    std::array<double, 3> from{0.0, 0.0, 0.0};
+    for (const BeamSegment& s : f.segments) {
+      const double dx = s.to[0] - from[0], dy = s.to[1] - from[1], dz = s.to[2] - from[2];
+      for (double v : s.to)
+        if (!std::isfinite(v)) error(s.where, "a coordinate of the segment is not finite", "use finite numbers");
+      if (!(std::sqrt(dx * dx + dy * dy + dz * dz) > 1e-12))
+        error(s.where, "zero-length beam segment in body '" + b.name + "'",
+              "give a positive length, or an end point away from the previous one");
+      if (planar && std::abs(dz) > 0)
+        error(s.where, "a planar beam must lie in the body x-y plane (z = 0)",
+              "make the segment's z zero, or use \"formulation\": \"spatial\"");
+      from = s.to;
+    }
+    if (f.support == BeamSupport::pinned_pinned &&
+        (f.segments.size() != 1 || f.segments[0].to[1] != 0 || f.segments[0].to[2] != 0 || f.segments[0].to[0] <= 0))
+      error(at(f.where, "support"), "a pinned-pinned beam must be one straight run along the body's +x axis",
+            "use \"length\" and \"elements\", or \"clamped\"");
+    const int available = free_coordinates(f);
+    if (f.modes > available)
+      error(at(f.where, "modes"),
+            std::to_string(f.modes) + " modes asked, but the supported beam of body '" + b.name + "' has only " +
+                std::to_string(available) + " coordinates (the limit)",
+            "ask for at most " + std::to_string(available) + " modes, or use more elements");
+    if (f.support == BeamSupport::free)
+      error(at(f.where, "support"), "a free beam would have rigid-body modes in its elastic coordinates",
+            "use \"clamped\" or \"pinned-pinned\": the joints carry the rigid motion");
+    if (f.modal_damping > 0 && f.modes == 0)
+      error(at(f.where, "damping"), "a modal damping ratio needs modal coordinates",
+            "add \"modes\": k, or use \"rayleigh\": [alpha, beta]");
+    if (f.tip_mass == 0)
+      for (double v : f.tip_inertia)
+        if (v != 0) error(at(f.where, "tip"), "a tip inertia without a tip mass", "give the tip a mass");
+  }
+
+  /// Resolves kTipNode and checks that `node` is a node of flexible body `body_name`.
+  void check_node(int& node, const std::string& body_name, const std::string& place, const std::string& what) const {
+    const auto b = std::find_if(m_.bodies.begin(), m_.bodies.end(), [&](const Body& x) { return x.name == body_name; });
+    if (b == m_.bodies.end()) return;  // reported by check_references
+    if (!b->flexible)
+      error(place, what + " names a node of body '" + body_name + "', which is rigid",
+            "remove the node, or make '" + body_name + "' flexible");
+    const int last = b->beam.num_nodes() - 1;
+    if (node == kTipNode) node = last;
+    if (node < 0 || node > last)
+      error(place, "node " + std::to_string(node) + " of body '" + body_name + "' does not exist",
+            "give a node from 0 (at the body frame's origin) to " + std::to_string(last) + " (\"tip\")");
+  }
+
+  void check_flexible() {
+    for (const Body& b : m_.bodies)
+      if (b.flexible) check_beam(b);
+    for (Joint& j : m_.joints)
+      if (j.parent_node != -1) {
+        if (j.parent == m_.ground)
+          error(at(j.where, "parent_node"), "the ground has no nodes", "remove \"parent_node\"");
+        check_node(j.parent_node, j.parent, at(j.where, "parent_node"), "joint '" + j.name + "'");
+      }
+    for (PointForce& f : m_.forces)
+      if (f.node != -1) check_node(f.node, f.body, at(f.where, "node"), "force '" + f.name + "'");
+    for (Output& o : m_.outputs) {
+      if (o.node == -1) continue;
+      check_node(o.node, o.body, at(o.where, "node"), "output '" + o.name + "'");
+      const auto b = std::find_if(m_.bodies.begin(), m_.bodies.end(), [&](const Body& x) { return x.name == o.body; });
+      if (o.kind == OutputKind::bending_stress &&
+          (b->beam.fibre_y <= 0 || (b->beam.formulation == BeamFormulation::spatial && b->beam.fibre_z <= 0)))
+        error(at(o.where, "type"), "a stress output needs the extreme fibre distances of the section",
+              "give \"fibre_y\" (and \"fibre_z\" for a spatial beam) under the body's flexible/section");
+    }
+  }
+
   void check_moving_mass() const {
-    if (std::none_of(m_.joints.begin(), m_.joints.end(), [](const Joint& j) { return j.moves(); }))
-      error(root_place_, "the model has no moving joint, so there is nothing to simulate",
+    if (std::none_of(m_.joints.begin(), m_.joints.end(), [](const Joint& j) { return j.moves(); }) &&
+        std::none_of(m_.bodies.begin(), m_.bodies.end(), [](const Body& b) { return b.flexible; }))
+      error(root_place_, "the model has no moving joint and no flexible body, so there is nothing to simulate",
             "make at least one joint revolute, continuous or prismatic");
     // A moving joint that carries only massless bodies gives a zero row in M(q).
     std::map<std::string, std::vector<std::size_t>> children;  // body name -> child bodies
@@ -310,7 +427,7 @@ class Checker {
         const Body& b = m_.bodies[stack.back()];
         stack.pop_back();
         unknown = unknown || !b.mass.is_literal;
-        massive = massive || (b.mass.is_literal && b.mass.value > 0);
+        massive = massive || (b.mass.is_literal && b.mass.value > 0) || b.flexible;
         for (std::size_t c : children[b.name]) stack.push_back(c);
       }
       if (!unknown && !massive)

@@ -44,15 +44,25 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
   const std::string hash = digest(read_file(model_path));
   out.seconds.load = seconds_since(start);
 
+  // The finite-element bodies: element matrices, invariants, modal bases.
+  kane::FlexibleBodies flexible;
+  std::vector<int> elastic_counts(model.bodies.size(), 0);
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    if (!model.bodies[b].flexible) continue;
+    fem::ModelBeam beam = fem::build_model_beam(model.bodies[b], model.source_file);
+    elastic_counts[b] = static_cast<int>(beam.reduced.names.size());
+    flexible.emplace(static_cast<int>(b), std::move(beam));
+  }
+
   // Derive and emit with each way of summing M; keep the shorter code.
-  const symbolic::Variables vars(model);
+  const symbolic::Variables vars(model, elastic_counts);
   codegen::EmittedModel emitted;
   std::size_t intermediates = 0;
   int nq = 0, nu = 0;
   for (kane::MassMatrixMethod method : {kane::MassMatrixMethod::body_frames, kane::MassMatrixMethod::world_projection}) {
     start = std::chrono::steady_clock::now();
     symbolic::Program program;
-    const kane::Equations equations = kane::derive_equations(model, vars, program, method);
+    const kane::Equations equations = kane::derive_equations(model, vars, program, method, flexible);
     out.seconds.derive += seconds_since(start);
     start = std::chrono::steady_clock::now();
     codegen::EmittedModel candidate = codegen::emit_model(model, equations, vars, program, hash);

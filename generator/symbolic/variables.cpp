@@ -13,22 +13,41 @@ GiNaC::ex number(double value) {
   return GiNaC::numeric(value);
 }
 
-Variables::Variables(const model::Model& model) : source_file_(model.source_file) {
+Variables::Variables(const model::Model& model, const std::vector<int>& elastic_counts)
+    : source_file_(model.source_file) {
   cpp_names_[t] = "t";
   int index = 0;
-  for (const auto& joint : model.joints) {
-    if (!joint.moves()) continue;
+  const auto add_state = [&]() {
     const std::string i = std::to_string(index++);
     q.emplace_back("q" + i);
     u.emplace_back("u" + i);
-    tau.emplace_back("tau" + i);
     cpp_names_[q.back()] = "q[" + i + "]";
     cpp_names_[u.back()] = "u[" + i + "]";
-    cpp_names_[tau.back()] = "tau[" + i + "]";
+  };
+  for (const auto& joint : model.joints) {
+    if (!joint.moves()) continue;
+    if (joint.is_prescribed()) {
+      const std::string name = "ap" + std::to_string(index);
+      prescribed_acceleration.emplace(index, GiNaC::symbol(name));
+      cpp_names_[prescribed_acceleration.at(index)] = name;
+    }
+    add_state();
+    tau.emplace_back("tau" + std::to_string(index - 1));
+    cpp_names_[tau.back()] = "tau[" + std::to_string(index - 1) + "]";
+  }
+  joint_coordinates = index;
+  elastic_first.assign(model.bodies.size(), -1);
+  elastic_count.assign(model.bodies.size(), 0);
+  for (std::size_t b = 0; b < elastic_counts.size() && b < model.bodies.size(); ++b) {
+    if (elastic_counts[b] <= 0) continue;
+    elastic_first[b] = index;
+    elastic_count[b] = elastic_counts[b];
+    for (int k = 0; k < elastic_counts[b]; ++k) add_state();
   }
   for (const auto& parameter : model.parameters) {
     params.emplace_back("p_" + parameter.name);
     parameter_table_[parameter.name] = params.back();
+    defaults_[params.back()] = number(parameter.value);
     cpp_names_[params.back()] = "p." + parameter.name;
   }
   parameter_table_["pi"] = GiNaC::Pi;
@@ -43,6 +62,26 @@ GiNaC::ex Variables::scalar(const model::Scalar& s) const {
     throw model::ModelError(source_file_, s.where, "cannot read expression '" + s.text + "' (" + e.what() + ")",
                             "use numbers, parameter names, + - * / ^, parentheses and sin cos tan sqrt exp log");
   }
+}
+
+GiNaC::ex Variables::time_expression(const std::string& text, const std::string& where) const {
+  GiNaC::symtab table = parameter_table_;
+  table["t"] = t;
+  GiNaC::parser reader(table, /*strict=*/true);
+  try {
+    return reader(text);
+  } catch (const std::exception& e) {
+    throw model::ModelError(source_file_, where, "cannot read expression '" + text + "' (" + e.what() + ")",
+                            "use numbers, t, parameter names, + - * / ^, parentheses and sin cos tan sqrt exp log");
+  }
+}
+
+double Variables::at_defaults(const GiNaC::ex& e, double time) const {
+  GiNaC::exmap values = defaults_;
+  values[t] = GiNaC::numeric(time);
+  const GiNaC::ex v = GiNaC::evalf(e.subs(values));
+  if (!GiNaC::is_a<GiNaC::numeric>(v)) throw std::logic_error("at_defaults: not a number");
+  return GiNaC::ex_to<GiNaC::numeric>(v).to_double();
 }
 
 std::string Variables::cpp_name(const GiNaC::symbol& s) const {

@@ -19,21 +19,35 @@ GiNaC::ex number(double value);
 class Variables {
  public:
   /// Creates the symbols for `model`: one coordinate, speed and input per
-  /// moving joint (file order) and one symbol per parameter.
-  explicit Variables(const model::Model& model);
+  /// moving joint (file order), then elastic_counts[b] elastic coordinates
+  /// and speeds for each flexible body b (file order; no inputs), and one
+  /// symbol per parameter.
+  explicit Variables(const model::Model& model, const std::vector<int>& elastic_counts = {});
 
   GiNaC::symbol t{"t"};
   std::vector<GiNaC::symbol> q, u, tau, params;
+  int joint_coordinates = 0;        ///< q[0 .. joint_coordinates) belong to joints
+  std::vector<int> elastic_first;   ///< per body: index in q of its first elastic coordinate, or -1
+  std::vector<int> elastic_count;   ///< per body: its number of elastic coordinates
+  /// Per prescribed speed index: the symbol of its given acceleration (a
+  /// local of the emitted forward dynamics, "ap<index>").
+  std::map<int, GiNaC::symbol> prescribed_acceleration;
 
   /// The model scalar as an expression: numbers fold in, expressions over
   /// parameters stay symbolic. Throws model::ModelError on a bad expression.
   GiNaC::ex scalar(const model::Scalar& s) const;
+
+  /// An expression in the time t and the parameters (a prescribed motion).
+  GiNaC::ex time_expression(const std::string& text, const std::string& where) const;
+  /// The value of an expression in t and the parameters at time t, with the parameters' defaults.
+  double at_defaults(const GiNaC::ex& e, double time) const;
 
   /// C++ text for an input symbol ("q[0]", "p.m1", "t"), or "" if unknown.
   std::string cpp_name(const GiNaC::symbol& s) const;
 
  private:
   std::string source_file_;
+  GiNaC::exmap defaults_;  ///< parameter symbol -> its default value
   GiNaC::symtab parameter_table_;
   std::map<GiNaC::symbol, std::string, GiNaC::ex_is_less> cpp_names_;
 };

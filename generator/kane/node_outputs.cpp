@@ -1,0 +1,85 @@
+#include "kane/node_outputs.hpp"
+
+#include <stdexcept>
+
+#include "fem/beam_element.hpp"
+#include "kane/flexible_body.hpp"
+#include "symbolic/variables.hpp"
+
+namespace kanegen::kane {
+namespace {
+
+using GiNaC::ex;
+
+/// Rows of section resultants at `node` as maps of eta: planar (N, M_z),
+/// spatial (N, T, M_y, M_z), from the element that starts there (or ends
+/// there, for the last node).
+Eigen::MatrixXd resultants_at(const fem::ModelBeam& beam, int node) {
+  const fem::Body& body = beam.body;
+  for (int pass = 0; pass < 2; ++pass)
+    for (int e = 0; e < body.num_elements(); ++e) {
+      const fem::ElementPlacement& placement = body.element(e);
+      if (placement.nodes[pass] != node) continue;
+      const auto* element = dynamic_cast<const fem::BeamElement*>(placement.element.get());
+      if (!element) throw std::logic_error("node outputs: not a beam element");
+      Eigen::MatrixXd rows(placement.dofs.size(), beam.reduced.basis.cols());
+      for (std::size_t i = 0; i < placement.dofs.size(); ++i) rows.row(i) = beam.reduced.basis.row(placement.dofs[i]);
+      return element->resultant_matrix(pass == 0 ? 0.0 : 1.0) * placement.T * rows;
+    }
+  throw std::logic_error("node outputs: node without an element");
+}
+
+ex row_times(const Eigen::MatrixXd& m, int row, const std::vector<ex>& eta) {
+  Eigen::VectorXd c = m.row(row).transpose();
+  const double largest = c.size() ? c.cwiseAbs().maxCoeff() : 0.0;
+  for (Eigen::Index k = 0; k < c.size(); ++k)
+    if (std::abs(c[k]) <= 1e-13 * largest) c[k] = 0.0;
+  return linear_combination(c, eta);
+}
+
+}  // namespace
+
+NodeOutputs node_outputs(const model::Body& body, const fem::ModelBeam& beam, const model::Output& output,
+                         const std::vector<ex>& eta) {
+  NodeOutputs out;
+  const bool spatial = body.beam.formulation == model::BeamFormulation::spatial;
+  const std::string& name = output.name;
+  if (output.kind == model::OutputKind::node_displacement) {
+    const Eigen::MatrixXd t = beam.reduced.node_translation(beam.body, output.node);
+    const char* axes[] = {".x", ".y", ".z"};
+    for (int a = 0; a < 3; ++a) {
+      out.values.push_back(row_times(t, a, eta));
+      out.names.push_back(name + axes[a]);
+    }
+    return out;
+  }
+  const Eigen::MatrixXd r = resultants_at(beam, output.node);
+  const ex axial = row_times(r, 0, eta);
+  const ex moment_z = row_times(r, spatial ? 3 : 1, eta);
+  const ex moment_y = spatial ? row_times(r, 2, eta) : ex(0);
+  switch (output.kind) {
+    case model::OutputKind::axial_force:
+      out.values = {axial};
+      out.names = {name};
+      break;
+    case model::OutputKind::bending_moment:
+      if (spatial) {
+        out.values = {moment_y, moment_z};
+        out.names = {name + ".y", name + ".z"};
+      } else {
+        out.values = {moment_z};
+        out.names = {name};
+      }
+      break;
+    default: {  // bending_stress: the extreme fibre's |N/A| + |M_z| y/Iz + |M_y| z/Iy
+      const model::FlexibleBeam& f = body.beam;
+      ex stress = GiNaC::abs(axial) / symbolic::number(f.A) + GiNaC::abs(moment_z) * symbolic::number(f.fibre_y / f.Iz);
+      if (spatial) stress += GiNaC::abs(moment_y) * symbolic::number(f.fibre_z / f.Iy);
+      out.values = {stress};
+      out.names = {name};
+    }
+  }
+  return out;
+}
+
+}  // namespace kanegen::kane

@@ -1,0 +1,26 @@
+// The outputs at a node of a flexible body: its elastic displacement in the
+// link frame, and the section resultants of the adjoining element (axial
+// force, bending moments) with the peak bending stress, all linear maps of
+// the elastic coordinates (cubic beams: constant axial force, linear moment
+// along an element).
+#pragma once
+
+#include <ginac/ginac.h>
+
+#include <string>
+#include <vector>
+
+#include "fem/model_beam.hpp"
+#include "model/model.hpp"
+
+namespace kanegen::kane {
+
+struct NodeOutputs {
+  std::vector<GiNaC::ex> values;
+  std::vector<std::string> names;
+};
+
+NodeOutputs node_outputs(const model::Body& body, const fem::ModelBeam& beam, const model::Output& output,
+                         const std::vector<GiNaC::ex>& eta);
+
+}  // namespace kanegen::kane
