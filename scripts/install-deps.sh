@@ -7,11 +7,13 @@ packages=(
   libginac-dev libeigen3-dev nlohmann-json3-dev catch2 libcli11-dev
   liburdfdom-dev libtinyxml2-dev libvalijson-dev
   libmujoco-dev libbenchmark-dev
-  libclang-rt-dev
+  libclang-rt-dev llvm
 )
 # libclang-rt-dev: clang's sanitizer and libFuzzer runtimes (only recommended
 # by clang, so not pulled in with --no-install-recommends), for the
-# KANEGEN_SANITIZE and KANEGEN_BUILD_FUZZERS builds that CI runs.
+# KANEGEN_SANITIZE and KANEGEN_BUILD_FUZZERS builds that CI runs; llvm: its
+# llvm-symbolizer, which the sanitizers call to name frames (and to match the
+# leak suppressions by library).
 if [ "$(id -u)" -ne 0 ]; then
   echo "install-deps.sh: run as root (apt-get needs it), e.g. sudo bash scripts/install-deps.sh" >&2
   exit 1

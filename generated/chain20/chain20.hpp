@@ -34,6 +34,10 @@ extern const char* const parameter_names[1];
 extern const double q0[20];
 extern const double u0[20];
 
+/// The initial state for the parameters p: q0 and u0, except that a
+/// prescribed coordinate starts where its motion does at t = 0.
+void initial_state(const Params& p, double* q, double* u);
+
 /// Sets a parameter by name; false if there is none of that name.
 bool set_parameter(Params& p, const char* name, double value);
 /// The parameter with index i (0 <= i < NP) in parameter_names order.
@@ -66,6 +70,9 @@ struct System {
   static const char* const* parameter_names() { return ::kanegen_models::chain20::parameter_names; }
   static const double* q0() { return ::kanegen_models::chain20::q0; }
   static const double* u0() { return ::kanegen_models::chain20::u0; }
+  static void initial_state(const Params& p, double* q, double* u) {
+    ::kanegen_models::chain20::initial_state(p, q, u);
+  }
   static bool set_parameter(Params& p, const char* n, double v) {
     return ::kanegen_models::chain20::set_parameter(p, n, v);
   }

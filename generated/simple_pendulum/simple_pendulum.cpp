@@ -44,6 +44,12 @@ double get_parameter(const Params& p, int i) {
   }
 }
 
+void initial_state(const Params& p, double* q, double* u) {
+  (void)p;
+  for (int i = 0; i < NQ; ++i) q[i] = q0[i];
+  for (int i = 0; i < NU; ++i) u[i] = u0[i];
+}
+
 void mass_matrix(const Params& p, const double* q, double* M) {
   (void)p;
   (void)q;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/modes.hpp"
 #include "cli/runner_build.hpp"
 #include "cli/verify.hpp"
 #include "codegen/emitter.hpp"
@@ -141,6 +142,33 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingDirectory);
   ver->add_flag("--json", ver_options.json, "print the report as JSON on stdout");
 
+  RunOptions modes_run;
+  kanegen::cli::ModesOptions modes_options;
+  CLI::App* modes = app.add_subcommand(
+      "modes", "natural frequencies and mode shapes of the model linearised about its initial state (JSON)");
+  add_common(modes, modes_run);
+  modes->footer(
+      "Linearises the compiled equations about the initial state (q0, u0 of the model, or --q0/--u0; t = 0)\n"
+      "by central differences and solves K phi = omega^2 M phi with the symmetric part of K. The\n"
+      "eigen-coordinates are the elastic coordinates of the flexible bodies; free joints are held at\n"
+      "their initial state (with --free-joints, or in a model without flexible bodies, their coordinates\n"
+      "join in); prescribed joints move as prescribed, so a hub spinning at a constant rate gives the\n"
+      "rotating-beam frequencies. Mode shapes are mass-normalised, largest entry positive. Exit status 1\n"
+      "if a mode is unstable (omega^2 < 0; the JSON marks it \"stable\": false). See docs/modes.md.");
+  modes->add_option("--set", modes_options.sets, "parameter value NAME=VALUE (repeatable)");
+  modes->add_option("--q0", modes_options.q0, "operating point: initial coordinate NAME=VALUE (repeatable)");
+  modes->add_option("--u0", modes_options.u0, "initial speed NAME=VALUE (repeatable)");
+  modes->add_flag("--free-joints", modes_options.free_joints,
+                  "include the free (not prescribed) joint coordinates in the eigenproblem");
+  modes->add_option("--count", modes_options.count, "print only the K lowest modes (default: all)")
+      ->type_name("K")
+      ->check(CLI::Range(1, 1000000));
+  modes->add_flag("--matrices", modes_options.matrices,
+                  "also print M, K = -dr/dq, C = -dr/du and r at the initial state");
+  modes->add_option("--step", modes_options.step, "relative finite-difference step")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-10, 1e-2));
+
   CLI11_PARSE(app, argc, argv);
 
   try {
@@ -166,6 +194,11 @@ int main(int argc, char** argv) {
       ver_options.model = verify_options.model;
       ver_options.build = build_options(verify_options);
       return kanegen::cli::verify(ver_options);
+    }
+    if (*modes) {
+      modes_options.model = modes_run.model;
+      modes_options.build = build_options(modes_run);
+      return kanegen::cli::modes(modes_options);
     }
   } catch (const kanegen::model::ModelError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

@@ -65,6 +65,9 @@ std::string cache_key(const std::string& model_path, const RuntimeLocation& runt
   std::string bytes = pipeline::read_file(model_path);
   for (double g : options.load.urdf_gravity) bytes += codegen::format_double(g) + ",";
   bytes += KANEGEN_VERSION;
+  // The generator itself: a rebuilt kanegen of the same version may emit other code.
+  std::error_code error;
+  if (fs::exists("/proc/self/exe", error)) bytes += pipeline::read_file("/proc/self/exe");
   bytes += embedded::model_hpp_template;
   bytes += embedded::model_cpp_template;
   bytes += embedded::runner_cpp_template;

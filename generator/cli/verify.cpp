@@ -28,6 +28,11 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 /// largest value over the run, so that a quantity that happens to vanish at
 /// one state is not held to round-off of its own (tiny) size.
 constexpr double kScaleFloor = 1e-3;
+/// Nor below this fraction of the largest entry of the quantity over the
+/// run: an entry that is zero by structure (and round-off on one side) is
+/// held to round-off of the quantity, not of itself. Round-off of a sum is
+/// about 1e-16 of its terms, so 1e-6 leaves the tolerance three orders.
+constexpr double kGlobalFloor = 1e-6;
 
 std::string number(double x) {
   char buf[32];
@@ -55,11 +60,10 @@ Link link_runner(const model::Model& model, const numeric::Instance& instance, c
     return std::runtime_error("the kernels do not match " + model.source_file + ": " + what);
   };
   Link link;
-  for (int r = 0; r < instance.coordinates(); ++r)
-    link.coordinates.push_back(instance.joints[instance.coordinate_joint[r]].name);
+  link.coordinates = instance.coordinate_names;
   if (info["coordinates"].get<std::vector<std::string>>() != link.coordinates)
-    throw mismatch("coordinates " + info["coordinates"].dump() + ", the model's moving joints are " +
-                   json(link.coordinates).dump());
+    throw mismatch("coordinates " + info["coordinates"].dump() + ", the model's are " +
+                   json(link.coordinates).dump() + " (moving joints, then elastic coordinates)");
   if (info["nu"].get<int>() != instance.coordinates())
     throw mismatch("nu = " + info["nu"].dump() + ", expected " + std::to_string(instance.coordinates()));
 
@@ -73,31 +77,58 @@ Link link_runner(const model::Model& model, const numeric::Instance& instance, c
     throw mismatch(std::to_string(link.parameter.size()) + " parameters, the model has " +
                    std::to_string(model.parameters.size()));
 
-  // Inputs: one per speed (tau_r on speed r, ignored if not actuated), or one per actuated joint.
-  const int ntau = info["ntau"].get<int>();
+  // Inputs: one per joint coordinate (tau_r on speed r, ignored if not
+  // actuated; elastic speeds have none), or one per actuated joint.
+  const int ntau = info["ntau"].get<int>(), joints = instance.joint_coordinates();
   std::vector<int> actuated;
-  for (int r = 0; r < instance.coordinates(); ++r)
+  for (int r = 0; r < joints; ++r)
     if (instance.joints[instance.coordinate_joint[r]].actuated) actuated.push_back(r);
-  if (ntau == instance.coordinates()) {
+  if (ntau == joints) {
     for (int r = 0; r < ntau; ++r) link.input.push_back(r);
   } else if (ntau == static_cast<int>(actuated.size())) {
     link.input = actuated;
   } else {
-    throw mismatch("ntau = " + std::to_string(ntau) + ", expected one per speed or per actuated joint");
+    throw mismatch("ntau = " + std::to_string(ntau) + ", expected one per joint coordinate (" +
+                   std::to_string(joints) + ") or per actuated joint (" + std::to_string(actuated.size()) + ")");
   }
 
   link.outputs = info["outputs"].get<std::vector<std::string>>();
   std::vector<std::string> expected;
   for (const numeric::OutputData& o : instance.outputs) {
-    if (o.kind != model::OutputKind::point_position) {
-      expected.push_back(o.name);
-      continue;
-    }
-    for (const char* axis : {".x", ".y", ".z"}) expected.push_back(o.name + axis);
+    std::vector<const char*> parts;
+    if (o.kind == model::OutputKind::point_position || o.kind == model::OutputKind::node_displacement)
+      parts = {".x", ".y", ".z"};
+    else if (o.kind == model::OutputKind::bending_moment && !instance.bodies[o.body].beam->planar)
+      parts = {".y", ".z"};
+    if (parts.empty()) expected.push_back(o.name);
+    for (const char* axis : parts) expected.push_back(o.name + axis);
   }
   if (link.outputs != expected)
     throw mismatch("outputs " + json(link.outputs).dump() + ", expected " + json(expected).dump());
   return link;
+}
+
+/// The size of each elastic coordinate for random states: displacements of
+/// about 1e-3 of the beam's length (rotations of 1e-3 rad), so that the
+/// states are those of a small deformation. Modal amplitudes are scaled by
+/// the largest nodal displacement of their mode.
+std::vector<double> elastic_scales(const numeric::Instance& instance) {
+  std::vector<double> scale(instance.coordinates(), 0.0);
+  for (const numeric::BodyData& b : instance.bodies) {
+    if (!b.beam) continue;
+    const numeric::FlexibleData& f = *b.beam;
+    double length = 0;
+    for (const numeric::BeamElementData& e : f.elements) length += e.length;
+    for (int k = 0; k < f.count(); ++k) {
+      double translation = 0, rotation = 0;
+      for (const auto& [dof, value] : f.basis[k]) {
+        const bool turns = f.planar ? dof % 3 == 2 : dof % 6 >= 3;
+        (turns ? rotation : translation) = std::max(turns ? rotation : translation, std::abs(value));
+      }
+      scale[b.elastic_first + k] = translation > 0 ? 1e-3 * length / translation : 1e-3 / rotation;
+    }
+  }
+  return scale;
 }
 
 /// One random state with its parameters, the numeric reference and the
@@ -116,27 +147,33 @@ struct Sample {
 
 class Sampler {
  public:
-  Sampler(const model::Model& model, const Link& link, unsigned long seed, double spread)
-      : model_(model), link_(link), rng_(seed), spread_(spread) {}
+  Sampler(const model::Model& model, const Link& link, const numeric::Instance& base, unsigned long seed,
+          double spread)
+      : model_(model), link_(link), base_(base), elastic_(elastic_scales(base)), rng_(seed), spread_(spread) {}
 
   Sample draw() {
     Sample s;
     for (const model::Parameter& p : model_.parameters)
       s.parameters[p.name] = p.value != 0 ? p.value * uniform(1 - spread_, 1 + spread_) : uniform(0, spread_);
-    s.instance = numeric::instantiate(model_, s.parameters);
-    const int n = s.instance.coordinates();
+    s.instance = numeric::instantiate(model_, s.parameters, &base_);
+    const int n = s.instance.coordinates(), joints = s.instance.joint_coordinates();
     s.state.t = uniform(0, 10);
-    for (int r = 0; r < n; ++r) {
+    for (int r = 0; r < joints; ++r) {
       const bool slide =
           s.instance.joints[s.instance.coordinate_joint[r]].motion == numeric::Motion::translation;
       s.state.q.push_back(slide ? uniform(-1, 1) : uniform(-kPi, kPi));
       s.state.u.push_back(uniform(-2, 2));
     }
+    // Elastic coordinates of a small deformation, rates of 20 such per second.
+    for (int r = joints; r < n; ++r) {
+      s.state.q.push_back(elastic_[r] * uniform(-1, 1));
+      s.state.u.push_back(elastic_[r] * uniform(-20, 20));
+    }
     // Inputs that accelerate each joint by up to 10 per s^2 on its own, so
     // they are as large as the other forces and do not drown them.
     s.state.tau.assign(n, 0.0);
     const numeric::Evaluation unforced = numeric::evaluate(s.instance, s.state);
-    for (int r = 0; r < n; ++r) s.state.tau[r] = 10 * unforced.mass_matrix[r * n + r] * uniform(-1, 1);
+    for (int r = 0; r < joints; ++r) s.state.tau[r] = 10 * unforced.mass_matrix[r * n + r] * uniform(-1, 1);
     s.reference = numeric::evaluate(s.instance, s.state);
     for (int r : link_.input) s.runner_tau.push_back(s.state.tau[r]);
     for (int k : link_.parameter) s.runner_p.push_back(s.parameters.at(model_.parameters[k].name));
@@ -148,6 +185,8 @@ class Sampler {
 
   const model::Model& model_;
   const Link& link_;
+  const numeric::Instance& base_;
+  std::vector<double> elastic_;
   std::mt19937_64 rng_;
   double spread_;
 };
@@ -202,28 +241,59 @@ class Comparison {
   Comparison(const Link& link, const std::vector<Sample>& samples, double rtol)
       : link_(link), samples_(samples), rtol_(rtol) {}
 
-  /// A generated quantity against a reference one at every sample.
-  Row vectors(const std::string& quantity, const std::string& against,
-              const std::function<std::vector<double>(const Sample&)>& generated,
-              const std::function<std::vector<double>(const Sample&)>& reference,
-              const EntryName& name) const {
+  /// A generated quantity against a reference one at every sample, entry
+  /// by entry: each entry's error is relative to its own size there (or to
+  /// `magnitude`, the sum of the magnitudes of the terms that make it),
+  /// floored (see kScaleFloor, kGlobalFloor), so that a small term of one
+  /// entry is not hidden by a large other entry (an elastic force next to a
+  /// joint torque). `matrix`: an n x n symmetric quantity (M), whose entry
+  /// [r,s] is also measured against sqrt(|b_rr b_ss|) (the bound of a
+  /// positive semidefinite matrix's entries), so that a coupling that is zero
+  /// by structure is held to round-off of its diagonal.
+  using Values = std::function<std::vector<double>(const Sample&)>;
+  Row vectors(const std::string& quantity, const std::string& against, const Values& generated,
+              const Values& reference, const EntryName& name, bool matrix = false,
+              const Values& magnitude = nullptr) const {
     Row row(quantity, against, rtol_);
-    double run = 0;
-    for (const Sample& s : samples_) run = std::max(run, max_abs(reference(s)));
+    const std::size_t n = link_.coordinates.size();
+    const auto size = [&](const Sample& s) {
+      std::vector<double> b = magnitude ? magnitude(s) : reference(s);
+      for (double& x : b) x = std::abs(x);
+      return b;
+    };
+    std::vector<double> run;  // per entry: its largest size over the samples
+    double all = 0;
+    for (const Sample& s : samples_) {
+      const std::vector<double> b = size(s);
+      run.resize(std::max(run.size(), b.size()), 0.0);
+      for (std::size_t k = 0; k < b.size(); ++k) run[k] = std::max(run[k], b[k]);
+      all = std::max(all, max_abs(b));
+    }
     for (std::size_t i = 0; i < samples_.size(); ++i) {
-      const std::vector<double> b = reference(samples_[i]);
-      row.consider(compare(generated(samples_[i]), b, scale(max_abs(b), run), name, static_cast<int>(i)));
+      const std::vector<double> b = reference(samples_[i]), local = size(samples_[i]);
+      std::vector<double> scales(b.size());
+      for (std::size_t k = 0; k < b.size(); ++k) {
+        scales[k] = scale(std::max(local[k], std::abs(b[k])), run[k], all);
+        if (matrix && b.size() == n * n)
+          scales[k] = std::max(scales[k], std::sqrt(std::abs(b[k / n * (n + 1)] * b[k % n * (n + 1)])));
+      }
+      row.consider(compare_entries(generated(samples_[i]), b, scales, name, static_cast<int>(i)));
       ++row.compared;
     }
     return row;
   }
 
   /// udot by its normwise backward error in the numeric system,
-  /// |M udot - f| / (|M| |udot| + |f|) (infinity norms): round-off level
-  /// whatever the conditioning of M, which the forward error is not.
+  /// |M udot - f| / (|M| |udot| + |f|) (infinity norms, over the speeds that
+  /// are solved for): round-off level whatever the conditioning of M, which
+  /// the forward error is not. A prescribed speed's udot is its prescribed
+  /// acceleration, compared as a value (relative to its size, floored by
+  /// kScaleFloor of the largest prescribed acceleration of the run).
   Row udot() const {
     Row row("udot", "numeric M udot = f", rtol_);
     const int n = static_cast<int>(link_.coordinates.size());
+    double run = 0;
+    for (const Sample& s : samples_) run = std::max(run, max_abs(s.reference.prescribed_acceleration));
     for (std::size_t i = 0; i < samples_.size(); ++i) {
       const Sample& s = samples_[i];
       ++row.compared;
@@ -235,9 +305,12 @@ class Comparison {
         row.consider(w);
         continue;
       }
+      std::vector<char> given(n, 0);
+      for (int p : s.reference.prescribed) given[p] = 1;
       const std::vector<double>& M = s.reference.mass_matrix;
-      double residual = 0, norm_m = 0;
+      double residual = 0, norm_m = 0, norm_f = 0, norm_udot = max_abs(s.udot);
       for (int r = 0; r < n; ++r) {
+        if (given[r]) continue;
         double row_sum = 0, sum = -s.reference.forcing[r];
         for (int c = 0; c < n; ++c) {
           sum += M[r * n + c] * s.udot[c];
@@ -245,11 +318,26 @@ class Comparison {
         }
         residual = std::isnan(sum) ? sum : std::max(residual, std::abs(sum));
         norm_m = std::max(norm_m, row_sum);
+        norm_f = std::max(norm_f, std::abs(s.reference.forcing[r]));
       }
       const std::vector<double> reference =
           s.reference.udot.empty() ? std::vector<double>(n, std::nan("")) : s.reference.udot;
       w = compare(s.udot, reference, 1.0, coordinate_name(), static_cast<int>(i));
-      w.rel = residual / (norm_m * max_abs(s.udot) + max_abs(s.reference.forcing));
+      const double denominator = norm_m * norm_udot + norm_f;
+      w.rel = std::isnan(residual) ? residual : denominator > 0 ? residual / denominator : residual;
+      for (std::size_t k = 0; k < s.reference.prescribed.size(); ++k) {
+        const int p = s.reference.prescribed[k];
+        const double a = s.reference.prescribed_acceleration[k], d = std::abs(s.udot[p] - a);
+        double scale = std::max(std::abs(a), kScaleFloor * run);
+        if (scale == 0) scale = 1;
+        if (d / scale > w.rel || std::isnan(d)) {
+          w.rel = d / scale;
+          w.abs = d;
+          w.entry = coordinate_name()(p) + " (prescribed acceleration)";
+          w.generated = s.udot[p];
+          w.numeric = a;
+        }
+      }
       row.consider(w);
     }
     return row;
@@ -258,7 +346,7 @@ class Comparison {
   Row symmetry() const {
     return vectors(
         "M symmetric", "M transposed", [](const Sample& s) { return s.mass_matrix; },
-        [&](const Sample& s) { return transposed(s.mass_matrix); }, matrix_name());
+        [&](const Sample& s) { return transposed(s.mass_matrix); }, matrix_name(), true);
   }
 
   /// Every eigenvalue of the generated M positive; the note gives the smallest
@@ -303,7 +391,7 @@ class Comparison {
   Row kinetic_hessian() const {
     return vectors(
         "d2T/du2", "generated M", [](const Sample& s) { return s.hessian; },
-        [](const Sample& s) { return s.mass_matrix; }, matrix_name());
+        [](const Sample& s) { return s.mass_matrix; }, matrix_name(), true);
   }
 
   EntryName coordinate_name() const {
@@ -321,8 +409,10 @@ class Comparison {
   }
 
  private:
-  static double scale(double local, double run) {
-    const double s = std::max(local, kScaleFloor * run);
+  /// An entry's scale: its size, not below kScaleFloor of its largest size
+  /// over the run, nor kGlobalFloor of the largest entry of the quantity.
+  static double scale(double local, double run, double all) {
+    const double s = std::max({local, kScaleFloor * run, kGlobalFloor * all});
     return s == 0 ? 1.0 : s;
   }
 
@@ -340,7 +430,8 @@ class Comparison {
 };
 
 /// The runner's parameter defaults, q0 and u0 against the model file.
-Row defaults_row(const model::Model& model, const Link& link, const json& info, double rtol) {
+Row defaults_row(const model::Model& model, const numeric::Instance& defaults, const Link& link, const json& info,
+                 double rtol) {
   std::vector<double> generated, reference;
   std::vector<std::string> names;
   const std::vector<double> p = info["parameter_defaults"].get<std::vector<double>>();
@@ -351,13 +442,26 @@ Row defaults_row(const model::Model& model, const Link& link, const json& info, 
   }
   const std::vector<double> q0 = info["q0"].get<std::vector<double>>(),
                             u0 = info["u0"].get<std::vector<double>>();
-  int r = 0;
-  for (const model::Joint& j : model.joints) {
-    if (!j.moves()) continue;
+  // Joints: the model file's q0 and u0, or the prescribed motion at t = 0
+  // (its first piece, at the parameters' defaults); elastic coordinates: 0.
+  for (int r = 0; r < defaults.coordinates(); ++r) {
+    double q = 0, u = 0;
+    if (r < defaults.joint_coordinates()) {
+      const model::Joint& j = model.joints[defaults.coordinate_joint[r]];
+      q = j.q0;
+      u = j.u0;
+      if (j.is_prescribed()) {
+        numeric::JointData first = defaults.joints[defaults.coordinate_joint[r]];
+        first.prescribed.resize(1);
+        first.prescribed[0].has_until = false;
+        const std::array<double, 3> motion = numeric::prescribed_motion(first, 0.0);
+        q = motion[0];
+        u = motion[1];
+      }
+    }
     generated.insert(generated.end(), {q0.at(r), u0.at(r)});
-    reference.insert(reference.end(), {j.q0, j.u0});
-    names.insert(names.end(), {"q0 " + j.name, "u0 " + j.name});
-    ++r;
+    reference.insert(reference.end(), {q, u});
+    names.insert(names.end(), {"q0 " + link.coordinates[r], "u0 " + link.coordinates[r]});
   }
   Row row("defaults", "model file", rtol);
   row.where_kind = "info";
@@ -397,13 +501,13 @@ int verify(const VerifyOptions& o) {
   const std::string runner = o.kernels_dir.empty() ? build_runner(o.model, o.build)
                                                    : build_runner_from_directory(o.kernels_dir, o.build);
   const json info = runner_info(runner);
-  const Link link =
-      link_runner(model, numeric::instantiate(model, model::default_parameter_values(model)), info);
+  const numeric::Instance base = numeric::instantiate(model, model::default_parameter_values(model));
+  const Link link = link_runner(model, base, info);
 
   progress(std::to_string(o.samples) + " random states of " + model.name +
            " against the numeric derivation ...");
   RunnerProcess process(runner, {"batch"});
-  Sampler sampler(model, link, o.seed, o.spread);
+  Sampler sampler(model, link, base, o.seed, o.spread);
   std::vector<Sample> samples;
   for (int i = 0; i < o.samples; ++i) {
     samples.push_back(sampler.draw());
@@ -412,13 +516,14 @@ int verify(const VerifyOptions& o) {
 
   const Comparison c(link, samples, o.rtol);
   std::vector<Row> rows;
-  rows.push_back(defaults_row(model, link, info, o.rtol));
+  rows.push_back(defaults_row(model, base, link, info, o.rtol));
   rows.push_back(c.vectors(
       "mass_matrix", "numeric M", [](const Sample& s) { return s.mass_matrix; },
-      [](const Sample& s) { return s.reference.mass_matrix; }, c.matrix_name()));
+      [](const Sample& s) { return s.reference.mass_matrix; }, c.matrix_name(), true));
   rows.push_back(c.vectors(
       "forcing", "numeric f", [](const Sample& s) { return s.forcing; },
-      [](const Sample& s) { return s.reference.forcing; }, c.coordinate_name()));
+      [](const Sample& s) { return s.reference.forcing; }, c.coordinate_name(), false,
+      [](const Sample& s) { return s.reference.forcing_magnitude; }));
   rows.push_back(c.udot());
   rows.push_back(c.vectors(
       "kinetic_energy", "numeric T", [](const Sample& s) { return std::vector<double>{s.kinetic}; },
@@ -449,7 +554,15 @@ int verify(const VerifyOptions& o) {
     progress(line);
     for (int k = 0; k < trajectories; ++k) {
       const Sample& s = samples[k];
-      const TrajectoryStart from{&s.instance, s.state, s.runner_tau, s.runner_p};
+      TrajectoryStart from{&s.instance, s.state, s.runner_tau, s.runner_p};
+      // Prescribed speeds start on their motion.
+      for (int r = 0; r < s.instance.joint_coordinates(); ++r) {
+        const numeric::JointData& j = s.instance.joints[s.instance.coordinate_joint[r]];
+        if (!j.is_prescribed()) continue;
+        const std::array<double, 3> motion = numeric::prescribed_motion(j, s.state.t);
+        from.state.q[r] = motion[0];
+        from.state.u[r] = motion[1];
+      }
       power.consider(power_balance(process, from, o.duration, k, &power.compared));
     }
   } else {
@@ -462,7 +575,7 @@ int verify(const VerifyOptions& o) {
   // one more row per Jacobian, evaluated through the batch protocol.
   Row jacobians("Jacobians", "finite differences", o.rtol);
   jacobians.applicable = false;
-  jacobians.note = "none emitted (rigid tree)";
+  jacobians.note = "none emitted (tree)";
   rows.push_back(jacobians);
   process.finish();
 

@@ -50,7 +50,9 @@ Worst power_balance(RunnerProcess& runner, const TrajectoryStart& start, double 
     s.t = t;
     s.q.assign(x, x + n);
     s.u.assign(x + n, x + 2 * n);
-    xdot[2 * n] = numeric::nonconservative_power(model, s);
+    // With the generated udot for the work of the prescribed speeds' constraint forces.
+    const std::vector<double> udot(xdot + n, xdot + 2 * n);
+    xdot[2 * n] = numeric::nonconservative_power(model, s, &udot);
     return true;
   };
 

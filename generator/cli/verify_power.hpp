@@ -1,8 +1,9 @@
 // The power balance d(T + V)/dt = P_nc along a short trajectory of the
 // compiled model: x = [q; u; W] is integrated with DOPRI5 at tight
 // tolerances (for the duration, or 400 steps if that comes first), udot from the generated forward_dynamics
-// (through the runner), W' = P_nc (dampers, inputs, body-frame forces) from the numeric path; at each output
-// time T + V (generated) must equal T0 + V0 + W.
+// (through the runner), W' = P_nc (dampers, inputs, body-frame forces, beam damping and geometric
+// stiffness, the constraint forces of prescribed speeds) from the numeric path; at each output time
+// T + V (generated) must equal T0 + V0 + W.
 #pragma once
 
 #include <vector>

@@ -50,6 +50,27 @@ Worst compare(const std::vector<double>& generated, const std::vector<double>& r
   return w;
 }
 
+Worst compare_entries(const std::vector<double>& generated, const std::vector<double>& reference,
+                      const std::vector<double>& scale, const EntryName& name, int where) {
+  Worst w;
+  w.where = where;
+  int at = -1;
+  for (std::size_t i = 0; i < reference.size() && i < generated.size() && i < scale.size(); ++i) {
+    const double d = std::abs(generated[i] - reference[i]), rel = d / scale[i];
+    if (at < 0 || std::isnan(rel) || rel > w.rel) {
+      at = static_cast<int>(i);
+      w.rel = rel;
+      w.abs = d;
+      if (std::isnan(rel)) break;
+    }
+  }
+  if (at < 0) return w;  // nothing to compare: no error
+  w.entry = name(at);
+  w.generated = generated[at];
+  w.numeric = reference[at];
+  return w;
+}
+
 void print_table(std::FILE* out, const ReportHeader& h, const std::vector<Row>& rows) {
   std::fprintf(out, "kanegen verify: %s (%d coordinates, %d parameters), %d samples, seed %lu, rtol %g\n",
                h.model.c_str(), h.coordinates, h.parameters, h.samples, h.seed, h.rtol);

@@ -48,6 +48,11 @@ using EntryName = std::function<std::string(int)>;
 Worst compare(const std::vector<double>& generated, const std::vector<double>& reference, double scale,
               const EntryName& name, int where);
 
+/// Entry by entry, each against its own scale: rel = max |a_i - b_i| /
+/// scale_i; entry, values and abs = |a_i - b_i| where that is largest.
+Worst compare_entries(const std::vector<double>& generated, const std::vector<double>& reference,
+                      const std::vector<double>& scale, const EntryName& name, int where);
+
 /// max |x_i| (0 for an empty vector); NaN if any entry is NaN.
 double max_abs(const std::vector<double>& x);
 

@@ -191,6 +191,12 @@ EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, co
       {"potential_energy", kernel(graph, {{"V", graph.add(eq.potential_energy)}})},
       {"outputs", kernel(graph, outputs)},
   };
+  std::vector<Assignment> initial;
+  for (const kane::PrescribedSpeed& ps : eq.prescribed) {
+    initial.push_back({"q[" + std::to_string(ps.speed) + "]", graph.add(ps.position0)});
+    initial.push_back({"u[" + std::to_string(ps.speed) + "]", graph.add(ps.speed0)});
+  }
+  const std::string initial_text = kernel(graph, initial).body;
   KernelText solve = unrolled_ldlt(nonzero_m, solved);
   for (const kane::PrescribedSpeed& ps : eq.prescribed)
     solve.body += "  udot[" + std::to_string(ps.speed) + "] = ap" + std::to_string(ps.speed) + ";\n";
@@ -246,6 +252,7 @@ EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, co
       {"Q0", number_list(q0)},
       {"U0", number_list(u0)},
       {"SET_PARAMETER", setters},
+      {"INITIAL_STATE", initial_text},
       {"GET_PARAMETER", getters},
       {"MASS_MATRIX", kernels["mass_matrix"].body},
       {"FORCING", kernels["forcing"].body},

@@ -74,6 +74,18 @@ GeometricStiffnessBasis geometric_stiffness_basis(const Body& body) {
           body.geometric_stiffness(chain_axial_force(body, 0.0, 0.0, 1.0))};
 }
 
+Eigen::MatrixXd node_force_geometric_stiffness(const Body& body, int node) {
+  if (!is_beam_chain(body)) throw std::invalid_argument("node_force_geometric_stiffness: not a beam chain");
+  const double x = body.node_position(node).x();
+  return body.geometric_stiffness([&](int e) {
+    // The element carries the force if it lies before the node.
+    const double start = body.node_position(body.element(e).nodes[0]).x();
+    const double end = body.node_position(body.element(e).nodes[1]).x();
+    const double n = std::max(start, end) <= x + 1e-12 * std::abs(x) ? 1.0 : 0.0;
+    return Prestress{[n](double) { return n; }};
+  });
+}
+
 Eigen::MatrixXd spin_softening(const InertiaInvariants& inv, const Eigen::Vector3d& omega) {
   const Eigen::Matrix3d w = skew(omega), w2 = w * w;
   Eigen::MatrixXd k = Eigen::MatrixXd::Zero(inv.n, inv.n);

@@ -36,6 +36,11 @@ struct GeometricStiffnessBasis {
 };
 GeometricStiffnessBasis geometric_stiffness_basis(const Body& body);
 
+/// K_G for a unit axial force (+x, tension) applied at `node` of the chain:
+/// N = 1 in the elements between the joint and the node, 0 beyond. A body
+/// carried on that node loads the chain so.
+Eigen::MatrixXd node_force_geometric_stiffness(const Body& body, int node);
+
 /// int rho N^T W^2 N: n x n, W = skew(omega), negative semidefinite (rotary
 /// inertias add nothing, see floating_frame.hpp). Added to K it gives the stiffness of small vibrations in a
 /// frame spinning at omega (centrifugal force on the elastic displacement).

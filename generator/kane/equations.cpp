@@ -4,6 +4,7 @@
 
 #include "kane/flexible_body.hpp"
 #include "kane/node_outputs.hpp"
+#include "fem/rotating.hpp"
 #include "kinematics/tree_kinematics.hpp"
 #include "model/model_error.hpp"
 #include "symbolic/vec3.hpp"
@@ -63,18 +64,78 @@ Wrench to_parent(Program& program, const Wrench& w, const Mat3& to_child, const 
   return {named(program, mul_transposed(to_child, w.moment) + cross(r, f)), f};
 }
 
+/// A subtree on a node of flexible body P moves rigidly with P's elastic
+/// speeds (twists w_k, v_k about P's origin): it adds its momentum to theirs,
+/// its share of their mass block and its wrench to their forcing.
+/// `inertia` and `wrench`: the subtree's, about P's origin in P's axes.
+void add_node_subtree(FlexibleTerms& p, const kinematics::BodyState& child, const SpatialInertia& inertia,
+                      const Wrench& wrench, const kinematics::NodeAttachment& node, const std::vector<ex>& eta,
+                      Program& program) {
+  const std::size_t n = child.node_partial_angular.size();
+  std::vector<Vec3> angular(n), linear(n);
+  for (std::size_t l = 0; l < n; ++l) {
+    const Vec3& w = child.node_partial_angular[l];
+    const Vec3& v = child.node_partial_linear[l];
+    angular[l] = named(program, mul(inertia.second, w) + cross(inertia.moment, v));
+    linear[l] = named(program, inertia.mass * v + cross(w, inertia.moment));
+  }
+  const std::size_t count = p.elastic_forcing.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const Vec3& w = child.node_partial_angular[k];
+    const Vec3& v = child.node_partial_linear[k];
+    for (std::size_t l = 0; l < n; ++l) p.elastic_mass[k * count + l] += dot(w, angular[l]) + dot(v, linear[l]);
+    p.elastic_forcing[k] += dot(w, wrench.moment) + dot(v, wrench.force);
+    // Geometric stiffening by the subtree's axial pull on the node (its
+    // force at u_dot = 0, as for the beam's own inertia loads).
+    if (node.axial_geometric.size()) {
+      Eigen::VectorXd row = node.axial_geometric.row(static_cast<Eigen::Index>(k)).transpose();
+      const double largest = row.cwiseAbs().maxCoeff();
+      for (Eigen::Index m = 0; m < row.size(); ++m)
+        if (std::abs(row[m]) <= 1e-13 * largest) row[m] = 0.0;
+      p.elastic_forcing[k] -= wrench.force[0] * linear_combination(row, eta);
+    }
+  }
+  for (std::size_t l = 0; l < n; ++l) {
+    p.angular_momentum[l] = p.angular_momentum[l] + angular[l];
+    p.linear_momentum[l] = p.linear_momentum[l] + linear[l];
+  }
+}
+
 }  // namespace
 
 Equations derive_equations(const model::Model& model, const symbolic::Variables& vars, symbolic::Program& program,
                            MassMatrixMethod method, const FlexibleBodies& flexible) {
-  for (const model::Joint& j : model.joints)
-    if (j.parent_node >= 0)
+  // Joints on nodes of flexible parents (planar beams only, for now).
+  std::map<int, kinematics::NodeAttachment> attachments;
+  for (std::size_t k = 0; k < model.joints.size(); ++k) {
+    const model::Joint& j = model.joints[k];
+    if (j.parent_node < 0) continue;
+    int parent = -1;
+    for (std::size_t b = 0; b < model.bodies.size(); ++b)
+      if (model.bodies[b].name == j.parent) parent = static_cast<int>(b);
+    const model::Body& body = model.bodies[parent];
+    if (body.beam.formulation != model::BeamFormulation::planar || j.type == model::JointType::prismatic)
       throw model::ModelError(model.source_file, j.where + "/parent_node",
-                              "joints on the nodes of a flexible body are not supported yet",
-                              "attach joint '" + j.name + "' to the body frame (remove \"parent_node\")");
+                              "only revolute, continuous and fixed joints on the nodes of planar beams are supported",
+                              "attach joint '" + j.name + "' to the body frame (remove \"parent_node\"), or make "
+                              "the beam planar");
+    const fem::ModelBeam& beam = flexible.at(parent);
+    kinematics::NodeAttachment a;
+    a.position = beam.body.node_position(j.parent_node);
+    a.translation = beam.reduced.node_translation(beam.body, j.parent_node);
+    a.rotation_z = beam.reduced.node_rotation(beam.body, j.parent_node).row(2).transpose();
+    a.first = vars.elastic_first[parent];
+    if (body.beam.geometric_stiffening) {
+      const Eigen::MatrixXd& basis = beam.reduced.basis;
+      a.axial_geometric = basis.transpose() * fem::node_force_geometric_stiffness(beam.body, j.parent_node) * basis;
+    }
+    attachments.emplace(static_cast<int>(k), a);
+  }
+  // The world-axes sum of M does not know the nodes' partial velocities.
+  if (!attachments.empty()) method = MassMatrixMethod::body_frames;
   const Vec3 gravity = vec(vars, model.gravity);
   // The ground accelerates at -g: every rest acceleration then carries gravity.
-  const kinematics::TreeKinematics tree(model, vars, program, zero_vec() - gravity);
+  const kinematics::TreeKinematics tree(model, vars, program, zero_vec() - gravity, attachments);
   Equations eq;
   eq.nq = eq.nu = static_cast<int>(vars.q.size());
   std::map<std::size_t, FlexibleTerms> elastic;  // by state index
@@ -175,6 +236,11 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
     inertia[parent].moment = inertia[parent].moment + moved.moment;
     for (int k = 0; k < 9; ++k) inertia[parent].second[k] += moved.second[k];
     const Wrench w = to_parent(program, wrench[i], states[i].to_child, states[i].offset);
+    if (states[i].node_first >= 0) {
+      const kinematics::NodeAttachment& node = attachments.at(states[i].joint);
+      const std::vector<ex> eta(vars.q.begin() + node.first, vars.q.begin() + node.first + node.rotation_z.size());
+      add_node_subtree(elastic.at(static_cast<std::size_t>(parent)), states[i], moved, w, node, eta, program);
+    }
     wrench[parent].moment = wrench[parent].moment + w.moment;
     wrench[parent].force = wrench[parent].force + w.force;
   }
@@ -230,6 +296,11 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
       const Wrench up = to_parent(program, {angular, linear}, a.to_child, a.offset);
       angular = up.moment;
       linear = up.force;
+      for (std::size_t e = 0; e < a.node_partial_angular.size(); ++e) {
+        const int r = a.node_first + static_cast<int>(e);
+        eq.mass_matrix[s * n + r] = eq.mass_matrix[r * n + s] =
+            dot(a.node_partial_angular[e], angular) + dot(a.node_partial_linear[e], linear);
+      }
       at = a.parent_state;
     }
   };
@@ -281,7 +352,9 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
       const model::PrescribedPiece& piece = joint.prescribed[p];
       const ex motion = vars.time_expression(piece.q, piece.where);
       prescribed.pieces.push_back({motion.diff(vars.t, 2), piece.has_until, piece.until});
-      if (p == 0) {  // the initial state, at the parameters' defaults
+      if (p == 0) {  // the initial state: in the parameters, and at their defaults
+        prescribed.position0 = motion.subs(vars.t == 0);
+        prescribed.speed0 = motion.diff(vars.t).subs(vars.t == 0);
         eq.q0.push_back(vars.at_defaults(motion, 0.0));
         eq.u0.push_back(vars.at_defaults(motion.diff(vars.t), 0.0));
       }

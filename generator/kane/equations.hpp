@@ -25,6 +25,7 @@ struct PrescribedSpeed {
     double until = 0.0;
   };
   std::vector<Piece> pieces;
+  GiNaC::ex position0, speed0;  ///< q and q_dot at t = 0, in the parameters
 };
 
 struct Equations {

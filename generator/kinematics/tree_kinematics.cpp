@@ -47,7 +47,8 @@ Mat3 rotation_about(const Vec3& a, const ex& angle) {
 }
 
 TreeKinematics::TreeKinematics(const model::Model& model, const symbolic::Variables& vars,
-                               symbolic::Program& program, const Vec3& base_acceleration)
+                               symbolic::Program& program, const Vec3& base_acceleration,
+                               const std::map<int, NodeAttachment>& attachments)
     : model_(model), program_(program), joints_(model.joints.size()) {
   // Speeds are numbered in file order of the moving joints.
   int speed = 0;
@@ -78,10 +79,48 @@ TreeKinematics::TreeKinematics(const model::Model& model, const symbolic::Variab
       const BodyState& p = parent < 0 ? ground : bodies_[parent];
       b.path = p.path;
 
-      const Vec3 xyz{vars.scalar(joint.origin_xyz[0]), vars.scalar(joint.origin_xyz[1]),
-                     vars.scalar(joint.origin_xyz[2])};
-      const Mat3 r_origin = rotation_rpy(vars.scalar(joint.origin_rpy[0]), vars.scalar(joint.origin_rpy[1]),
-                                         vars.scalar(joint.origin_rpy[2]));
+      Vec3 xyz{vars.scalar(joint.origin_xyz[0]), vars.scalar(joint.origin_xyz[1]),
+               vars.scalar(joint.origin_xyz[2])};
+      Mat3 r_origin = rotation_rpy(vars.scalar(joint.origin_rpy[0]), vars.scalar(joint.origin_rpy[1]),
+                                   vars.scalar(joint.origin_rpy[2]));
+      // On a node: the joint frame is the node frame, at node = position +
+      // T eta turned by theta about z; the node moves relative to the parent
+      // frame with node_rate + theta_dot e_z x (the joint origin from it).
+      Vec3 node = zero_vec(), node_rate = zero_vec(), node_accel = zero_vec(), spin = zero_vec();
+      const auto attached = attachments.find(static_cast<int>(k));
+      if (attached != attachments.end()) {
+        const NodeAttachment& a = attached->second;
+        const int n = static_cast<int>(a.rotation_z.size());
+        std::vector<GiNaC::ex> eta(vars.q.begin() + a.first, vars.q.begin() + a.first + n);
+        std::vector<GiNaC::ex> eta_dot(vars.u.begin() + a.first, vars.u.begin() + a.first + n);
+        const auto combine = [&](const Eigen::VectorXd& c, const std::vector<GiNaC::ex>& x) {
+          GiNaC::ex sum = 0;
+          for (int i = 0; i < n; ++i)
+            if (c[i] != 0.0) sum += symbolic::number(c[i]) * x[i];
+          return sum;
+        };
+        for (int r = 0; r < 3; ++r) {
+          node[r] = symbolic::number(a.position[r]) + combine(a.translation.row(r).transpose(), eta);
+          node_rate[r] = combine(a.translation.row(r).transpose(), eta_dot);
+        }
+        node = named(program, node);
+        node_rate = named(program, node_rate);
+        const GiNaC::ex theta = program.define(combine(a.rotation_z, eta));
+        spin = {0, 0, program.define(combine(a.rotation_z, eta_dot))};
+        const Mat3 turn = named(program, rotation_about(Vec3{0, 0, 1}, theta));
+        xyz = named(program, mul(turn, xyz));
+        r_origin = named(program, mul(turn, r_origin));
+        node_rate = named(program, node_rate + cross(spin, xyz));
+        node_accel = named(program, cross(spin, cross(spin, xyz)));
+        b.node_first = a.first;
+        for (int i = 0; i < n; ++i) {
+          const Vec3 w{0, 0, symbolic::number(a.rotation_z[i])};
+          const Vec3 t{symbolic::number(a.translation(0, i)), symbolic::number(a.translation(1, i)),
+                       symbolic::number(a.translation(2, i))};
+          b.node_partial_angular.push_back(w);
+          b.node_partial_linear.push_back(named(program, t - cross(w, node)));
+        }
+      }
       JointFrame& frame = joints_[k];
       frame.prismatic = joint.type == model::JointType::prismatic;
       for (int i = 0; i < 3; ++i) frame.axis[i] = snap(symbolic::number(joint.axis[i]));
@@ -89,13 +128,13 @@ TreeKinematics::TreeKinematics(const model::Model& model, const symbolic::Variab
       // Child axes = joint axes turned about a revolute axis; the axis has the
       // same coordinates in both.
       Mat3 joint_to_child = identity_mat();  // transposed rotation of the joint motion
-      b.offset = xyz;
+      b.offset = named(program, node + xyz);
       Vec3 relative_velocity = zero_vec();
       if (joint.moves()) {
         b.path.push_back(static_cast<int>(k));
         const GiNaC::ex qk = vars.q[frame.speed], uk = vars.u[frame.speed];
         if (frame.prismatic) {
-          b.offset = named(program, xyz + qk * mul(r_origin, frame.axis));
+          b.offset = named(program, node + xyz + qk * mul(r_origin, frame.axis));
           relative_velocity = uk * frame.axis;
         } else {
           joint_to_child = named(program, transpose(rotation_about(frame.axis, qk)));
@@ -106,19 +145,24 @@ TreeKinematics::TreeKinematics(const model::Model& model, const symbolic::Variab
       b.origin = named(program, p.origin + mul(p.rotation, b.offset));
 
       const Vec3& r = b.offset;
-      const Vec3 parent_omega = named(program, mul(b.to_child, p.omega));  // w_p in child axes
+      // The joint frame's angular velocity and rest acceleration (the node's turn included).
+      const Vec3 frame_omega = attached == attachments.end() ? p.omega : named(program, p.omega + spin);
+      const Vec3 frame_alpha =
+          attached == attachments.end() ? p.alpha_rest : named(program, p.alpha_rest + cross(p.omega, spin));
+      const Vec3 parent_omega = named(program, mul(b.to_child, frame_omega));  // in child axes
       if (joint.moves() && !frame.prismatic) {
         const GiNaC::ex uk = vars.u[frame.speed];
         b.omega = named(program, parent_omega + uk * frame.axis);
-        b.alpha_rest = named(program, mul(b.to_child, p.alpha_rest) + uk * cross(parent_omega, frame.axis));
+        b.alpha_rest = named(program, mul(b.to_child, frame_alpha) + uk * cross(parent_omega, frame.axis));
       } else {
         b.omega = parent_omega;
-        b.alpha_rest = named(program, mul(b.to_child, p.alpha_rest));
+        b.alpha_rest = named(program, mul(b.to_child, frame_alpha));
       }
       const Vec3 coriolis = 2 * cross(parent_omega, relative_velocity);
-      b.velocity = named(program, mul(b.to_child, p.velocity + cross(p.omega, r)) + relative_velocity);
+      b.velocity = named(program, mul(b.to_child, p.velocity + cross(p.omega, r) + node_rate) + relative_velocity);
       b.accel_rest = named(program, mul(b.to_child, p.accel_rest + cross(p.alpha_rest, r) +
-                                                       cross(p.omega, cross(p.omega, r))) +
+                                                       cross(p.omega, cross(p.omega, r)) +
+                                                       2 * cross(p.omega, node_rate) + node_accel) +
                                         coriolis);
       bodies_.push_back(std::move(b));
     }

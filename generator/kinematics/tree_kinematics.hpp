@@ -6,6 +6,8 @@
 // by differentiating expanded expressions.
 #pragma once
 
+#include <Eigen/Dense>
+#include <map>
 #include <vector>
 
 #include "model/model.hpp"
@@ -28,6 +30,20 @@ struct JointFrame {
   Vec3 axis;  ///< a_k, child axes (unit)
 };
 
+/// A joint on a node of a planar flexible parent: the joint frame is the
+/// node's frame, moved by the node's elastic displacement and turned by its
+/// rotation about the link z axis (the exact rotation, so that its angular
+/// velocity is the rotation's rate).
+struct NodeAttachment {
+  Eigen::Vector3d position;     ///< undeformed, parent link frame
+  Eigen::MatrixXd translation;  ///< 3 x n: displacement = translation eta
+  Eigen::VectorXd rotation_z;   ///< n: rotation about link z = rotation_z . eta
+  int first = 0;                ///< the parent's first elastic coordinate in q and u
+  /// n x n: the parent's geometric stiffness per unit axial force on the
+  /// node (empty without geometric stiffening).
+  Eigen::MatrixXd axial_geometric;
+};
+
 struct BodyState {
   int body = -1;          ///< index in Model::bodies
   int parent_state = -1;  ///< index in TreeKinematics::bodies; -1 for the ground
@@ -41,14 +57,20 @@ struct BodyState {
   Vec3 alpha_rest;        ///< angular acceleration with u_dot = 0, body axes
   Vec3 accel_rest;        ///< acceleration of the origin with u_dot = 0, minus the base's (gravity), body axes
   std::vector<int> path;  ///< moving joints from the ground to this body (Model::joints indices)
+  /// On a node of a flexible parent: the parent's elastic speeds from
+  /// node_first on move this body's subtree rigidly, with the partial
+  /// angular velocity and partial velocity at the parent's origin, parent axes.
+  int node_first = -1;
+  std::vector<Vec3> node_partial_angular, node_partial_linear;
 };
 
 class TreeKinematics {
  public:
   /// base_acceleration: acceleration given to the ground, world axes; -g
   /// carries gravity into every body's rest acceleration.
+  /// attachments: by joint index, the joints on nodes of flexible parents.
   TreeKinematics(const model::Model& model, const symbolic::Variables& vars, symbolic::Program& program,
-                 const Vec3& base_acceleration);
+                 const Vec3& base_acceleration, const std::map<int, NodeAttachment>& attachments = {});
 
   const std::vector<BodyState>& bodies() const { return bodies_; }   ///< parents before children
   const std::vector<JointFrame>& joints() const { return joints_; }  ///< Model::joints order

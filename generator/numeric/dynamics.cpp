@@ -2,8 +2,11 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
+#include "numeric/beam.hpp"
 #include "numeric/dual.hpp"
 #include "numeric/poses.hpp"
 
@@ -13,6 +16,13 @@ namespace {
 using D1 = Dual<double>;
 using D2 = Dual<D1>;
 
+/// Gauss points per beam element for the mass integrals: |velocity|^2 of a
+/// cubic field is of degree 6, exact with 4 points.
+const GaussRule& mass_rule() {
+  static const GaussRule rule = gauss_rule(4);
+  return rule;
+}
+
 void check_sizes(const Instance& m, const State& s) {
   const std::size_t n = static_cast<std::size_t>(m.coordinates());
   if (s.q.size() != n || s.u.size() != n || s.tau.size() != n)
@@ -20,77 +30,419 @@ void check_sizes(const Instance& m, const State& s) {
                                 " coordinates, speeds and inputs");
 }
 
-/// Pose derivatives with respect to one coordinate.
-struct PoseRate {
-  std::vector<Mat<double>> rotation;
-  std::vector<Vec<double>> origin;
+Vec<double> derivative(const Vec<D1>& x) { return {x[0].d, x[1].d, x[2].d}; }
+Mat<double> derivative(const Mat<D1>& x) {
+  Mat<double> d;
+  for (int i = 0; i < 9; ++i) d[i] = x[i].d;
+  return d;
+}
+bool is_zero(const Vec<double>& x) { return x[0] == 0 && x[1] == 0 && x[2] == 0; }
+
+/// One mass element (see dynamics.hpp), in the fixed order of visit_masses.
+struct MassElement {
+  int body = -1;
+  double mass = 0;
+  Mat<double> inertia{};  ///< about the point, link axes
 };
 
-/// d(pose)/dq_r of every body.
-PoseRate partial(const Instance& m, const std::vector<double>& q, int r) {
-  std::vector<D1> x(q.size());
-  for (std::size_t k = 0; k < q.size(); ++k) x[k] = D1(q[k], static_cast<int>(k) == r ? 1.0 : 0.0);
-  const std::vector<Pose<D1>> poses = body_poses(m, x.data());
-  PoseRate rate;
-  for (const Pose<D1>& p : poses) {
-    Mat<double> dr;
-    Vec<double> dp;
-    for (int i = 0; i < 9; ++i) dr[i] = p.rotation[i].d;
-    for (int i = 0; i < 3; ++i) dp[i] = p.origin[i].d;
-    rate.rotation.push_back(dr);
-    rate.origin.push_back(dp);
-  }
-  return rate;
+Mat<double> diagonal_in(const Mat<double>& axes, double a, double b, double c) {
+  const Mat<double> d{a, 0, 0, 0, b, 0, 0, 0, c};
+  return mul(axes, mul(d, transpose(axes)));
 }
 
-/// A pose with its first and second derivatives along q(s) = q + s u at s = 0:
-/// the velocity and the acceleration at u_dot = 0.
-struct Motion2 {
-  Mat<double> r, r1, r2;
-  Vec<double> p, p1, p2;
-};
-
-std::vector<Motion2> motion_along_u(const Instance& m, const State& s) {
-  // Seeding both nesting levels with u makes the inner-outer cross term the second derivative.
-  std::vector<D2> x(s.q.size());
-  for (std::size_t k = 0; k < s.q.size(); ++k) x[k] = D2(D1(s.q[k], s.u[k]), D1(s.u[k], 0.0));
-  const std::vector<Pose<D2>> poses = body_poses(m, x.data());
-  std::vector<Motion2> out(poses.size());
-  for (std::size_t b = 0; b < poses.size(); ++b) {
-    for (int i = 0; i < 9; ++i) {
-      const D2& e = poses[b].rotation[i];
-      out[b].r[i] = e.v.v;
-      out[b].r1[i] = e.d.v;
-      out[b].r2[i] = e.d.d;
-    }
-    for (int i = 0; i < 3; ++i) {
-      const D2& e = poses[b].origin[i];
-      out[b].p[i] = e.v.v;
-      out[b].p1[i] = e.d.v;
-      out[b].p2[i] = e.d.d;
-    }
+std::vector<MassElement> mass_elements(const Instance& m) {
+  std::vector<MassElement> out;
+  const GaussRule& rule = mass_rule();
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    const BodyData& body = m.bodies[b];
+    out.push_back({static_cast<int>(b), body.mass, body.inertia});
+    if (!body.beam) continue;
+    const FlexibleData& f = *body.beam;
+    for (const BeamElementData& e : f.elements)
+      for (double w : rule.weights) {
+        const double dx = w * e.length, rho = f.density;
+        // The section's rotary inertia about its centre, element axes diag(Ip, Iy, Iz), Ip = Iy + Iz.
+        out.push_back({static_cast<int>(b), rho * f.A * dx,
+                       diagonal_in(e.axes, rho * (f.Iy + f.Iz) * dx, rho * f.Iy * dx, rho * f.Iz * dx)});
+      }
+    if (f.tip_mass > 0) out.push_back({static_cast<int>(b), f.tip_mass, f.tip_inertia});
   }
   return out;
 }
 
-/// Velocity of a body point along q + s u (first derivative only).
-std::vector<Pose<D1>> poses_along_u(const Instance& m, const State& s) {
-  std::vector<D1> x(s.q.size());
-  for (std::size_t k = 0; k < s.q.size(); ++k) x[k] = D1(s.q[k], s.u[k]);
-  return body_poses(m, x.data());
+/// Which inputs of the position functions vary along a seed: each body's
+/// pose, each node's dofs of a flexible body. Mass elements none of whose
+/// inputs vary are skipped (their derivative is zero).
+struct Touched {
+  std::vector<char> pose;
+  std::vector<std::vector<char>> node;
+};
+
+Touched touched_by(const Instance& m, const std::vector<Pose<D1>>& poses, const std::vector<std::vector<D1>>& dofs) {
+  Touched t;
+  t.pose.assign(m.bodies.size(), 0);
+  t.node.resize(m.bodies.size());
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    for (int i = 0; i < 9; ++i) t.pose[b] = t.pose[b] || poses[b].rotation[i].d != 0;
+    for (int i = 0; i < 3; ++i) t.pose[b] = t.pose[b] || poses[b].origin[i].d != 0;
+    if (!m.bodies[b].beam) continue;
+    const FlexibleData& f = *m.bodies[b].beam;
+    t.node[b].assign(f.nodes.size(), 0);
+    for (int d = 0; d < f.num_dofs(); ++d)
+      if (dofs[b][d].d != 0) t.node[b][d / f.dofs_per_node] = 1;
+  }
+  return t;
 }
 
-Vec<double> point_velocity(const Pose<D1>& pose, const Vec<double>& local) {
-  const Vec<D1> x = add(pose.origin, mul(pose.rotation, local));
-  return {x[0].d, x[1].d, x[2].d};
+template <class S>
+Vec<S> to_world(const Pose<S>& pose, const Vec<S>& local) {
+  return add(pose.origin, mul(pose.rotation, local));
+}
+
+/// Calls visit(index, body, world position, small rotation (link frame)) for
+/// every mass element in mass_elements order; with `touched`, only for the
+/// elements whose inputs vary.
+template <class S, class Visit>
+void visit_masses(const Instance& m, const std::vector<Pose<S>>& poses, const std::vector<std::vector<S>>& dofs,
+                  const Touched* touched, Visit&& visit) {
+  const GaussRule& rule = mass_rule();
+  const int per_element = static_cast<int>(rule.points.size());
+  const Vec<S> zero{S(0.0), S(0.0), S(0.0)};
+  int index = 0;
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    const BodyData& body = m.bodies[b];
+    const Pose<S>& pose = poses[b];
+    const int bi = static_cast<int>(b);
+    if (!touched || touched->pose[b]) visit(index, bi, to_world(pose, cast<S>(body.com)), zero);
+    ++index;
+    if (!body.beam) continue;
+    const FlexibleData& f = *body.beam;
+    for (const BeamElementData& e : f.elements) {
+      if (touched && !touched->pose[b] && !touched->node[b][e.node] && !touched->node[b][e.node + 1]) {
+        index += per_element;
+        continue;
+      }
+      const LocalDofs<S> l = local_dofs(f, e, dofs[b]);
+      for (double xi : rule.points) visit(index++, bi, to_world(pose, beam_point(e, l, xi)), section_rotation(e, l, xi));
+    }
+    if (f.tip_mass > 0) {
+      const int last = static_cast<int>(f.nodes.size()) - 1;
+      if (!touched || touched->pose[b] || touched->node[b][last])
+        visit(index, bi, to_world(pose, add(f.nodes[last], node_translation(f, dofs[b], last))),
+              node_rotation(f, dofs[b], last));
+      ++index;
+    }
+  }
+}
+
+/// The world position of a force's point (a body point, or a displaced node).
+template <class S>
+Vec<S> force_point(const Instance& m, const ForceData& force, const std::vector<Pose<S>>& poses,
+                   const std::vector<std::vector<S>>& dofs) {
+  if (force.node < 0) return to_world(poses[force.body], cast<S>(force.point));
+  const FlexibleData& f = *m.bodies[force.body].beam;
+  return to_world(poses[force.body], add(f.nodes[force.node], node_translation(f, dofs[force.body], force.node)));
+}
+
+/// Sums over the elements of a flexible body, of those touched (all if null).
+template <class S, class Term>
+S sum_elements(const FlexibleData& f, const std::vector<S>& dofs, const std::vector<char>* touched, Term&& term) {
+  S sum(0.0);
+  for (const BeamElementData& e : f.elements) {
+    if (touched && !(*touched)[e.node] && !(*touched)[e.node + 1]) continue;
+    sum += term(e, local_dofs(f, e, dofs));
+  }
+  return sum;
 }
 
 double joint_power(const Instance& m, const State& s) {
   double power = 0;
-  for (int r = 0; r < m.coordinates(); ++r) {
+  for (int r = 0; r < m.joint_coordinates(); ++r) {
     const JointData& j = m.joints[m.coordinate_joint[r]];
     power -= j.damping * s.u[r] * s.u[r];
     if (j.actuated) power += s.tau[r] * s.u[r];
+  }
+  return power;
+}
+
+/// Section resultants at a node, from the element that starts there (the
+/// last element for the last node): N, T, M_y, M_z.
+std::array<double, 4> resultants(const FlexibleData& f, const std::vector<double>& dofs, int node) {
+  const int count = static_cast<int>(f.elements.size());
+  const int element = node < count ? node : count - 1;
+  const double xi = node < count ? 0.0 : 1.0;
+  const BeamElementData& e = f.elements[element];
+  const LocalDofs<double> l = local_dofs(f, e, dofs);
+  const double L = e.length;
+  const std::array<double, 4> hxx = hermite_xx(xi, L);
+  return {f.E * f.A * (l.translation[1][0] - l.translation[0][0]) / L,
+          f.G * f.J * (l.rotation[1][0] - l.rotation[0][0]) / L, -f.E * f.Iy * combine(hxx, w_values(l)),
+          f.E * f.Iz * combine(hxx, v_values(l))};
+}
+
+double strain_energy(const FlexibleData& f, const std::vector<double>& dofs) {
+  return sum_elements(f, dofs, nullptr,
+                      [&](const BeamElementData& e, const LocalDofs<double>& l) { return strain_energy(f, e, l); });
+}
+
+/// The beam's kinetic energy at elastic rates `rate` with its link at rest:
+/// 1/2 eta_dot^T M_e eta_dot, M_e its own (consistent) mass in eta.
+double elastic_kinetic_energy(const FlexibleData& f, const std::vector<double>& rate) {
+  std::vector<D1> x(rate.size());
+  for (std::size_t k = 0; k < rate.size(); ++k) x[k] = D1(0.0, rate[k]);
+  const std::vector<D1> dofs = beam_dofs(f, x.data());
+  const GaussRule& rule = mass_rule();
+  double energy = 0;
+  for (const BeamElementData& e : f.elements) {
+    const LocalDofs<D1> l = local_dofs(f, e, dofs);
+    for (std::size_t g = 0; g < rule.points.size(); ++g) {
+      const double dx = rule.weights[g] * e.length, rho = f.density;
+      const Vec<double> v = derivative(beam_point(e, l, rule.points[g]));
+      const Vec<double> w = derivative(section_rotation(e, l, rule.points[g]));
+      const Mat<double> J = diagonal_in(e.axes, rho * (f.Iy + f.Iz) * dx, rho * f.Iy * dx, rho * f.Iz * dx);
+      energy += 0.5 * (rho * f.A * dx * dot(v, v) + dot(w, mul(J, w)));
+    }
+  }
+  if (f.tip_mass > 0) {
+    const int last = static_cast<int>(f.nodes.size()) - 1;
+    const Vec<double> v = derivative(node_translation(f, dofs, last)), w = derivative(node_rotation(f, dofs, last));
+    energy += 0.5 * (f.tip_mass * dot(v, v) + dot(w, mul(f.tip_inertia, w)));
+  }
+  return energy;
+}
+
+/// Modal damping C_kk = 2 zeta omega_k M_kk, omega_k^2 = K_kk / M_kk (the
+/// modes diagonalise both): 2 zeta sqrt(K_kk M_kk), from this path's own K and M.
+std::vector<double> modal_damping(const FlexibleData& f) {
+  std::vector<double> c(f.count(), 0.0);
+  for (int k = 0; k < f.count(); ++k) {
+    std::vector<double> unit(f.count(), 0.0);
+    unit[k] = 1;
+    const double stiffness = 2 * strain_energy(f, beam_dofs(f, unit.data()));
+    const double mass = 2 * elastic_kinetic_energy(f, unit);
+    c[k] = 2 * f.modal_ratio * std::sqrt(stiffness * mass);
+  }
+  return c;
+}
+
+/// A body's world motion along q(s) = q + s u + s^2/2 udot at s = 0.
+struct BodyMotion {
+  Mat<double> r, r1;
+  Vec<double> p, p2, omega, alpha;  ///< world
+};
+/// A mass element's: position, velocity, acceleration, the rate and
+/// acceleration of its elastic rotation (link frame).
+struct ElementMotion {
+  Vec<double> x, v, a, theta_rate, theta_accel;
+};
+struct PathMotion {
+  std::vector<std::vector<D2>> dofs;
+  std::vector<Pose<D2>> poses;
+  std::vector<BodyMotion> body;
+  std::vector<ElementMotion> element;  ///< when asked for
+};
+
+/// Along q(s) with both nesting levels seeded with u (the outer one's
+/// derivative with udot, zero for the accelerations at u_dot = 0): positions,
+/// their rates and accelerations (the inner-outer cross term).
+PathMotion motion_along(const Instance& m, const State& s, const std::vector<double>* udot, std::size_t elements) {
+  const int n = m.coordinates(), nb = static_cast<int>(m.bodies.size());
+  std::vector<D2> x(n);
+  for (int k = 0; k < n; ++k) x[k] = D2(D1(s.q[k], s.u[k]), D1(s.u[k], udot ? (*udot)[k] : 0.0));
+  PathMotion out;
+  out.dofs = all_beam_dofs(m, x.data());
+  out.poses = body_poses(m, x.data(), out.dofs);
+  out.body.resize(nb);
+  for (int b = 0; b < nb; ++b) {
+    BodyMotion& k = out.body[b];
+    Mat<double> r2;
+    for (int i = 0; i < 9; ++i) {
+      const D2& e = out.poses[b].rotation[i];
+      k.r[i] = e.v.v;
+      k.r1[i] = e.d.v;
+      r2[i] = e.d.d;
+    }
+    for (int i = 0; i < 3; ++i) {
+      const D2& e = out.poses[b].origin[i];
+      k.p[i] = e.v.v;
+      k.p2[i] = e.d.d;
+    }
+    // R' = [w]x R, and R'' = [alpha]x R + [w]x R'.
+    const Mat<double> rt = transpose(k.r), spin = mul(k.r1, rt);
+    k.omega = vee(spin);
+    k.alpha = vee(mul(sub(r2, mul(spin, k.r1)), rt));
+  }
+  if (elements == 0) return out;
+  out.element.resize(elements);
+  visit_masses(m, out.poses, out.dofs, nullptr, [&](int i, int, const Vec<D2>& p, const Vec<D2>& theta) {
+    ElementMotion& e = out.element[i];
+    for (int a = 0; a < 3; ++a) {
+      e.x[a] = p[a].v.v;
+      e.v[a] = p[a].d.v;
+      e.a[a] = p[a].d.d;
+      e.theta_rate[a] = theta[a].d.v;
+      e.theta_accel[a] = theta[a].d.d;
+    }
+  });
+  return out;
+}
+
+/// The derivative of a sum over the (touched) elements of a flexible body,
+/// and the sum of the magnitudes of its terms (the scale of its round-off).
+template <class Term>
+std::pair<double, double> element_gradient(const FlexibleData& f, const std::vector<D1>& dofs,
+                                           const std::vector<char>* touched, Term&& term) {
+  double sum = 0, magnitude = 0;
+  for (const BeamElementData& e : f.elements) {
+    if (touched && !(*touched)[e.node] && !(*touched)[e.node + 1]) continue;
+    const double d = term(e, local_dofs(f, e, dofs)).d;
+    sum += d;
+    magnitude += std::abs(d);
+  }
+  return {sum, magnitude};
+}
+
+/// Per flexible body with geometric stiffening, the axial loads of its
+/// link's motion at u_dot = 0 (`rest`, with the mass elements' motion when
+/// bodies sit on its nodes): a_lin = omega_y^2 + omega_z^2, a_const = -(the
+/// link origin's acceleration, gravity as the ground's -g)_x, link axes; and
+/// per joint on a node, the pull of the subtree it carries: the resultant of
+/// its applied and inertia forces (sum m (g - a) + F), link x component.
+std::vector<AxialLoad> axial_loads(const Instance& m, const PathMotion& rest,
+                                   const std::vector<MassElement>& elements) {
+  std::vector<AxialLoad> load(m.bodies.size());
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    if (!m.bodies[b].beam || !m.bodies[b].beam->stiffening) continue;
+    const Mat<double> rt = transpose(rest.body[b].r);
+    const Vec<double> w = mul(rt, rest.body[b].omega), a0 = mul(rt, sub(rest.body[b].p2, m.gravity));
+    load[b].constant = -a0[0];
+    load[b].linear = w[1] * w[1] + w[2] * w[2];
+  }
+  const auto in_subtree = [&](int body, int root) {
+    for (int c = body; c >= 0; c = m.joints[m.bodies[c].joint].parent)
+      if (c == root) return true;
+    return false;
+  };
+  for (const JointData& j : m.joints) {
+    if (j.parent_node < 0 || !m.bodies[j.parent].beam->stiffening) continue;
+    if (rest.element.size() != elements.size()) throw std::logic_error("axial_loads: element motion missing");
+    Vec<double> force{0, 0, 0};
+    for (std::size_t i = 0; i < elements.size(); ++i)
+      if (in_subtree(elements[i].body, j.child))
+        force = add(force, scale(sub(m.gravity, rest.element[i].a), elements[i].mass));
+    for (const ForceData& f : m.forces)
+      if (in_subtree(f.body, j.child)) force = add(force, f.body_frame ? mul(rest.body[f.body].r, f.force) : f.force);
+    const FlexibleData& beam = *m.bodies[j.parent].beam;
+    load[j.parent].pulls.emplace_back(beam.nodes[j.parent_node][0], mul(transpose(rest.body[j.parent].r), force)[0]);
+  }
+  return load;
+}
+
+bool has_node_pulls(const Instance& m) {
+  for (const JointData& j : m.joints)
+    if (j.parent_node >= 0 && m.bodies[j.parent].beam->stiffening) return true;
+  return false;
+}
+
+/// Partial velocities of mass elements (v_r; w_r of their link; W_r with
+/// the elastic rotation) and of the forces' points for one coordinate.
+struct Partial {
+  int r;
+  Vec<double> v, w, W;
+};
+struct Pass {
+  std::vector<std::vector<D1>> dofs;
+  Touched touched;
+};
+
+Pass partial_pass(const Instance& m, const State& s, int r, const std::vector<BodyMotion>& motion,
+                  std::vector<std::vector<Partial>>& elements, std::vector<std::vector<Vec<double>>>& forces) {
+  const int n = m.coordinates(), nb = static_cast<int>(m.bodies.size());
+  std::vector<D1> x(n);
+  for (int k = 0; k < n; ++k) x[k] = D1(s.q[k], k == r ? 1.0 : 0.0);
+  Pass pass;
+  pass.dofs = all_beam_dofs(m, x.data());
+  const std::vector<Pose<D1>> poses = body_poses(m, x.data(), pass.dofs);
+  pass.touched = touched_by(m, poses, pass.dofs);
+  const Touched& touched = pass.touched;
+  std::vector<Vec<double>> link_rate(nb);  // w_r of each link
+  for (int b = 0; b < nb; ++b)
+    if (touched.pose[b]) link_rate[b] = vee(mul(derivative(poses[b].rotation), transpose(motion[b].r)));
+  visit_masses(m, poses, pass.dofs, &touched, [&](int i, int b, const Vec<D1>& p, const Vec<D1>& theta) {
+    const Vec<double> v = derivative(p), w = touched.pose[b] ? link_rate[b] : Vec<double>{0, 0, 0};
+    const Vec<double> W = add(w, mul(motion[b].r, derivative(theta)));
+    if (is_zero(v) && is_zero(W)) return;
+    elements[i].push_back({r, v, w, W});
+  });
+  for (std::size_t f = 0; f < m.forces.size(); ++f)
+    forces[f][r] = derivative(force_point(m, m.forces[f], poses, pass.dofs));
+  return pass;
+}
+
+/// Kane's terms of one mass element, moving as `x` (accelerations at u_dot
+/// = 0, or at a given udot), on the rows of its partial velocities: adds
+/// v_r.m (g - a) - W_r.I (alpha + R theta'') - w_r.(omega x I Omega) to
+/// forcing[r]; with `mass_matrix`, m v_r.v_s + W_r.I W_s to M.
+void add_element(const Instance& m, const MassElement& el, const BodyMotion& k, const ElementMotion& x,
+                 const std::vector<Partial>& p, std::vector<double>& forcing, std::vector<double>* mass_matrix,
+                 Eigen::MatrixXd* own_mass, std::vector<double>* magnitude = nullptr) {
+  const int n = m.coordinates();
+  const Mat<double> inertia = mul(k.r, mul(el.inertia, transpose(k.r)));  // world axes
+  const Vec<double> spin = add(k.omega, mul(k.r, x.theta_rate));         // Omega
+  const Vec<double> force = scale(sub(m.gravity, x.a), el.mass);
+  const Vec<double> torque = mul(inertia, add(k.alpha, mul(k.r, x.theta_accel)));
+  const Vec<double> gyroscopic = cross(k.omega, mul(inertia, spin));
+  const auto norm = [](const Vec<double>& x) { return std::sqrt(dot(x, x)); };
+  for (const Partial& a : p) {
+    forcing[a.r] += dot(a.v, force) - dot(a.W, torque) - dot(a.w, gyroscopic);
+    // |a||b| bounds the round-off of a.b however it is grouped (as moments r x F, say).
+    if (magnitude)
+      (*magnitude)[a.r] += norm(a.v) * norm(force) + norm(a.W) * norm(torque) + norm(a.w) * norm(gyroscopic);
+  }
+  if (!mass_matrix) return;
+  const BodyData& body = m.bodies[el.body];
+  const int first = body.elastic_first, count = body.beam ? body.beam->count() : 0;
+  std::vector<Vec<double>> iw(p.size());
+  for (std::size_t a = 0; a < p.size(); ++a) iw[a] = mul(inertia, p[a].W);
+  for (std::size_t a = 0; a < p.size(); ++a)
+    for (std::size_t c = 0; c < p.size(); ++c) {
+      const double entry = el.mass * dot(p[a].v, p[c].v) + dot(p[a].W, iw[c]);
+      (*mass_matrix)[p[a].r * n + p[c].r] += entry;
+      const int ka = p[a].r - first, kc = p[c].r - first;
+      if (own_mass && count && ka >= 0 && ka < count && kc >= 0 && kc < count) (*own_mass)(ka, kc) += entry;
+    }
+}
+
+/// The joint terms of row r: spring, damper, input.
+double joint_forcing(const Instance& m, const State& s, int r) {
+  if (r >= m.joint_coordinates()) return 0;
+  const JointData& j = m.joints[m.coordinate_joint[r]];
+  return -j.stiffness * (s.q[r] - j.rest) - j.damping * s.u[r] + (j.actuated ? s.tau[r] : 0.0);
+}
+
+/// The power of the beams' damping and geometric stiffness forces:
+/// -eta_dot^T C eta_dot - eta_dot^T K_G eta.
+double beam_power(const Instance& m, const State& s, const std::vector<AxialLoad>& load) {
+  double power = 0;
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
+    if (!m.bodies[b].beam) continue;
+    const FlexibleData& f = *m.bodies[b].beam;
+    const int first = m.bodies[b].elastic_first;
+    const std::vector<double> rate(s.u.begin() + first, s.u.begin() + first + f.count());
+    if (f.stiffening) {
+      std::vector<D1> x(f.count());
+      for (int k = 0; k < f.count(); ++k) x[k] = D1(s.q[first + k], rate[k]);
+      power -= sum_elements(f, beam_dofs(f, x.data()), nullptr, [&](const BeamElementData& e, const LocalDofs<D1>& l) {
+                 return geometric_energy(f, e, l, load[b]);
+               }).d;
+    }
+    if (f.modal_ratio > 0) {
+      const std::vector<double> c = modal_damping(f);
+      for (int k = 0; k < f.count(); ++k) power -= c[k] * rate[k] * rate[k];
+    } else {
+      if (f.rayleigh_alpha != 0) power -= f.rayleigh_alpha * 2 * elastic_kinetic_energy(f, rate);
+      if (f.rayleigh_beta != 0) power -= f.rayleigh_beta * 2 * strain_energy(f, beam_dofs(f, rate.data()));
+    }
   }
   return power;
 }
@@ -99,100 +451,240 @@ double joint_power(const Instance& m, const State& s) {
 
 Evaluation evaluate(const Instance& m, const State& s) {
   check_sizes(m, s);
-  const int n = m.coordinates();
+  const int n = m.coordinates(), nb = static_cast<int>(m.bodies.size());
   Evaluation e;
   e.n = n;
   e.mass_matrix.assign(static_cast<std::size_t>(n) * n, 0.0);
   e.forcing.assign(n, 0.0);
+  e.forcing_magnitude.assign(n, 0.0);
+  const std::vector<MassElement> elements = mass_elements(m);
+  const PathMotion motion = motion_along(m, s, nullptr, elements.size());
+  const std::vector<AxialLoad> load = axial_loads(m, motion, elements);
+  std::vector<std::vector<double>> dofs(nb);  // the beams' dofs at q
+  for (int b = 0; b < nb; ++b)
+    for (const D2& x : motion.dofs[b]) dofs[b].push_back(x.v.v);
 
-  std::vector<PoseRate> rates;
-  for (int r = 0; r < n; ++r) rates.push_back(partial(m, s.q, r));
-  const std::vector<Motion2> motion = motion_along_u(m, s);
-
-  std::vector<Vec<double>> v(n), w(n), iw(n);  // per body: partial velocities of the COM, I w_r
-  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
-    const BodyData& body = m.bodies[b];
-    const Motion2& k = motion[b];
-    const Mat<double> rt = transpose(k.r);
-    const Mat<double> inertia = mul(k.r, mul(body.inertia, rt));  // world axes
-    const Vec<double> com = add(k.p, mul(k.r, body.com));
-    const Vec<double> com_velocity = add(k.p1, mul(k.r1, body.com));
-    const Vec<double> com_accel = add(k.p2, mul(k.r2, body.com));
-    // R' = [w]x R, and R'' = [alpha]x R + [w]x R'.
-    const Mat<double> spin = mul(k.r1, rt);
-    const Vec<double> omega = vee(spin);
-    const Vec<double> alpha = vee(mul(sub(k.r2, mul(spin, k.r1)), rt));
-    const Vec<double> momentum = mul(inertia, omega);
-
-    const Vec<double> force = scale(sub(m.gravity, com_accel), body.mass);
-    const Vec<double> torque = sub(scale(mul(inertia, alpha), -1.0), cross(omega, momentum));
-    for (int r = 0; r < n; ++r) {
-      v[r] = add(rates[r].origin[b], mul(rates[r].rotation[b], body.com));
-      w[r] = vee(mul(rates[r].rotation[b], rt));
-      iw[r] = mul(inertia, w[r]);
-      e.forcing[r] += dot(v[r], force) + dot(w[r], torque);
-    }
-    for (int r = 0; r < n; ++r)
-      for (int c = 0; c < n; ++c) e.mass_matrix[r * n + c] += body.mass * dot(v[r], v[c]) + dot(w[r], iw[c]);
-
-    e.kinetic_energy += 0.5 * (body.mass * dot(com_velocity, com_velocity) + dot(omega, momentum));
-    e.potential_energy -= body.mass * dot(m.gravity, com);
-  }
-
-  for (const ForceData& f : m.forces) {
-    const Motion2& k = motion[f.body];
-    const Vec<double> at = add(k.p, mul(k.r, f.point));
-    const Vec<double> force = f.body_frame ? mul(k.r, f.force) : f.force;
-    for (int r = 0; r < n; ++r)
-      e.forcing[r] += dot(force, add(rates[r].origin[f.body], mul(rates[r].rotation[f.body], f.point)));
-    if (f.body_frame) {
-      e.nonconservative_power += dot(force, add(k.p1, mul(k.r1, f.point)));
-    } else {
-      e.potential_energy -= dot(force, at);
-    }
-  }
-
+  // One pass per coordinate seeded with e_r: the partial velocities, and the
+  // elastic forces of an elastic coordinate from the gradients of the beam's
+  // energies (dU/deta_r, (K_G eta)_r, beta (K eta_dot)_r).
+  std::vector<std::vector<Partial>> partials(elements.size());
+  std::vector<std::vector<Vec<double>>> force_partials(m.forces.size(), std::vector<Vec<double>>(n));
+  std::vector<double> nonconservative(n, 0.0);  // beam damping and geometric stiffness forces
+  std::vector<int> owner(n, -1);                 // the flexible body of an elastic coordinate
+  for (int b = 0; b < nb; ++b)
+    if (m.bodies[b].beam)
+      for (int k = 0; k < m.bodies[b].beam->count(); ++k) owner[m.bodies[b].elastic_first + k] = b;
   for (int r = 0; r < n; ++r) {
+    const Pass pass = partial_pass(m, s, r, motion.body, partials, force_partials);
+    const int b = owner[r];
+    if (b < 0) continue;
+    const FlexibleData& f = *m.bodies[b].beam;
+    const std::vector<char>* nodes = &pass.touched.node[b];
+    const auto strain = element_gradient(f, pass.dofs[b], nodes, [&](const BeamElementData& el, const LocalDofs<D1>& l) {
+      return strain_energy(f, el, l);
+    });
+    e.forcing[r] -= strain.first;
+    e.forcing_magnitude[r] += strain.second;
+    if (f.stiffening) {
+      const auto g = element_gradient(f, pass.dofs[b], nodes, [&](const BeamElementData& el, const LocalDofs<D1>& l) {
+        return geometric_energy(f, el, l, load[b]);
+      });
+      nonconservative[r] -= g.first;
+      e.forcing_magnitude[r] += g.second;
+    }
+    if (f.rayleigh_beta != 0) {
+      std::vector<D1> rate(f.count());
+      const int first = m.bodies[b].elastic_first;
+      for (int k = 0; k < f.count(); ++k) rate[k] = D1(s.u[first + k], first + k == r ? 1.0 : 0.0);
+      const auto k_rate = element_gradient(f, beam_dofs(f, rate.data()), nodes,
+                                           [&](const BeamElementData& el, const LocalDofs<D1>& l) {
+                                             return strain_energy(f, el, l);
+                                           });
+      nonconservative[r] -= f.rayleigh_beta * k_rate.first;
+      e.forcing_magnitude[r] += f.rayleigh_beta * k_rate.second;
+    }
+  }
+
+  // Kane's sums over the mass elements; each beam's own elastic mass block on the side.
+  std::vector<Eigen::MatrixXd> own_mass(nb);
+  for (int b = 0; b < nb; ++b)
+    if (m.bodies[b].beam) own_mass[b] = Eigen::MatrixXd::Zero(m.bodies[b].beam->count(), m.bodies[b].beam->count());
+  for (std::size_t i = 0; i < elements.size(); ++i) {
+    const MassElement& el = elements[i];
+    const BodyMotion& k = motion.body[el.body];
+    const ElementMotion& x = motion.element[i];
+    add_element(m, el, k, x, partials[i], e.forcing, &e.mass_matrix, m.bodies[el.body].beam ? &own_mass[el.body] : nullptr,
+                &e.forcing_magnitude);
+    const Mat<double> inertia = mul(k.r, mul(el.inertia, transpose(k.r)));
+    const Vec<double> spin = add(k.omega, mul(k.r, x.theta_rate));
+    e.kinetic_energy += 0.5 * (el.mass * dot(x.v, x.v) + dot(spin, mul(inertia, spin)));
+    e.potential_energy -= el.mass * dot(m.gravity, x.x);
+  }
+
+  // The beams: strain energy, Rayleigh alpha M or modal damping.
+  for (int b = 0; b < nb; ++b) {
+    if (!m.bodies[b].beam) continue;
+    const FlexibleData& f = *m.bodies[b].beam;
+    const int first = m.bodies[b].elastic_first;
+    e.potential_energy += strain_energy(f, dofs[b]);
+    const std::vector<double> modal = f.modal_ratio > 0 ? modal_damping(f) : std::vector<double>();
+    for (int k = 0; k < f.count(); ++k) {
+      double damping = modal.empty() ? 0.0 : modal[k] * s.u[first + k];
+      double magnitude = std::abs(damping);
+      if (f.rayleigh_alpha != 0)
+        for (int c = 0; c < f.count(); ++c) {
+          damping += f.rayleigh_alpha * own_mass[b](k, c) * s.u[first + c];
+          magnitude += std::abs(f.rayleigh_alpha * own_mass[b](k, c) * s.u[first + c]);
+        }
+      nonconservative[first + k] -= damping;
+      e.forcing_magnitude[first + k] += magnitude;
+    }
+  }
+  for (int r = 0; r < n; ++r) {
+    e.forcing[r] += nonconservative[r];
+    e.nonconservative_power += nonconservative[r] * s.u[r];
+  }
+
+  for (std::size_t i = 0; i < m.forces.size(); ++i) {
+    const ForceData& f = m.forces[i];
+    const Vec<double> force = f.body_frame ? mul(motion.body[f.body].r, f.force) : f.force;
+    for (int r = 0; r < n; ++r) {
+      e.forcing[r] += dot(force, force_partials[i][r]);
+      e.forcing_magnitude[r] += std::sqrt(dot(force, force) * dot(force_partials[i][r], force_partials[i][r]));
+    }
+    const Vec<D2> at = force_point(m, f, motion.poses, motion.dofs);
+    if (f.body_frame) {
+      e.nonconservative_power += dot(force, Vec<double>{at[0].d.v, at[1].d.v, at[2].d.v});
+    } else {
+      e.potential_energy -= dot(force, Vec<double>{at[0].v.v, at[1].v.v, at[2].v.v});
+    }
+  }
+
+  for (int r = 0; r < m.joint_coordinates(); ++r) {
     const JointData& j = m.joints[m.coordinate_joint[r]];
     const double stretch = s.q[r] - j.rest;
-    e.forcing[r] += -j.stiffness * stretch - j.damping * s.u[r] + (j.actuated ? s.tau[r] : 0.0);
+    e.forcing[r] += joint_forcing(m, s, r);
+    e.forcing_magnitude[r] += std::abs(j.stiffness * stretch) + std::abs(j.damping * s.u[r]) +
+                              (j.actuated ? std::abs(s.tau[r]) : 0.0);
     e.potential_energy += 0.5 * j.stiffness * stretch * stretch;
+    if (j.is_prescribed()) {
+      e.prescribed.push_back(r);
+      e.prescribed_acceleration.push_back(prescribed_motion(j, s.t)[2]);
+    }
   }
   e.nonconservative_power += joint_power(m, s);
 
-  const Eigen::Map<const Eigen::MatrixXd> mass(e.mass_matrix.data(), n, n);
-  const Eigen::LLT<Eigen::MatrixXd> llt(mass);
+  // udot: the prescribed accelerations, the rest from M_ff udot_f = f_f - M_fp udot_p.
+  std::vector<int> free;
+  std::vector<double> udot(n, 0.0);
+  std::vector<char> given(n, 0);
+  for (std::size_t p = 0; p < e.prescribed.size(); ++p) {
+    udot[e.prescribed[p]] = e.prescribed_acceleration[p];
+    given[e.prescribed[p]] = 1;
+  }
+  for (int r = 0; r < n; ++r)
+    if (!given[r]) free.push_back(r);
+  const int nf = static_cast<int>(free.size());
+  Eigen::MatrixXd mff(nf, nf);
+  Eigen::VectorXd rhs(nf);
+  for (int a = 0; a < nf; ++a) {
+    rhs[a] = e.forcing[free[a]];
+    for (int p : e.prescribed) rhs[a] -= e.mass_matrix[free[a] * n + p] * udot[p];
+    for (int c = 0; c < nf; ++c) mff(a, c) = e.mass_matrix[free[a] * n + free[c]];
+  }
+  const Eigen::LLT<Eigen::MatrixXd> llt(mff);
   if (llt.info() == Eigen::Success) {
-    const Eigen::VectorXd x = llt.solve(Eigen::Map<const Eigen::VectorXd>(e.forcing.data(), n));
-    e.udot.assign(x.data(), x.data() + n);
+    const Eigen::VectorXd x = llt.solve(rhs);
+    for (int a = 0; a < nf; ++a) udot[free[a]] = x[a];
+    e.udot = udot;
+    // The work of the constraint forces that hold the prescribed speeds on their motion.
+    for (int p : e.prescribed) {
+      double lambda = -e.forcing[p];
+      for (int c = 0; c < n; ++c) lambda += e.mass_matrix[p * n + c] * udot[c];
+      e.nonconservative_power += lambda * s.u[p];
+    }
   }
 
-  std::vector<Pose<double>> poses(motion.size());
-  for (std::size_t b = 0; b < motion.size(); ++b) poses[b] = {motion[b].r, motion[b].p};
+  std::vector<Pose<double>> poses(nb);
+  for (int b = 0; b < nb; ++b) poses[b] = {motion.body[b].r, motion.body[b].p};
   for (const OutputData& o : m.outputs) {
-    if (o.kind == model::OutputKind::point_position) {
-      const Vec<double> x = point_position(poses, o.body, o.point);
-      e.outputs.insert(e.outputs.end(), x.begin(), x.end());
-    } else {
-      e.outputs.push_back(o.kind == model::OutputKind::joint_coordinate ? s.q[o.coordinate]
-                                                                        : s.u[o.coordinate]);
+    switch (o.kind) {
+      case model::OutputKind::point_position: {
+        const Vec<double> x = point_position(poses, o.body, o.point);
+        e.outputs.insert(e.outputs.end(), x.begin(), x.end());
+        break;
+      }
+      case model::OutputKind::joint_coordinate:
+        e.outputs.push_back(s.q[o.coordinate]);
+        break;
+      case model::OutputKind::joint_speed:
+        e.outputs.push_back(s.u[o.coordinate]);
+        break;
+      case model::OutputKind::node_displacement: {
+        const Vec<double> t = node_translation(*m.bodies[o.body].beam, dofs[o.body], o.node);
+        e.outputs.insert(e.outputs.end(), t.begin(), t.end());
+        break;
+      }
+      default: {
+        const FlexibleData& f = *m.bodies[o.body].beam;
+        const std::array<double, 4> n4 = resultants(f, dofs[o.body], o.node);  // N, T, M_y, M_z
+        if (o.kind == model::OutputKind::axial_force) {
+          e.outputs.push_back(n4[0]);
+        } else if (o.kind == model::OutputKind::bending_moment) {
+          if (!f.planar) e.outputs.push_back(n4[2]);
+          e.outputs.push_back(n4[3]);
+        } else {  // bending stress at the extreme fibres
+          double stress = std::abs(n4[0]) / f.A + std::abs(n4[3]) * f.fibre_y / f.Iz;
+          if (!f.planar) stress += std::abs(n4[2]) * f.fibre_z / f.Iy;
+          e.outputs.push_back(stress);
+        }
+      }
     }
   }
   return e;
 }
 
-double nonconservative_power(const Instance& m, const State& s) {
+double nonconservative_power(const Instance& m, const State& s, const std::vector<double>* udot) {
   check_sizes(m, s);
+  if (m.has_prescribed() && !udot) return evaluate(m, s).nonconservative_power;
+  const int n = m.coordinates();
   double power = joint_power(m, s);
-  bool any = false;
-  for (const ForceData& f : m.forces) any = any || f.body_frame;
-  if (!any) return power;
-  const std::vector<Pose<D1>> poses = poses_along_u(m, s);
+  // The motion at the given udot (for the prescribed speeds' constraint
+  // forces), and at u_dot = 0 (the beams' axial loads).
+  const bool pulls = has_node_pulls(m);
+  const std::vector<MassElement> elements =
+      m.has_prescribed() || pulls ? mass_elements(m) : std::vector<MassElement>();
+  const std::vector<double>* full = m.has_prescribed() ? udot : nullptr;
+  const PathMotion motion = motion_along(m, s, full, elements.size());
+  if (m.has_flexible()) {
+    const bool moving = full && std::any_of(full->begin(), full->end(), [](double a) { return a != 0; });
+    const std::vector<AxialLoad> load =
+        moving ? axial_loads(m, motion_along(m, s, nullptr, pulls ? elements.size() : 0), elements)
+               : axial_loads(m, motion, elements);
+    power += beam_power(m, s, load);
+  }
   for (const ForceData& f : m.forces) {
     if (!f.body_frame) continue;
-    Mat<double> r;
-    for (int i = 0; i < 9; ++i) r[i] = poses[f.body].rotation[i].v;
-    power += dot(mul(r, f.force), point_velocity(poses[f.body], f.point));
+    const Vec<D2> at = force_point(m, f, motion.poses, motion.dofs);
+    power += dot(mul(motion.body[f.body].r, f.force), Vec<double>{at[0].d.v, at[1].d.v, at[2].d.v});
+  }
+  // A prescribed speed's constraint force: lambda_p = (M udot - f)_p, minus
+  // the generalized force with the inertia forces at udot.
+  for (int r = 0; r < m.joint_coordinates(); ++r) {
+    if (!m.joints[m.coordinate_joint[r]].is_prescribed()) continue;
+    std::vector<std::vector<Partial>> partials(elements.size());
+    std::vector<std::vector<Vec<double>>> force_partials(m.forces.size(), std::vector<Vec<double>>(n));
+    partial_pass(m, s, r, motion.body, partials, force_partials);
+    std::vector<double> forcing(n, 0.0);
+    for (std::size_t i = 0; i < elements.size(); ++i)
+      add_element(m, elements[i], motion.body[elements[i].body], motion.element[i], partials[i], forcing, nullptr,
+                  nullptr);
+    for (std::size_t i = 0; i < m.forces.size(); ++i) {
+      const ForceData& f = m.forces[i];
+      forcing[r] += dot(f.body_frame ? mul(motion.body[f.body].r, f.force) : f.force, force_partials[i][r]);
+    }
+    forcing[r] += joint_forcing(m, s, r);
+    power -= forcing[r] * s.u[r];
   }
   return power;
 }

@@ -1,11 +1,26 @@
-// Kane's equations of a rigid tree evaluated numerically at one state, from
-// the position functions (poses.hpp) differentiated by dual numbers:
-//   M_rs = sum_i m_i v_r.v_s + w_r.I_i w_s,
-//   f_r  = sum_i v_r.m_i (g - a_i) + w_r.(-I_i alpha_i - w_i x I_i w_i)
-//          + sum_forces v_r(point).F - k (q_r - rest) - c u_r + tau_r,
-// with v_r = d(com)/dq_r, [w_r]x = dR/dq_r R^T, and a_i, alpha_i the
-// accelerations at u_dot = 0 (second derivatives along u). Independent of the
-// symbolic generator by construction: no GiNaC, no shared code.
+// Kane's equations of a tree of rigid and flexible bodies evaluated
+// numerically at one state, from the position functions (poses.hpp, beam.hpp)
+// differentiated by dual numbers. The bodies are sums of mass elements: a
+// point mass m at world position x(q) with a rotary inertia J (about the
+// point, constant in its link's axes) turning with the link and with a small
+// elastic rotation theta(q) (link frame): a rigid body is one (m at its
+// centre of mass, J its central inertia, theta = 0); a beam is one per Gauss
+// point (rho A dx, the section's rho diag(Ip, Iy, Iz) dx turning with the
+// torsion) and its tip mass one more (turning with the tip node). Then
+//   M_rs = sum m v_r.v_s + W_r.I W_s,
+//   f_r  = sum v_r.m (g - a) - W_r.I alpha - w_r.(omega x I Omega)
+//          + sum_forces v_r(point).F - k (q_r - rest) - c u_r + tau_r
+//          - dU/deta_r - (K_G eta)_r - (C eta_dot)_r,
+// with v_r = dx/dq_r, w_r = vee(dR/dq_r R^T) the link's partial angular
+// velocity, W_r = w_r + R dtheta/dq_r, Omega = omega + R theta_dot, I = R J R^T,
+// a, alpha the accelerations at u_dot = 0 (second derivatives along u): for a
+// rigid body this is Newton-Euler, for the rotary inertia of the beams it is
+// Lagrange's equations of T = 1/2 Omega.I Omega with J fixed in the link.
+// U is the beam's strain energy, K_G eta the gradient of the energy of the
+// axial force of the inertia loads (and of the pulls of the bodies carried on
+// its nodes), C Rayleigh or modal damping. Independent
+// of the symbolic generator by construction: no GiNaC, no shared code (the
+// basis of the elastic coordinates aside, see instance.hpp).
 #pragma once
 
 #include <vector>
@@ -24,17 +39,31 @@ struct Evaluation {
   int n = 0;
   std::vector<double> mass_matrix;  ///< n*n, row-major
   std::vector<double> forcing;      ///< n
-  std::vector<double> udot;         ///< n, M udot = f (empty if M is not positive definite)
+  /// n: the sum of the magnitudes of the terms summed into each f_r (|v_r||F|
+  /// for a term v_r.F): the scale of its round-off, however the terms are
+  /// grouped (in modal coordinates a row's terms can be far larger than the
+  /// row; a centripetal force is normal to the partial velocity).
+  std::vector<double> forcing_magnitude;
+  /// n: udot_p = the prescribed acceleration of each prescribed speed p, the
+  /// others from M_ff udot_f = f_f - M_fp udot_p (empty if M_ff is not positive definite).
+  std::vector<double> udot;
+  std::vector<int> prescribed;                 ///< the prescribed speeds
+  std::vector<double> prescribed_acceleration;  ///< their accelerations at t
   double kinetic_energy = 0;
-  double potential_energy = 0;       ///< gravity, springs, -F.p of world-frame forces
-  double nonconservative_power = 0;  ///< dampers, inputs, body-frame forces
-  std::vector<double> outputs;       ///< point outputs as x, y, z; joint outputs one each
+  double potential_energy = 0;  ///< gravity, springs, strain energy, -F.p of world-frame forces
+  /// dampers (joints and beams), inputs, body-frame forces, geometric
+  /// stiffness, and the constraint forces of the prescribed speeds with this udot.
+  double nonconservative_power = 0;
+  std::vector<double> outputs;  ///< point outputs as x, y, z; joint outputs one each; node outputs
 };
 
 /// Everything at one state. Throws std::invalid_argument on wrong sizes.
 Evaluation evaluate(const Instance& model, const State& state);
 
-/// Only the power of the non-conservative forces (cheaper: one pass along u).
-double nonconservative_power(const Instance& model, const State& state);
+/// Only the power of the non-conservative forces. `udot`: the accelerations
+/// the prescribed speeds' constraint forces are taken with ((M udot - f)_p
+/// u_p); null: the numeric udot. Cheaper than evaluate for rigid models
+/// without prescribed speeds (one pass along u).
+double nonconservative_power(const Instance& model, const State& state, const std::vector<double>* udot = nullptr);
 
 }  // namespace kanegen::numeric

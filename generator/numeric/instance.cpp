@@ -5,6 +5,12 @@
 #include <map>
 #include <stdexcept>
 
+// The one use of the finite-element layer: the basis B of the elastic
+// coordinates (free dofs or modal shapes), a choice of coordinates. Mass,
+// stiffness, geometric stiffness and every integral are computed here
+// independently (docs/verify.md).
+#include "fem/model_beam.hpp"
+
 namespace kanegen::numeric {
 namespace {
 
@@ -19,7 +25,104 @@ Mat<double> inertia_value(const std::array<model::Scalar, 6>& in, const model::P
   return {e[0], e[3], e[4], e[3], e[1], e[5], e[4], e[5], e[2]};
 }
 
+Vec<double> normalized(const Vec<double>& v) {
+  const double length = std::sqrt(dot(v, v));
+  return scale(v, 1.0 / length);
+}
+
+/// The beam of a flexible body: nodes along the segments, element axes
+/// (x along the run, y = z_link x x, z = x x y), numbers, and the basis.
+std::shared_ptr<const FlexibleData> beam_data(const model::Body& body, const std::string& file) {
+  const model::FlexibleBeam& f = body.beam;
+  auto d = std::make_shared<FlexibleData>();
+  d->body = body.name;
+  d->planar = f.formulation == model::BeamFormulation::planar;
+  d->dofs_per_node = d->planar ? 3 : 6;
+  d->nodes.push_back({0.0, 0.0, 0.0});
+  for (const model::BeamSegment& s : f.segments) {
+    const Vec<double> start = d->nodes.back(), end{s.to[0], s.to[1], s.to[2]};
+    const Vec<double> step = scale(sub(end, start), 1.0 / s.elements);
+    const Vec<double> x = normalized(step);
+    const Vec<double> y = normalized(cross(Vec<double>{0.0, 0.0, 1.0}, x));
+    const Vec<double> z = cross(x, y);
+    for (int i = 1; i <= s.elements; ++i) {
+      BeamElementData e;
+      e.node = static_cast<int>(d->nodes.size()) - 1;
+      e.length = std::sqrt(dot(step, step));
+      e.axes = {x[0], y[0], z[0], x[1], y[1], z[1], x[2], y[2], z[2]};
+      e.origin = d->nodes.back();
+      d->elements.push_back(e);
+      d->nodes.push_back(i == s.elements ? end : add(start, scale(step, i)));
+    }
+  }
+  d->A = f.A;
+  d->Iz = f.Iz;
+  d->Iy = d->planar ? 0.0 : f.Iy;
+  d->J = d->planar ? 0.0 : f.J;
+  d->E = f.E;
+  d->G = f.G;
+  d->density = f.density;
+  d->fibre_y = f.fibre_y;
+  d->fibre_z = f.fibre_z;
+  if (f.tip_mass > 0) {
+    d->tip_mass = f.tip_mass;
+    const auto& i = f.tip_inertia;
+    d->tip_inertia = {i[0], i[3], i[4], i[3], i[1], i[5], i[4], i[5], i[2]};
+  }
+  d->modal = f.modes > 0;
+  if (d->modal && f.modal_damping > 0) {
+    d->modal_ratio = f.modal_damping;
+  } else {
+    d->rayleigh_alpha = f.rayleigh_alpha;
+    d->rayleigh_beta = f.rayleigh_beta;
+  }
+  d->stiffening = f.geometric_stiffening;
+  d->chain_length = d->nodes.back()[0];
+
+  const Eigen::MatrixXd basis = fem::build_model_beam(body, file).reduced.basis;
+  if (basis.rows() != d->num_dofs())
+    throw std::invalid_argument("the basis of body '" + body.name + "' has " + std::to_string(basis.rows()) +
+                                " rows for " + std::to_string(d->num_dofs()) + " dofs");
+  static const char* planar_kinds[3] = {"u", "v", "theta_z"};
+  static const char* spatial_kinds[6] = {"u", "v", "w", "theta_x", "theta_y", "theta_z"};
+  for (Eigen::Index k = 0; k < basis.cols(); ++k) {
+    std::vector<std::pair<int, double>> column;
+    for (Eigen::Index i = 0; i < basis.rows(); ++i)
+      if (basis(i, k) != 0.0) column.emplace_back(static_cast<int>(i), basis(i, k));
+    if (d->modal) {
+      d->names.push_back("mode" + std::to_string(k + 1));
+    } else {
+      // A nodal coordinate is one free dof.
+      if (column.size() != 1 || column[0].second != 1.0)
+        throw std::invalid_argument("nodal coordinate " + std::to_string(k) + " of body '" + body.name +
+                                    "' is not a single dof");
+      const int dof = column[0].first;
+      d->names.push_back("n" + std::to_string(dof / d->dofs_per_node) + "." +
+                         (d->planar ? planar_kinds : spatial_kinds)[dof % d->dofs_per_node]);
+    }
+    d->basis.push_back(std::move(column));
+  }
+  return d;
+}
+
 }  // namespace
+
+bool Instance::has_prescribed() const {
+  for (const JointData& j : joints)
+    if (j.is_prescribed()) return true;
+  return false;
+}
+
+std::array<double, 3> prescribed_motion(const JointData& joint, double t) {
+  using D1 = Dual<double>;
+  using D2 = Dual<D1>;
+  for (const PrescribedData& piece : joint.prescribed) {
+    if (piece.has_until && !(t < piece.until)) continue;
+    const D2 q = piece.q(D2(D1(t, 1.0), D1(1.0, 0.0)));
+    return {q.v.v, q.d.v, q.d.d};
+  }
+  return {0.0, 0.0, 0.0};
+}
 
 Mat<double> rotation_from_rpy(double roll, double pitch, double yaw) {
   const double cr = std::cos(roll), sr = std::sin(roll);
@@ -31,13 +134,19 @@ Mat<double> rotation_from_rpy(double roll, double pitch, double yaw) {
   return mul(rz, mul(ry, rx));
 }
 
-Instance instantiate(const model::Model& model, const model::ParameterValues& p) {
+Instance instantiate(const model::Model& model, const model::ParameterValues& p, const Instance* same_model) {
   Instance m;
   std::map<std::string, int> body_index;
-  for (const model::Body& b : model.bodies) {
+  for (std::size_t i = 0; i < model.bodies.size(); ++i) {
+    const model::Body& b = model.bodies[i];
     body_index[b.name] = static_cast<int>(m.bodies.size());
-    m.bodies.push_back(
-        {b.name, -1, model::evaluate(b.mass, p), vector_value(b.com, p), inertia_value(b.inertia, p)});
+    BodyData d{b.name, -1, model::evaluate(b.mass, p), vector_value(b.com, p), inertia_value(b.inertia, p), nullptr,
+               -1};
+    if (b.flexible)
+      d.beam = same_model && i < same_model->bodies.size() && same_model->bodies[i].beam
+                   ? same_model->bodies[i].beam
+                   : beam_data(b, model.source_file);
+    m.bodies.push_back(d);
   }
   const auto body_of = [&](const std::string& name, const std::string& what) {
     if (name == model.ground) return -1;
@@ -50,6 +159,9 @@ Instance instantiate(const model::Model& model, const model::ParameterValues& p)
     JointData d;
     d.name = j.name;
     d.parent = body_of(j.parent, "joint '" + j.name + "'");
+    d.parent_node = j.parent_node;
+    if (d.parent_node >= 0 && (d.parent < 0 || !m.bodies[d.parent].beam))
+      throw std::invalid_argument("joint '" + j.name + "' sits on a node of a body that is not flexible");
     d.child = body_of(j.child, "joint '" + j.name + "'");
     if (d.child < 0) throw std::invalid_argument("joint '" + j.name + "' has the ground as its child");
     const Vec<double> rpy = vector_value(j.origin_rpy, p);
@@ -66,6 +178,9 @@ Instance instantiate(const model::Model& model, const model::ParameterValues& p)
       d.rest = model::evaluate(j.spring_rest, p);
       d.damping = model::evaluate(j.damping, p);
       d.actuated = j.actuated;
+      for (const model::PrescribedPiece& piece : j.prescribed)
+        d.prescribed.push_back({TimeFunction(piece.q, p), piece.has_until, piece.until});
+      m.coordinate_names.push_back(j.name);
     }
     m.bodies[d.child].joint = static_cast<int>(m.joints.size());
     m.joints.push_back(d);
@@ -83,10 +198,22 @@ Instance instantiate(const model::Model& model, const model::ParameterValues& p)
   };
   for (std::size_t b = 0; b < m.bodies.size(); ++b) place(static_cast<int>(b));
 
+  // The elastic coordinates follow the joints', body by body.
+  for (BodyData& b : m.bodies) {
+    if (!b.beam) continue;
+    b.elastic_first = m.coordinates();
+    for (const std::string& name : b.beam->names) m.coordinate_names.push_back(b.name + "." + name);
+  }
+
   m.gravity = vector_value(model.gravity, p);
-  for (const model::PointForce& f : model.forces)
-    m.forces.push_back({f.name, body_of(f.body, "force '" + f.name + "'"), vector_value(f.point, p),
+  for (const model::PointForce& f : model.forces) {
+    m.forces.push_back({f.name, body_of(f.body, "force '" + f.name + "'"), vector_value(f.point, p), f.node,
                         vector_value(f.force, p), f.frame == model::ForceFrame::body});
+    const ForceData& d = m.forces.back();
+    if (d.node >= 0 && (d.body < 0 || !m.bodies[d.body].beam ||
+                        d.node >= static_cast<int>(m.bodies[d.body].beam->nodes.size())))
+      throw std::invalid_argument("force '" + f.name + "' is at a node the body does not have");
+  }
   for (const model::Output& o : model.outputs) {
     OutputData d;
     d.name = o.name;
@@ -94,6 +221,12 @@ Instance instantiate(const model::Model& model, const model::ParameterValues& p)
     if (o.kind == model::OutputKind::point_position) {
       d.body = body_of(o.body, "output '" + o.name + "'");
       d.point = vector_value(o.point, p);
+    } else if (o.kind != model::OutputKind::joint_coordinate && o.kind != model::OutputKind::joint_speed) {
+      d.body = body_of(o.body, "output '" + o.name + "'");
+      d.node = o.node;
+      if (d.body < 0 || !m.bodies[d.body].beam || d.node < 0 ||
+          d.node >= static_cast<int>(m.bodies[d.body].beam->nodes.size()))
+        throw std::invalid_argument("output '" + o.name + "' names no node of a flexible body");
     } else {
       for (const JointData& j : m.joints)
         if (j.name == o.joint) d.coordinate = j.coordinate;

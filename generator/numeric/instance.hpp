@@ -3,20 +3,31 @@
 // numeric derivation works on this plain-number form only.
 #pragma once
 
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "model/expression_eval.hpp"
 #include "model/model.hpp"
 #include "numeric/small_matrix.hpp"
+#include "numeric/time_function.hpp"
 
 namespace kanegen::numeric {
 
 enum class Motion { none, rotation, translation };
 
+/// One piece of a prescribed motion: q(t) while t < until (the last piece: always).
+struct PrescribedData {
+  TimeFunction q;
+  bool has_until = false;
+  double until = 0;
+};
+
 struct JointData {
   std::string name;
-  int parent = -1;  ///< body index; -1 for the ground
+  int parent = -1;       ///< body index; -1 for the ground
+  int parent_node = -1;  ///< the node of a flexible parent the joint frame sits on (-1: the parent frame)
   int child = -1;   ///< body index
   Motion motion = Motion::none;
   Mat<double> origin_rotation;  ///< joint frame in parent axes (URDF rpy)
@@ -25,6 +36,53 @@ struct JointData {
   int coordinate = -1;          ///< index in q and u; -1 for a fixed joint
   double stiffness = 0, rest = 0, damping = 0;
   bool actuated = false;
+  std::vector<PrescribedData> prescribed;  ///< empty: a free coordinate
+
+  bool is_prescribed() const { return !prescribed.empty(); }
+};
+
+/// One beam element of a flexible body: from node `node` to node + 1.
+struct BeamElementData {
+  int node = 0;
+  double length = 0;
+  Mat<double> axes;    ///< columns: the element's x, y, z axes in the link frame
+  Vec<double> origin;  ///< its first node, link frame
+};
+
+/// A finite-element beam as the numeric path sees it: geometry, section and
+/// material numbers from the model, and the elastic coordinates. The body's
+/// dofs are link-frame nodal components, node by node (planar: u_x, u_y,
+/// theta_z; spatial: u_x, u_y, u_z, theta_x, theta_y, theta_z), and
+/// dofs = B eta. B is the one thing taken from the finite-element layer
+/// (build_model_beam of generator/fem): a choice of coordinates (which dofs the support
+/// leaves free, or the modal shapes), not a derivation (docs/verify.md).
+struct FlexibleData {
+  std::string body;
+  bool planar = true;
+  int dofs_per_node = 3;
+  std::vector<Vec<double>> nodes;  ///< undeformed, link frame
+  std::vector<BeamElementData> elements;
+  double A = 0, Iy = 0, Iz = 0, J = 0, E = 0, G = 0, density = 0, fibre_y = 0, fibre_z = 0;
+  double tip_mass = 0;
+  Mat<double> tip_inertia{};  ///< about the last node, link axes
+  bool modal = false;
+  double rayleigh_alpha = 0, rayleigh_beta = 0, modal_ratio = 0;
+  /// Geometric stiffening asked for (the model's flag; the beam is then a
+  /// straight chain on the link's +x axis from the origin, of this length).
+  bool stiffening = false;
+  double chain_length = 0;
+  /// B by columns: (dof, value) pairs of the nonzero entries of column k.
+  std::vector<std::vector<std::pair<int, double>>> basis;
+  std::vector<std::string> names;  ///< per elastic coordinate: "n3.v", "mode2", ...
+
+  int count() const { return static_cast<int>(basis.size()); }
+  int num_dofs() const { return static_cast<int>(nodes.size()) * dofs_per_node; }
+  /// Index of a node's translation (axis 0..2) or rotation (3..5) dof; -1 if the layout has none.
+  int dof(int node, int kind) const {
+    if (dofs_per_node == 6) return node * 6 + kind;
+    static const int planar_index[6] = {0, 1, -1, -1, -1, 2};
+    return planar_index[kind] < 0 ? -1 : node * 3 + planar_index[kind];
+  }
 };
 
 struct BodyData {
@@ -33,12 +91,16 @@ struct BodyData {
   double mass = 0;
   Vec<double> com;      ///< body frame
   Mat<double> inertia;  ///< about the centre of mass, body axes
+  /// A flexible body's beam (shared by every instance of the model), else null.
+  std::shared_ptr<const FlexibleData> beam;
+  int elastic_first = -1;  ///< index in q and u of its first elastic coordinate
 };
 
 struct ForceData {
   std::string name;
   int body = -1;
   Vec<double> point;  ///< body frame
+  int node = -1;      ///< or at this node of a flexible body, moving with it
   Vec<double> force;  ///< world or body axes
   bool body_frame = false;
 };
@@ -49,24 +111,37 @@ struct OutputData {
   int body = -1;  ///< -1 for the ground
   Vec<double> point;
   int coordinate = -1;
+  int node = -1;  ///< node outputs of a flexible body
 };
 
 struct Instance {
   std::vector<BodyData> bodies;
   std::vector<JointData> joints;      ///< model order
   std::vector<int> order;             ///< body indices, every parent before its children
-  std::vector<int> coordinate_joint;  ///< joint index of each coordinate
+  std::vector<int> coordinate_joint;  ///< joint index of each joint coordinate (they come first in q)
+  std::vector<std::string> coordinate_names;  ///< every coordinate: joints, then "<body>.<name>" elastic ones
   Vec<double> gravity;
   std::vector<ForceData> forces;
   std::vector<OutputData> outputs;
 
-  int coordinates() const { return static_cast<int>(coordinate_joint.size()); }
+  /// Joint coordinates, then the elastic coordinates of the flexible bodies in body order.
+  int coordinates() const { return static_cast<int>(coordinate_names.size()); }
+  int joint_coordinates() const { return static_cast<int>(coordinate_joint.size()); }
+  bool has_flexible() const { return coordinates() > joint_coordinates(); }
+  bool has_prescribed() const;
 };
 
 /// Evaluates the model at the given parameter values. Throws
 /// std::invalid_argument if a name cannot be resolved or an expression
-/// cannot be evaluated (a loaded model has been checked, so only on misuse).
-Instance instantiate(const model::Model& model, const model::ParameterValues& parameters);
+/// cannot be evaluated (a loaded model has been checked, so only on misuse),
+/// model::ModelError if a beam cannot be built. `same_model`: an instance of
+/// the same model whose beams are reused (they do not depend on parameters).
+Instance instantiate(const model::Model& model, const model::ParameterValues& parameters,
+                     const Instance* same_model = nullptr);
+
+/// The prescribed q(t), q'(t), q''(t) of a joint (the piece in effect at t;
+/// zero after the last piece if that has an end).
+std::array<double, 3> prescribed_motion(const JointData& joint, double t);
 
 /// URDF's fixed-axis roll-pitch-yaw: R = Rz(yaw) Ry(pitch) Rx(roll).
 Mat<double> rotation_from_rpy(double roll, double pitch, double yaw);

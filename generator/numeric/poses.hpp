@@ -5,8 +5,10 @@
 // accelerations at u_dot = 0. Nothing here knows about derivatives.
 #pragma once
 
+#include <stdexcept>
 #include <vector>
 
+#include "numeric/beam.hpp"
 #include "numeric/instance.hpp"
 #include "numeric/small_matrix.hpp"
 
@@ -31,16 +33,38 @@ Mat<S> rotation_about(const Vec<double>& a, const S& angle) {
           k * (a[2] * a[0]) - s * a[1], k * (a[2] * a[1]) + s * a[0], c + k * (a[2] * a[2])};
 }
 
-/// World poses of all bodies (indexed like Instance::bodies) at coordinates q.
-/// Child frame = parent frame, moved by the joint origin (xyz, then rpy),
-/// then by the joint motion about or along the axis in that joint frame.
+/// The nodal dofs of every flexible body at coordinates q (empty for rigid bodies).
 template <class S>
-std::vector<Pose<S>> body_poses(const Instance& m, const S* q) {
+std::vector<std::vector<S>> all_beam_dofs(const Instance& m, const S* q) {
+  std::vector<std::vector<S>> dofs(m.bodies.size());
+  for (std::size_t b = 0; b < m.bodies.size(); ++b)
+    if (m.bodies[b].beam) dofs[b] = beam_dofs(*m.bodies[b].beam, q + m.bodies[b].elastic_first);
+  return dofs;
+}
+
+/// World poses of all bodies (indexed like Instance::bodies) at coordinates q
+/// (`dofs`: all_beam_dofs at q). Child frame = parent frame, moved by the
+/// joint origin (xyz, then rpy), then by the joint motion about or along the
+/// axis in that joint frame. A joint on a node of a (planar) flexible parent
+/// starts from the node's frame instead: the parent frame moved to the
+/// displaced node and turned by the node's rotation about z (exactly).
+template <class S>
+std::vector<Pose<S>> body_poses(const Instance& m, const S* q, const std::vector<std::vector<S>>& dofs) {
   std::vector<Pose<S>> poses(m.bodies.size());
   const Pose<S> ground{identity<S>(), Vec<S>{S(0.0), S(0.0), S(0.0)}};
   for (const int b : m.order) {
     const JointData& j = m.joints[m.bodies[b].joint];
-    const Pose<S>& parent = j.parent < 0 ? ground : poses[j.parent];
+    Pose<S> parent = j.parent < 0 ? ground : poses[j.parent];
+    if (j.parent_node >= 0) {
+      const FlexibleData& beam = *m.bodies[j.parent].beam;
+      if (!beam.planar)
+        throw std::invalid_argument("joint '" + j.name +
+                                    "': joints on the nodes of spatial beams are not supported by the numeric path");
+      const Vec<S> node = add(beam.nodes[j.parent_node], node_translation(beam, dofs[j.parent], j.parent_node));
+      const S turn = node_rotation(beam, dofs[j.parent], j.parent_node)[2];
+      parent.origin = add(parent.origin, mul(parent.rotation, node));
+      parent.rotation = mul(parent.rotation, rotation_about(Vec<double>{0.0, 0.0, 1.0}, turn));
+    }
     Pose<S>& pose = poses[b];
     pose.rotation = mul(parent.rotation, j.origin_rotation);
     pose.origin = add(parent.origin, mul(parent.rotation, j.origin_position));
@@ -53,6 +77,12 @@ std::vector<Pose<S>> body_poses(const Instance& m, const S* q) {
     }
   }
   return poses;
+}
+
+/// The same, for a model without node attachments or when the dofs are not needed elsewhere.
+template <class S>
+std::vector<Pose<S>> body_poses(const Instance& m, const S* q) {
+  return body_poses(m, q, all_beam_dofs(m, q));
 }
 
 /// World position of a point given in body axes (body -1: the ground).

@@ -321,8 +321,7 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
   const int nq = info.nq, n = info.nq + info.nu;
   apply_parameters(model, a.sets);
   std::vector<double> x(static_cast<size_t>(std::max(n, 1)), 0.0);
-  std::copy(info.q0, info.q0 + nq, x.begin());
-  std::copy(info.u0, info.u0 + info.nu, x.begin() + nq);
+  model.initial_state(x.data(), x.data() + nq);
   apply_state(a.q0, "--q0", "coordinates", info.coordinate_names, nq, x.data());
   apply_state(a.u0, "--u0", "speeds", info.speed_names, info.nu, x.data() + nq);
 

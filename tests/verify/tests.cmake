@@ -6,6 +6,7 @@ find_package(nlohmann_json REQUIRED)
 set(KANEGEN_VERIFY_CACHE ${CMAKE_CURRENT_BINARY_DIR}/verify_cache)
 
 add_executable(test_verify_unit ${CMAKE_CURRENT_LIST_DIR}/main.cpp ${CMAKE_CURRENT_LIST_DIR}/numeric_test.cpp
+                                ${CMAKE_CURRENT_LIST_DIR}/numeric_flexible_test.cpp
                                 ${CMAKE_CURRENT_LIST_DIR}/batch_test.cpp)
 target_compile_options(test_verify_unit PRIVATE ${KANEGEN_WARNINGS})
 target_compile_definitions(test_verify_unit PRIVATE KANEGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
@@ -23,10 +24,14 @@ target_link_libraries(test_verify_cli PRIVATE Catch2::Catch2 nlohmann_json::nloh
 add_dependencies(test_verify_cli kanegen kanegen_runtime)
 catch_discover_tests(test_verify_cli TEST_PREFIX "verify: ")
 
-# kanegen verify on every shipped model and on the forced cart pendulum
-# (prismatic joint, spring, damper, world and body forces).
+# kanegen verify on every shipped model, on the forced cart pendulum
+# (prismatic joint, spring, damper, world and body forces) and on the
+# flexible test models: a planar strip on a hub (nodal; modal with modal
+# damping), a spatial beam on a gimbal, a prescribed hub with a free pendulum.
 file(GLOB KANEGEN_VERIFY_MODELS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/models/*.json ${PROJECT_SOURCE_DIR}/models/*.urdf)
-list(APPEND KANEGEN_VERIFY_MODELS ${PROJECT_SOURCE_DIR}/tests/data/models/forced_cart_pendulum.json)
+foreach(name forced_cart_pendulum flex_hub_planar flex_hub_modal flex_spatial_hub flex_prescribed_hub)
+  list(APPEND KANEGEN_VERIFY_MODELS ${PROJECT_SOURCE_DIR}/tests/data/models/${name}.json)
+endforeach()
 foreach(model ${KANEGEN_VERIFY_MODELS})
   get_filename_component(stem ${model} NAME_WE)
   add_test(NAME "verify: model ${stem}" COMMAND kanegen verify ${model})

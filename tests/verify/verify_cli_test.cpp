@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -89,6 +90,29 @@ void corrupt(const fs::path& file, const std::string& function, const std::strin
       std::regex_replace(body, std::regex(pattern), replacement, std::regex_constants::format_first_only);
   REQUIRE(altered != body);
   write(file, text.substr(0, begin) + altered + text.substr(end));
+}
+
+/// Scales, inside the body of `function`, the first decimal literal that is
+/// followed by `after` (a regex) and is at least `least` in magnitude.
+void scale_literal(const fs::path& file, const std::string& function, const std::string& after, double least,
+                   double factor) {
+  std::string text = slurp(file);
+  const std::size_t begin = text.find("\n" + function + "(");
+  REQUIRE(begin != std::string::npos);
+  const std::size_t end = text.find("\n}\n", begin);
+  REQUIRE(end != std::string::npos);
+  const std::regex literal("\\b[0-9]+\\.?[0-9]*(e[-+]?[0-9]+)?(?=" + after + ")");
+  for (auto it = std::sregex_iterator(text.begin() + begin, text.begin() + end, literal);
+       it != std::sregex_iterator(); ++it) {
+    const double value = std::stod(it->str());
+    if (std::abs(value) < least) continue;
+    char altered[64];
+    std::snprintf(altered, sizeof altered, "%.17g", value * factor);
+    const std::size_t at = begin + it->position();
+    write(file, text.substr(0, at) + altered + text.substr(at + it->length()));
+    return;
+  }
+  FAIL("no literal of at least " << least << " before " << after << " in " << function);
 }
 
 }  // namespace
@@ -234,4 +258,87 @@ TEST_CASE("corruption: a wrong kinetic or potential energy fails, naming it", "[
   CHECK(std::find(failed.begin(), failed.end(), "kinetic_energy") != failed.end());
   CHECK(std::find(failed.begin(), failed.end(), "d2T/du2") != failed.end());
   CHECK(std::find(failed.begin(), failed.end(), "mass_matrix") == failed.end());
+}
+
+TEST_CASE("flexible: verify passes on a copy of the kernels, with elastic coordinates and node outputs",
+          "[verify][flexible]") {
+  const std::string model = "tests/data/models/flex_hub_planar.json";
+  const fs::path dir = generate(model, "flexible_clean");
+  const Result r = kanegen("verify " + source(model) + " --kernels " + dir.string() + " --samples 20 --json");
+  INFO(r.out << r.err);
+  REQUIRE(r.status == 0);
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  CHECK(j["passed"].get<bool>());
+  CHECK(j["coordinates"] == 10);  // the hub, then 9 nodal coordinates of the clamped 3-element strip
+  for (const auto& q : j["quantities"])
+    if (q["quantity"] == "outputs") CHECK(q["compared"] == 20);
+}
+
+TEST_CASE("corruption: one stiffness term of a flexible forcing kernel off by 1e-6 fails, naming forcing",
+          "[verify][corruption][flexible]") {
+  const std::string model = "tests/data/models/flex_hub_planar.json";
+  const fs::path dir = generate(model, "flexible_stiffness");
+  // The first literal of at least 1000 that multiplies a coordinate: an entry of K.
+  scale_literal(dir / "flex_hub_planar.cpp", "void forcing", "\\*q\\[", 1000.0, 1 + 1e-6);
+  const Result r = kanegen("verify " + source(model) + " --kernels " + dir.string() + " --samples 20 --quiet");
+  INFO(r.out << r.err);
+  CHECK(r.status == 1);
+  CHECK(contains(r.err, "error: forcing ["));
+  CHECK(contains(r.err, "(arm.n"));  // an elastic row
+  CHECK_FALSE(contains(r.err, "error: mass_matrix"));
+  CHECK_FALSE(contains(r.err, "error: udot"));  // forward_dynamics is a separate kernel
+}
+
+TEST_CASE("corruption: a modal velocity term off by 1e-3 fails, naming forcing", "[verify][corruption][flexible]") {
+  const std::string model = "tests/data/models/flex_hub_modal.json";
+  const fs::path dir = generate(model, "flexible_modal");
+  // A coefficient of the first mode's speed (modal damping, Coriolis).
+  scale_literal(dir / "flex_hub_modal.cpp", "void forcing", "\\*u\\[1\\]", 0.0, 1 + 1e-3);
+  const Result r = kanegen("verify " + source(model) + " --kernels " + dir.string() + " --samples 20 --quiet");
+  INFO(r.out << r.err);
+  CHECK(r.status == 1);
+  CHECK(contains(r.err, "error: forcing ["));
+  CHECK_FALSE(contains(r.err, "error: mass_matrix"));
+}
+
+TEST_CASE("corruption: a wrong elastic mass fails mass_matrix and d2T/du2", "[verify][corruption][flexible]") {
+  const std::string model = "tests/data/models/flex_spatial_hub.json";
+  const fs::path dir = generate(model, "flexible_mass");
+  // The first constant entry M[r*n + c] = number; of the beam's own block (r, c >= 2: after yaw and pitch).
+  const fs::path file = dir / "flex_spatial_hub.cpp";
+  const std::string text = slurp(file);
+  const std::size_t begin = text.find("\nvoid mass_matrix(");
+  REQUIRE(begin != std::string::npos);
+  const std::size_t end = text.find("\n}\n", begin);
+  const int n = 20;
+  const std::regex entry("M\\[([0-9]+)\\] = ([0-9]+\\.[0-9]*(e[-+]?[0-9]+)?);");
+  bool done = false;
+  for (auto it = std::sregex_iterator(text.begin() + begin, text.begin() + end, entry);
+       it != std::sregex_iterator() && !done; ++it) {
+    const int k = std::stoi((*it)[1].str());
+    if (k / n < 2 || k % n < 2) continue;
+    char altered[64];
+    std::snprintf(altered, sizeof altered, "%.17g", std::stod((*it)[2].str()) * (1 + 1e-6));
+    const std::size_t at = begin + it->position(2);
+    write(file, text.substr(0, at) + altered + text.substr(at + it->length(2)));
+    done = true;
+  }
+  REQUIRE(done);
+  const Result r = kanegen("verify " + source(model) + " --kernels " + dir.string() + " --samples 20 --quiet");
+  INFO(r.out << r.err);
+  CHECK(r.status == 1);
+  CHECK(contains(r.err, "error: mass_matrix ["));
+  CHECK(contains(r.err, "(arm.n"));
+  CHECK(contains(r.err, "error: d2T/du2"));  // M no longer the Hessian of the (unaltered) kinetic energy
+}
+
+TEST_CASE("corruption: a wrong prescribed acceleration fails udot, naming it", "[verify][corruption][flexible]") {
+  const std::string model = "tests/data/models/flex_prescribed_hub.json";
+  const fs::path dir = generate(model, "prescribed");
+  corrupt(dir / "flex_prescribed_hub.cpp", "int forward_dynamics", "\\bap0 = (?!0\\.0;)", "$&1.001*");
+  const Result r = kanegen("verify " + source(model) + " --kernels " + dir.string() + " --samples 20 --quiet");
+  INFO(r.out << r.err);
+  CHECK(r.status == 1);
+  CHECK(contains(r.err, "error: udot [0] (hub) (prescribed acceleration)"));
+  CHECK_FALSE(contains(r.err, "error: forcing"));
 }

@@ -3,6 +3,8 @@
 // the runtime library instead of in every model's executable.
 #pragma once
 
+#include <utility>
+
 #include "kanegen/runtime/system.hpp"
 
 namespace kanegen::runtime {
@@ -39,6 +41,9 @@ class Model {
   virtual double kinetic_energy(const double* q, const double* u) const = 0;
   virtual double potential_energy(const double* q) const = 0;
   virtual void outputs(double t, const double* q, const double* u, double* y) const = 0;
+  /// The initial state for the current parameters (a prescribed coordinate
+  /// starts where its motion does); info().q0, u0 hold it for the defaults.
+  virtual void initial_state(double* q, double* u) const = 0;
 
  private:
   ModelInfo info_;
@@ -75,8 +80,22 @@ class SystemModel final : public Model {
   void outputs(double t, const double* q, const double* u, double* y) const override {
     System::outputs(params_, t, q, u, y);
   }
+  void initial_state(double* q, double* u) const override { initial_state_of<System>(0, q, u); }
 
  private:
+  // System::initial_state(p, q, u) if the System has it (generated ones do),
+  // else the constant q0 and u0.
+  template <class S>
+  auto initial_state_of(int, double* q, double* u) const
+      -> decltype(S::initial_state(std::declval<const typename S::Params&>(), q, u)) {
+    return S::initial_state(params_, q, u);
+  }
+  template <class S>
+  void initial_state_of(long, double* q, double* u) const {
+    for (int i = 0; i < S::nq; ++i) q[i] = S::q0()[i];
+    for (int i = 0; i < S::nu; ++i) u[i] = S::u0()[i];
+  }
+
   typename System::Params params_{};
 };
 

@@ -1,0 +1,41 @@
+// Linearisation of the compiled equations M(q) u_dot = f(t, q, u) about one
+// state, by central differences through the runner's batch mode (one
+// process, one JSON line per state). Some coordinates are selected; the
+// others move with given accelerations (zero for a held joint, the
+// prescribed one for a prescribed joint), so the selected rows read
+//   M_ss u_dot_s = r(q, u),  r = f_s - M_s,o a_o,
+// and, about the state, M_ss dq_s'' + C dq_s' + K dq_s = r(state) with
+// K = -dr/dq_s and C = -dr/du_s.
+#pragma once
+
+#include <Eigen/Dense>
+#include <vector>
+
+#include "cli/verify_runner.hpp"
+
+namespace kanegen::cli {
+
+/// The state and the parameters (all of them, in the runner's order).
+struct OperatingPoint {
+  double t = 0.0;
+  std::vector<double> q, u, p;
+};
+
+struct LinearizeOptions {
+  std::vector<int> selected;                ///< coordinate (= speed) indices, ascending
+  std::vector<double> other_accelerations;  ///< per speed: the given u_dot of an unselected speed
+  bool velocity = false;                    ///< also C (2 n more evaluations)
+  double step = 1e-6;                       ///< relative step: h_j = step * max(1, |x_j|)
+};
+
+struct Linearization {
+  Eigen::MatrixXd mass;       ///< M_ss at the state
+  Eigen::MatrixXd stiffness;  ///< K = -dr/dq_s, as computed (not symmetrised)
+  Eigen::MatrixXd velocity;   ///< C = -dr/du_s (empty unless asked for)
+  Eigen::VectorXd forcing;    ///< r at the state
+};
+
+/// Throws std::runtime_error if the runner fails or gives a non-finite value.
+Linearization linearize(RunnerProcess& runner, const OperatingPoint& point, const LinearizeOptions& options);
+
+}  // namespace kanegen::cli

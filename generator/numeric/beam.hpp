@@ -1,0 +1,200 @@
+// The finite-element beam of a flexible body, written for the numeric path
+// over any scalar type: its nodal dofs from the elastic coordinates, the
+// position and small rotation of its material points, its strain energy and
+// the energy of the geometric stiffness. Euler-Bernoulli beams with their
+// own shape functions here (axial displacement and torsion linear; bending
+// by Hermite cubics, theta_z = v', theta_y = -w'), integrated by
+// Gauss-Legendre rules computed here. Nothing is shared with generator/fem
+// but the basis B of the coordinates (FlexibleData::basis).
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "numeric/instance.hpp"
+#include "numeric/small_matrix.hpp"
+
+namespace kanegen::numeric {
+
+/// Gauss-Legendre points and weights on [0, 1] (exact to degree 2n - 1), by
+/// Newton's method on the Legendre polynomial P_n.
+struct GaussRule {
+  std::vector<double> points, weights;
+};
+
+inline GaussRule gauss_rule(int n) {
+  GaussRule rule;
+  const double pi = 3.14159265358979323846;
+  for (int i = 0; i < n; ++i) {
+    double x = std::cos(pi * (i + 0.75) / (n + 0.5)), derivative = 1;
+    for (int iteration = 0; iteration < 100; ++iteration) {
+      double p0 = 1, p1 = x;  // P_0, P_1, then up to P_n by Bonnet's recursion
+      for (int k = 2; k <= n; ++k) {
+        const double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
+        p0 = p1;
+        p1 = p2;
+      }
+      if (n == 1) p0 = 1;
+      derivative = n * (x * p1 - p0) / (x * x - 1);
+      const double step = p1 / derivative;
+      x -= step;
+      if (std::abs(step) < 1e-16) break;
+    }
+    rule.points.push_back(0.5 * (1 - x));
+    rule.weights.push_back(1.0 / ((1 - x * x) * derivative * derivative));
+  }
+  return rule;
+}
+
+/// The body's nodal dofs (link-frame components) from its elastic coordinates: dofs = B eta.
+template <class S>
+std::vector<S> beam_dofs(const FlexibleData& f, const S* eta) {
+  std::vector<S> dofs(f.num_dofs(), S(0.0));
+  for (int k = 0; k < f.count(); ++k)
+    for (const auto& [dof, value] : f.basis[k]) dofs[dof] += value * eta[k];
+  return dofs;
+}
+
+/// A node's displacement and small rotation in the link frame.
+template <class S>
+Vec<S> node_translation(const FlexibleData& f, const std::vector<S>& dofs, int node) {
+  Vec<S> t{S(0.0), S(0.0), S(0.0)};
+  for (int a = 0; a < 3; ++a)
+    if (f.dof(node, a) >= 0) t[a] = dofs[f.dof(node, a)];
+  return t;
+}
+template <class S>
+Vec<S> node_rotation(const FlexibleData& f, const std::vector<S>& dofs, int node) {
+  Vec<S> r{S(0.0), S(0.0), S(0.0)};
+  for (int a = 0; a < 3; ++a)
+    if (f.dof(node, 3 + a) >= 0) r[a] = dofs[f.dof(node, 3 + a)];
+  return r;
+}
+
+/// An element's dofs in its own axes, at its two nodes.
+template <class S>
+struct LocalDofs {
+  Vec<S> translation[2], rotation[2];
+};
+
+template <class S>
+LocalDofs<S> local_dofs(const FlexibleData& f, const BeamElementData& e, const std::vector<S>& dofs) {
+  LocalDofs<S> l;
+  const Mat<double> to_local = transpose(e.axes);
+  for (int i = 0; i < 2; ++i) {
+    l.translation[i] = mul(to_local, node_translation(f, dofs, e.node + i));
+    l.rotation[i] = mul(to_local, node_rotation(f, dofs, e.node + i));
+  }
+  return l;
+}
+
+/// Hermite cubics of an element of length L at xi = x / L, and their first
+/// and second derivatives in x.
+inline std::array<double, 4> hermite(double xi, double L) {
+  return {1 - 3 * xi * xi + 2 * xi * xi * xi, L * (xi - 2 * xi * xi + xi * xi * xi), 3 * xi * xi - 2 * xi * xi * xi,
+          L * (xi * xi * xi - xi * xi)};
+}
+inline std::array<double, 4> hermite_x(double xi, double L) {
+  return {6 * (xi * xi - xi) / L, 1 - 4 * xi + 3 * xi * xi, 6 * (xi - xi * xi) / L, 3 * xi * xi - 2 * xi};
+}
+inline std::array<double, 4> hermite_xx(double xi, double L) {
+  return {(12 * xi - 6) / (L * L), (6 * xi - 4) / L, (6 - 12 * xi) / (L * L), (6 * xi - 2) / L};
+}
+
+/// The bending fields' nodal values: v with slopes theta_z, w with slopes -theta_y.
+template <class S>
+std::array<S, 4> v_values(const LocalDofs<S>& l) {
+  return {l.translation[0][1], l.rotation[0][2], l.translation[1][1], l.rotation[1][2]};
+}
+template <class S>
+std::array<S, 4> w_values(const LocalDofs<S>& l) {
+  return {l.translation[0][2], -l.rotation[0][1], l.translation[1][2], -l.rotation[1][1]};
+}
+template <class S>
+S combine(const std::array<double, 4>& h, const std::array<S, 4>& x) {
+  return h[0] * x[0] + h[1] * x[1] + h[2] * x[2] + h[3] * x[3];
+}
+
+/// The displaced position of the beam axis at xi, link frame.
+template <class S>
+Vec<S> beam_point(const BeamElementData& e, const LocalDofs<S>& l, double xi) {
+  const std::array<double, 4> h = hermite(xi, e.length);
+  const Vec<S> local{xi * e.length + (1 - xi) * l.translation[0][0] + xi * l.translation[1][0],
+                     combine(h, v_values(l)), combine(h, w_values(l))};
+  return add(e.origin, mul(e.axes, local));
+}
+
+/// The section's small rotation carried by its rotary inertia: the torsion
+/// only (Euler-Bernoulli beams: the slopes carry none), link frame.
+template <class S>
+Vec<S> section_rotation(const BeamElementData& e, const LocalDofs<S>& l, double xi) {
+  const S twist = (1 - xi) * l.rotation[0][0] + xi * l.rotation[1][0];
+  return mul(e.axes, Vec<S>{twist, S(0.0), S(0.0)});
+}
+
+/// Strain energy of the element: 1/2 int EA u'^2 + E Iz v''^2 + E Iy w''^2 + G J theta_x'^2 dx.
+template <class S>
+S strain_energy(const FlexibleData& f, const BeamElementData& e, const LocalDofs<S>& l) {
+  static const GaussRule rule = gauss_rule(3);  // v''^2 is quadratic
+  const double L = e.length;
+  S energy(0.0);
+  for (std::size_t g = 0; g < rule.points.size(); ++g) {
+    const double xi = rule.points[g], dx = rule.weights[g] * L;
+    const S axial = (l.translation[1][0] - l.translation[0][0]) / L;
+    const std::array<double, 4> hxx = hermite_xx(xi, L);
+    const S v2 = combine(hxx, v_values(l));
+    S density = f.E * f.A * axial * axial + f.E * f.Iz * v2 * v2;
+    if (!f.planar) {
+      const S w2 = combine(hxx, w_values(l));
+      const S twist = (l.rotation[1][0] - l.rotation[0][0]) / L;
+      density += f.E * f.Iy * w2 * w2 + f.G * f.J * twist * twist;
+    }
+    energy += 0.5 * dx * density;
+  }
+  return energy;
+}
+
+/// The axial loads of a chain on the link x axis: a load per unit mass
+/// a(x) = a_const + a_lin x on the beam and its tip mass, and the axial pulls
+/// of the bodies carried on its nodes (the node's x, the force along link x).
+struct AxialLoad {
+  double constant = 0, linear = 0;
+  std::vector<std::pair<double, double>> pulls;
+};
+
+/// The axial force (tension positive) at x:
+/// N(x) = rho A int_x^L a(s) ds + m_tip a(L) + the pulls of the nodes beyond x.
+inline double chain_axial_force(const FlexibleData& f, const AxialLoad& load, double x) {
+  const double L = f.chain_length;
+  double n = f.density * f.A * (load.constant * (L - x) + 0.5 * load.linear * (L * L - x * x)) +
+             f.tip_mass * (load.constant + load.linear * L);
+  for (const auto& [at, pull] : load.pulls)
+    if (x < at) n += pull;
+  return n;
+}
+
+/// 1/2 int N(x) (v'^2 + w'^2) dx over the element: its gradient in the
+/// coordinates is K_G eta.
+template <class S>
+S geometric_energy(const FlexibleData& f, const BeamElementData& e, const LocalDofs<S>& l, const AxialLoad& load) {
+  static const GaussRule rule = gauss_rule(4);  // N quadratic, v'^2 quartic
+  const double L = e.length;
+  S energy(0.0);
+  for (std::size_t g = 0; g < rule.points.size(); ++g) {
+    const double xi = rule.points[g], dx = rule.weights[g] * L;
+    const double N = chain_axial_force(f, load, e.origin[0] + xi * L);
+    const std::array<double, 4> hx = hermite_x(xi, L);
+    const S v1 = combine(hx, v_values(l));
+    S slope2 = v1 * v1;
+    if (!f.planar) {
+      const S w1 = combine(hx, w_values(l));
+      slope2 += w1 * w1;
+    }
+    energy += 0.5 * dx * N * slope2;
+  }
+  return energy;
+}
+
+}  // namespace kanegen::numeric
