@@ -239,6 +239,23 @@ std::vector<std::string> keys_of(const json* s) {
                          "use letters, digits and '_', starting with a letter (a C++ identifier)");
       }
   }
+  if ((starts_with(what, "Expected number less than") || starts_with(what, "Expected number greater than")) && d &&
+      value && value->is_number()) {
+    // A size or value out of range: name the limit.
+    const bool above = starts_with(what, "Expected number less than");
+    const char* key = above ? (d->contains("maximum") ? "maximum" : "exclusiveMaximum")
+                            : (d->contains("minimum") ? "minimum" : "exclusiveMinimum");
+    if (d->contains(key)) {
+      const bool exclusive = std::string(key).rfind("exclusive", 0) == 0;
+      const std::string limit = (*d)[key].dump();
+      const std::string about = description(d);
+      throw ModelError(file, place,
+                       "value " + value->dump() + " is " + (above ? "above" : "below") + " the " +
+                           (above ? "largest" : "smallest") + " allowed, " + limit + (exclusive ? " (excluded)" : ""),
+                       "give a value " + std::string(above ? "<" : ">") + (exclusive ? " " : "= ") + limit +
+                           (about.empty() ? std::string() : " (" + about + ")"));
+    }
+  }
   if (starts_with(what, "String should be no fewer"))
     throw ModelError(file, place, "empty string", "write a number or an expression over the parameters");
   throw ModelError(file, place, "does not match the model format (" + what + ")", "see docs/model-format.md");

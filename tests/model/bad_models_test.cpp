@@ -283,3 +283,39 @@ TEST_CASE("bad URDF: moving joint carrying only a link without inertial", "[bad]
   expect_model_error(bad_model("massless_moving.urdf"), "line 15: <joint name=\"spin\">",
                      "moves only massless bodies", "make the joint fixed");
 }
+
+// ---- flexible bodies and prescribed motion ----
+
+TEST_CASE("bad flexible body: zero elements, and a billion, are refused with the limit", "[bad][flexible]") {
+  expect_model_error(bad_model("flex_zero_elements.json"), "/bodies/0/flexible/elements",
+                     "value 0 is below the smallest allowed, 1", "give a value >= 1");
+  expect_model_error(bad_model("flex_billion_elements.json"), "/bodies/0/flexible/elements",
+                     "value 1000000000 is above the largest allowed, 200", "give a value <= 200");
+}
+
+TEST_CASE("bad flexible body: more modes than the beam has coordinates", "[bad][flexible]") {
+  expect_model_error(bad_model("flex_too_many_modes.json"), "/bodies/0/flexible/modes",
+                     "50 modes asked, but the supported beam of body 'beam' has only 9 coordinates (the limit)",
+                     "ask for at most 9 modes");
+}
+
+TEST_CASE("bad flexible body: a node that does not exist, a node of the ground", "[bad][flexible]") {
+  expect_model_error(bad_model("flex_node_out_of_range.json"), "/joints/1/parent_node",
+                     "node 7 of body 'beam' does not exist", "give a node from 0");
+  expect_model_error(bad_model("flex_node_on_ground.json"), "/joints/1/parent_node", "the ground has no nodes",
+                     "remove \"parent_node\"");
+}
+
+TEST_CASE("bad flexible body: missing section data, a zero-length segment", "[bad][flexible]") {
+  expect_model_error(bad_model("flex_spatial_without_J.json"), "/bodies/0/flexible/section",
+                     "missing 'J' of the spatial beam of body 'beam'", "give \"J\"");
+  expect_model_error(bad_model("flex_zero_length_segment.json"), "/bodies/0/flexible/segments/1",
+                     "zero-length beam segment in body 'beam'", "give a positive length");
+}
+
+TEST_CASE("bad prescribed motion: an undefined name, a damping that cannot apply", "[bad][prescribed]") {
+  expect_model_error(bad_model("prescribed_undefined_name.json"), "/joints/0/prescribed", "unknown name 'Omega'",
+                     "define it under /parameters");
+  expect_model_error(bad_model("prescribed_with_damping.json"), "/joints/0/damping",
+                     "'damping' does not apply to prescribed joint 'hub'", "remove it");
+}
