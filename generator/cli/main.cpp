@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
 
   RunOptions sim_options;
   std::string t_end, dt = "0.01", rtol = "1e-8", atol = "1e-10";
-  std::string integrator = "dopri5", csv, max_steps = "100000";
+  std::string integrator = "dopri5", csv, max_steps = "10000000";
   std::vector<std::string> q0, u0;
   bool stats = false;
   CLI::App* sim = app.add_subcommand("simulate", "generate (cached), compile and integrate the model; write CSV");

@@ -181,10 +181,10 @@ TEST_CASE("a tolerance that cannot be met stops with the time and the state", "[
 }
 
 TEST_CASE("running out of steps says so, with the time and the state", "[reliability][cli]") {
-  // rk4 with dt 0.01 needs 200000 steps; the limit is 100000.
+  // rk4 with dt 0.01 needs 200000 steps; the limit given is 100000.
   const fs::path csv = scratch() / "steps.csv";
   const Result r =
-      kanegen("simulate " + kModel + " --t-end 2000 --integrator rk4 --quiet -o " + csv.string());
+      kanegen("simulate " + kModel + " --t-end 2000 --integrator rk4 --max-steps 100000 --quiet -o " + csv.string());
   CHECK(failed_at(r, "reached max_steps = 100000 before t_end = 2000") == Approx(1000.0));
   rows_kept(csv, 1000.0, 100001);
 }
