@@ -130,8 +130,9 @@ struct Joint {
   /// The node of a flexible parent the joint sits on (-1: the parent's
   /// frame). The joint frame then moves and turns with the node.
   int parent_node = -1;
-  /// A coordinate given as a function of time: no state, its speed and
-  /// acceleration are the derivatives. Empty: a free coordinate.
+  /// A coordinate given as a function of time: it stays in the state, and
+  /// its acceleration is imposed (the second derivative). Empty: a free
+  /// coordinate.
   std::vector<PrescribedPiece> prescribed;
   std::string where;
 

@@ -347,6 +347,10 @@ class Checker {
       if (!(std::sqrt(dx * dx + dy * dy + dz * dz) > 1e-12))
         error(s.where, "zero-length beam segment in body '" + b.name + "'",
               "give a positive length, or an end point away from the previous one");
+      if (!planar && std::abs(dx) < 1e-9 * std::abs(dz) && std::abs(dy) < 1e-9 * std::abs(dz))
+        error(s.where, "a spatial beam segment along the body z axis is not supported (its section axes are "
+                       "taken from the body z axis)",
+              "turn the body frame (the joint origin's rpy) so that the segment is not along z");
       if (planar && std::abs(dz) > 0)
         error(s.where, "a planar beam must lie in the body x-y plane (z = 0)",
               "make the segment's z zero, or use \"formulation\": \"spatial\"");
@@ -395,6 +399,12 @@ class Checker {
         if (j.parent == m_.ground)
           error(at(j.where, "parent_node"), "the ground has no nodes", "remove \"parent_node\"");
         check_node(j.parent_node, j.parent, at(j.where, "parent_node"), "joint '" + j.name + "'");
+        const auto parent =
+            std::find_if(m_.bodies.begin(), m_.bodies.end(), [&](const Body& x) { return x.name == j.parent; });
+        if (parent != m_.bodies.end() && (parent->beam.formulation != BeamFormulation::planar || j.type == JointType::prismatic))
+          error(at(j.where, "parent_node"),
+                "only revolute, continuous and fixed joints on the nodes of planar beams are supported",
+                "attach joint '" + j.name + "' to the body frame (remove \"parent_node\"), or make the beam planar");
       }
     for (PointForce& f : m_.forces)
       if (f.node != -1) check_node(f.node, f.body, at(f.where, "node"), "force '" + f.name + "'");
