@@ -202,7 +202,8 @@ TEST_CASE("cantilever: the static tip deflection from K is P L^3 / (3 E I), and 
   INFO(e.err);
   REQUIRE(e.status == 0);
   double largest = 0;
-  for (const json& fi : json::parse(e.out)["forcing"])
+  const json answer = json::parse(e.out);  // kept alive: a range-for over a temporary's member dangles
+  for (const json& fi : answer["forcing"])
     largest = std::max(largest, std::abs(fi.get<double>()));
   CHECK(largest < 1e-8 * P);
 }
