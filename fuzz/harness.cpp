@@ -131,7 +131,9 @@ void check_invariants(const Model& m) {
     }
     if (!parent_of.emplace(j.child, &j).second) failure("accepted body '" + j.child + "' has two parents");
   }
-  if (!moving) failure("accepted model has no moving joint");
+  // Something must move: a joint, or the elastic coordinates of a flexible body.
+  const bool flexible = std::any_of(m.bodies.begin(), m.bodies.end(), [](const auto& b) { return b.flexible; });
+  if (!moving && !flexible) failure("accepted model has no moving joint and no flexible body");
   for (const auto& b : m.bodies) {
     if (b.mass.is_literal && b.mass.value < 0) failure("accepted body '" + b.name + "' has a negative mass");
     // Every chain of parents ends at the ground, in at most one step per body.
