@@ -7,15 +7,6 @@
 
 namespace kanegen::fem {
 
-int elastic_coordinate_count(const model::FlexibleBeam& beam) {
-  if (beam.modes > 0) return beam.modes;
-  const int per_node = beam.formulation == model::BeamFormulation::planar ? 3 : 6;
-  const int fixed = beam.support == model::BeamSupport::clamped         ? per_node
-                    : beam.support == model::BeamSupport::pinned_pinned ? (per_node == 3 ? 3 : 6)
-                                                                        : 0;
-  return beam.num_nodes() * per_node - fixed;
-}
-
 ModelBeam build_model_beam(const model::Body& body, const std::string& file) {
   const model::FlexibleBeam& f = body.beam;
   const bool planar = f.formulation == model::BeamFormulation::planar;
@@ -27,7 +18,8 @@ ModelBeam build_model_beam(const model::Body& body, const std::string& file) {
   properties.section.J = planar ? 0.0 : f.J;
   properties.material = {f.E, f.G, f.density};
 
-  ModelBeam out{Body(planar ? planar_layout() : spatial_layout()), {}, {}, properties.section, properties.material};
+  ModelBeam out{
+      Body(planar ? planar_layout() : spatial_layout()), {}, {}, properties.section, properties.material};
   int last = out.body.add_node(Eigen::Vector3d::Zero());
   for (const model::BeamSegment& s : f.segments)
     last = add_beam_run(out.body, last, Eigen::Vector3d(s.to[0], s.to[1], s.to[2]), s.elements, properties);
@@ -41,12 +33,15 @@ ModelBeam build_model_beam(const model::Body& body, const std::string& file) {
                           : f.support == model::BeamSupport::pinned_pinned ? Support::kPinnedPinned
                                                                            : Support::kFree;
   const Constraint constraint = support_constraint(out.body, support);
-  out.reduced = f.modes > 0 ? reduce_modal(out.body, constraint, f.modes) : reduce_nodal(out.body, constraint);
+  out.reduced =
+      f.modes > 0 ? reduce_modal(out.body, constraint, f.modes) : reduce_nodal(out.body, constraint);
   if (f.geometric_stiffening && !out.reduced.geometric)
-    throw model::ModelError(file, f.where + "/geometric_stiffening",
-                            "geometric stiffening is available only for a beam that is one straight run along the "
-                            "body's +x axis (body '" + body.name + "')",
-                            "set \"geometric_stiffening\": false, or lay the beam along x");
+    throw model::ModelError(
+        file, f.where + "/geometric_stiffening",
+        "geometric stiffening is available only for a beam that is one straight run along the "
+        "body's +x axis (body '" +
+            body.name + "')",
+        "set \"geometric_stiffening\": false, or lay the beam along x");
 
   const int n = static_cast<int>(out.reduced.names.size());
   if (f.modes > 0 && f.modal_damping > 0) {

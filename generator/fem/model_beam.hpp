@@ -28,7 +28,4 @@ struct ModelBeam {
 /// is not one straight run along the link x axis.
 ModelBeam build_model_beam(const model::Body& body, const std::string& file);
 
-/// The number of elastic coordinates the body will have.
-int elastic_coordinate_count(const model::FlexibleBeam& beam);
-
 }  // namespace kanegen::fem

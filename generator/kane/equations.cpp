@@ -2,9 +2,9 @@
 
 #include <map>
 
+#include "fem/rotating.hpp"
 #include "kane/flexible_body.hpp"
 #include "kane/node_outputs.hpp"
-#include "fem/rotating.hpp"
 #include "kinematics/tree_kinematics.hpp"
 #include "model/model_error.hpp"
 #include "symbolic/vec3.hpp"
@@ -69,8 +69,8 @@ Wrench to_parent(Program& program, const Wrench& w, const Mat3& to_child, const 
 /// its share of their mass block and its wrench to their forcing.
 /// `inertia` and `wrench`: the subtree's, about P's origin in P's axes.
 void add_node_subtree(FlexibleTerms& p, const kinematics::BodyState& child, const SpatialInertia& inertia,
-                      const Wrench& wrench, const kinematics::NodeAttachment& node, const std::vector<ex>& eta,
-                      Program& program) {
+                      const Wrench& wrench, const kinematics::NodeAttachment& node,
+                      const std::vector<ex>& eta, Program& program) {
   const std::size_t n = child.node_partial_angular.size();
   std::vector<Vec3> angular(n), linear(n);
   for (std::size_t l = 0; l < n; ++l) {
@@ -83,17 +83,16 @@ void add_node_subtree(FlexibleTerms& p, const kinematics::BodyState& child, cons
   for (std::size_t k = 0; k < n; ++k) {
     const Vec3& w = child.node_partial_angular[k];
     const Vec3& v = child.node_partial_linear[k];
-    for (std::size_t l = 0; l < n; ++l) p.elastic_mass[k * count + l] += dot(w, angular[l]) + dot(v, linear[l]);
+    for (std::size_t l = 0; l < n; ++l)
+      p.elastic_mass[k * count + l] += dot(w, angular[l]) + dot(v, linear[l]);
     p.elastic_forcing[k] += dot(w, wrench.moment) + dot(v, wrench.force);
     // Geometric stiffening by the subtree's axial pull on the node (its
     // force at u_dot = 0, as for the beam's own inertia loads).
-    if (node.axial_geometric.size()) {
-      Eigen::VectorXd row = node.axial_geometric.row(static_cast<Eigen::Index>(k)).transpose();
-      const double largest = row.cwiseAbs().maxCoeff();
-      for (Eigen::Index m = 0; m < row.size(); ++m)
-        if (std::abs(row[m]) <= 1e-13 * largest) row[m] = 0.0;
-      p.elastic_forcing[k] -= wrench.force[0] * linear_combination(row, eta);
-    }
+    if (node.axial_geometric.size())
+      p.elastic_forcing[k] -=
+          wrench.force[0] *
+          linear_combination(cleaned(node.axial_geometric.row(static_cast<Eigen::Index>(k)).transpose()),
+                             eta);
   }
   for (std::size_t l = 0; l < n; ++l) {
     p.angular_momentum[l] = p.angular_momentum[l] + angular[l];
@@ -103,8 +102,9 @@ void add_node_subtree(FlexibleTerms& p, const kinematics::BodyState& child, cons
 
 }  // namespace
 
-Equations derive_equations(const model::Model& model, const symbolic::Variables& vars, symbolic::Program& program,
-                           MassMatrixMethod method, const FlexibleBodies& flexible) {
+Equations derive_equations(const model::Model& model, const symbolic::Variables& vars,
+                           symbolic::Program& program, MassMatrixMethod method,
+                           const FlexibleBodies& flexible) {
   // Joints on nodes of flexible parents (planar beams only, for now).
   std::map<int, kinematics::NodeAttachment> attachments;
   for (std::size_t k = 0; k < model.joints.size(); ++k) {
@@ -115,10 +115,12 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
       if (model.bodies[b].name == j.parent) parent = static_cast<int>(b);
     const model::Body& body = model.bodies[parent];
     if (body.beam.formulation != model::BeamFormulation::planar || j.type == model::JointType::prismatic)
-      throw model::ModelError(model.source_file, j.where + "/parent_node",
-                              "only revolute, continuous and fixed joints on the nodes of planar beams are supported",
-                              "attach joint '" + j.name + "' to the body frame (remove \"parent_node\"), or make "
-                              "the beam planar");
+      throw model::ModelError(
+          model.source_file, j.where + "/parent_node",
+          "only revolute, continuous and fixed joints on the nodes of planar beams are supported",
+          "attach joint '" + j.name +
+              "' to the body frame (remove \"parent_node\"), or make "
+              "the beam planar");
     const fem::ModelBeam& beam = flexible.at(parent);
     kinematics::NodeAttachment a;
     a.position = beam.body.node_position(j.parent_node);
@@ -127,7 +129,8 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
     a.first = vars.elastic_first[parent];
     if (body.beam.geometric_stiffening) {
       const Eigen::MatrixXd& basis = beam.reduced.basis;
-      a.axial_geometric = basis.transpose() * fem::node_force_geometric_stiffness(beam.body, j.parent_node) * basis;
+      a.axial_geometric =
+          basis.transpose() * fem::node_force_geometric_stiffness(beam.body, j.parent_node) * basis;
     }
     attachments.emplace(static_cast<int>(k), a);
   }
@@ -169,7 +172,8 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
     for (const model::PointForce& pf : model.forces) {
       if (pf.body != body.name || pf.node >= 0) continue;
       const Vec3 given = vec(vars, pf.force);
-      const Vec3 f = pf.frame == model::ForceFrame::body ? given : named(program, mul_transposed(b.rotation, given));
+      const Vec3 f =
+          pf.frame == model::ForceFrame::body ? given : named(program, mul_transposed(b.rotation, given));
       const Vec3 at = vec(vars, pf.point);
       force = force + f;
       torque = torque + cross(at - com, f);
@@ -182,7 +186,8 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
     inertia[i].moment = mass * com;
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c)
-        inertia[i].second[3 * r + c] = central[3 * r + c] + mass * ((r == c ? dot(com, com) : ex(0)) - com[r] * com[c]);
+        inertia[i].second[3 * r + c] =
+            central[3 * r + c] + mass * ((r == c ? dot(com, com) : ex(0)) - com[r] * com[c]);
 
     eq.kinetic_energy += (mass * dot(com_velocity, com_velocity) + dot(b.omega, spin)) / 2;
     eq.potential_energy -= mass * dot(gravity, tree.world_point(b, com));
@@ -200,10 +205,12 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
       const Eigen::MatrixXd t = beam.reduced.node_translation(beam.body, pf.node);
       const Eigen::Vector3d r = beam.body.node_position(pf.node);
       Vec3 at;
-      for (int a = 0; a < 3; ++a) at[a] = symbolic::number(r[a]) + linear_combination(t.row(a).transpose(), eta);
+      for (int a = 0; a < 3; ++a)
+        at[a] = symbolic::number(r[a]) + linear_combination(t.row(a).transpose(), eta);
       at = named(program, at);
       const Vec3 given = vec(vars, pf.force);
-      const Vec3 f = pf.frame == model::ForceFrame::body ? given : named(program, mul_transposed(b.rotation, given));
+      const Vec3 f =
+          pf.frame == model::ForceFrame::body ? given : named(program, mul_transposed(b.rotation, given));
       terms.force = terms.force + f;
       terms.moment = terms.moment + cross(at, f);
       for (int k = 0; k < count; ++k)
@@ -217,8 +224,8 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
     inertia[i].moment = inertia[i].moment + terms.first_moment;
     for (int k = 0; k < 9; ++k) inertia[i].second[k] += terms.second_moment[k];
     eq.kinetic_energy += terms.kinetic_energy;
-    eq.potential_energy += terms.strain_energy -
-                           dot(gravity, terms.mass * b.origin + mul(b.rotation, terms.first_moment));
+    eq.potential_energy +=
+        terms.strain_energy - dot(gravity, terms.mass * b.origin + mul(b.rotation, terms.first_moment));
     elastic.emplace(i, std::move(terms));
   }
 
@@ -238,7 +245,8 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
     const Wrench w = to_parent(program, wrench[i], states[i].to_child, states[i].offset);
     if (states[i].node_first >= 0) {
       const kinematics::NodeAttachment& node = attachments.at(states[i].joint);
-      const std::vector<ex> eta(vars.q.begin() + node.first, vars.q.begin() + node.first + node.rotation_z.size());
+      const std::vector<ex> eta(vars.q.begin() + node.first,
+                                vars.q.begin() + node.first + node.rotation_z.size());
       add_node_subtree(elastic.at(static_cast<std::size_t>(parent)), states[i], moved, w, node, eta, program);
     }
     wrench[parent].moment = wrench[parent].moment + w.moment;
@@ -397,7 +405,9 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
     int r = -1;
     for (std::size_t k = 0; k < model.joints.size(); ++k)
       if (model.joints[k].name == out.joint) r = tree.joints()[k].speed;
-    eq.outputs.push_back(r < 0 ? ex(0) : out.kind == model::OutputKind::joint_coordinate ? ex(vars.q[r]) : ex(vars.u[r]));
+    eq.outputs.push_back(r < 0                                             ? ex(0)
+                         : out.kind == model::OutputKind::joint_coordinate ? ex(vars.q[r])
+                                                                           : ex(vars.u[r]));
     eq.output_names.push_back(out.name);
   }
   return eq;

@@ -9,16 +9,14 @@ namespace {
 
 using GiNaC::ex;
 
-/// The matrix with the round-off of exact zeros (entries below 1e-13 of its
-/// largest) set to zero, so that sparsity shows in the generated code.
+ex number(double v) { return symbolic::number(v); }
+
+}  // namespace
+
 Eigen::MatrixXd cleaned(const Eigen::MatrixXd& m) {
   const double largest = m.size() ? m.cwiseAbs().maxCoeff() : 0.0;
   return m.unaryExpr([&](double v) { return std::abs(v) <= 1e-13 * largest ? 0.0 : v; });
 }
-
-ex number(double v) { return symbolic::number(v); }
-
-}  // namespace
 
 ex linear_combination(const Eigen::Ref<const Eigen::VectorXd>& c, const std::vector<ex>& x) {
   GiNaC::exvector terms;
@@ -27,8 +25,9 @@ ex linear_combination(const Eigen::Ref<const Eigen::VectorXd>& c, const std::vec
   return terms.empty() ? ex(0) : ex(GiNaC::add(terms));
 }
 
-FlexibleTerms flexible_terms(const fem::ModelBeam& beam, bool geometric_stiffening, const kinematics::BodyState& b,
-                             const std::vector<ex>& eta, const std::vector<ex>& eta_dot, Program& program) {
+FlexibleTerms flexible_terms(const fem::ModelBeam& beam, bool geometric_stiffening,
+                             const kinematics::BodyState& b, const std::vector<ex>& eta,
+                             const std::vector<ex>& eta_dot, Program& program) {
   const fem::ReducedBody& body = beam.reduced;
   const fem::InertiaInvariants& inv = body.invariants;
   const int n = inv.n;
@@ -65,19 +64,22 @@ FlexibleTerms flexible_terms(const fem::ModelBeam& beam, bool geometric_stiffeni
   P = named(program, P);
 
   out.mass = number(inv.mass);
-  out.first_moment = named(program, Vec3{number(inv.first_moment[0]), number(inv.first_moment[1]),
-                                         number(inv.first_moment[2])} + rows(S, eta));
+  out.first_moment = named(
+      program, Vec3{number(inv.first_moment[0]), number(inv.first_moment[1]), number(inv.first_moment[2])} +
+                   rows(S, eta));
   const ex trace = P[0] + P[4] + P[8];
   for (int a = 0; a < 3; ++a)
-    for (int c = 0; c < 3; ++c) out.second_moment[3 * a + c] = (a == c ? trace : ex(0)) - P[3 * a + c] + J[3 * a + c];
+    for (int c = 0; c < 3; ++c)
+      out.second_moment[3 * a + c] = (a == c ? trace : ex(0)) - P[3 * a + c] + J[3 * a + c];
   out.second_moment = named(program, out.second_moment);
 
   // Momentum of eta_dot_k = 1: P_k = S_k, L_k = int rho p x N_k + J_Nrot_k.
   for (int k = 0; k < n; ++k) {
     out.linear_momentum.push_back({number(S(0, k)), number(S(1, k)), number(S(2, k))});
-    out.angular_momentum.push_back(named(program, Vec3{D[3 * 1 + 2][k] - D[3 * 2 + 1][k] + number(J_Nrot(0, k)),
-                                                       D[3 * 2 + 0][k] - D[3 * 0 + 2][k] + number(J_Nrot(1, k)),
-                                                       D[3 * 0 + 1][k] - D[3 * 1 + 0][k] + number(J_Nrot(2, k))}));
+    out.angular_momentum.push_back(
+        named(program, Vec3{D[3 * 1 + 2][k] - D[3 * 2 + 1][k] + number(J_Nrot(0, k)),
+                            D[3 * 2 + 0][k] - D[3 * 0 + 2][k] + number(J_Nrot(1, k)),
+                            D[3 * 0 + 1][k] - D[3 * 1 + 0][k] + number(J_Nrot(2, k))}));
   }
 
   // Rest accelerations (u_dot = 0): a_p = a0 + alpha x p + w x (w x p) + 2 w x N eta_dot.
@@ -86,7 +88,8 @@ FlexibleTerms flexible_terms(const fem::ModelBeam& beam, bool geometric_stiffeni
   const Vec3& alpha = b.alpha_rest;
   const Vec3 s_p = out.first_moment;
   const Vec3 s_rate = named(program, rows(S, eta_dot));  // int rho N eta_dot
-  const Vec3 force = named(program, out.mass * a0 + cross(alpha, s_p) + cross(w, cross(w, s_p)) + 2 * cross(w, s_rate));
+  const Vec3 force =
+      named(program, out.mass * a0 + cross(alpha, s_p) + cross(w, cross(w, s_p)) + 2 * cross(w, s_rate));
   // Dw[3a+b] = int rho (N eta_dot)_a p_b = sum_k eta_dot_k D[3b+a][k].
   Mat3 Dw;
   for (int a = 0; a < 3; ++a)
@@ -130,8 +133,10 @@ FlexibleTerms flexible_terms(const fem::ModelBeam& beam, bool geometric_stiffeni
       inertia -= w2 * D[3 * a + a][k];
       for (int c = 0; c < 3; ++c) inertia += ww[3 * a + c] * D[3 * c + a][k];
     }
-    for (int c = 0; c < 3; ++c) inertia += 2 * w[c] * linear_combination(coriolis[c].row(k).transpose(), eta_dot);
-    ex elastic = -linear_combination(K.row(k).transpose(), eta) - linear_combination(C.row(k).transpose(), eta_dot);
+    for (int c = 0; c < 3; ++c)
+      inertia += 2 * w[c] * linear_combination(coriolis[c].row(k).transpose(), eta_dot);
+    ex elastic =
+        -linear_combination(K.row(k).transpose(), eta) - linear_combination(C.row(k).transpose(), eta_dot);
     if (Ku.size())
       elastic -= a_const * linear_combination(Ku.row(k).transpose(), eta) +
                  a_lin * linear_combination(Kl.row(k).transpose(), eta);
@@ -144,11 +149,12 @@ FlexibleTerms flexible_terms(const fem::ModelBeam& beam, bool geometric_stiffeni
   // T = 1/2 (m v0^2 + 2 v0.(w x s_p) + w.I w) + v0.(S eta_dot) + w.(L eta_dot) + 1/2 eta_dot^T M eta_dot.
   const Vec3& v0 = b.velocity;
   ex elastic_kinetic = 0;
-  for (int k = 0; k < n; ++k) elastic_kinetic += eta_dot[k] * linear_combination(M.row(k).transpose(), eta_dot);
+  for (int k = 0; k < n; ++k)
+    elastic_kinetic += eta_dot[k] * linear_combination(M.row(k).transpose(), eta_dot);
   Vec3 l_rate = zero_vec();
   for (int k = 0; k < n; ++k) l_rate = l_rate + eta_dot[k] * out.angular_momentum[k];
-  out.kinetic_energy = (out.mass * dot(v0, v0) + 2 * dot(v0, cross(w, s_p)) + dot(w, spin)) / 2 + dot(v0, s_rate) +
-                       dot(w, l_rate) + elastic_kinetic / 2;
+  out.kinetic_energy = (out.mass * dot(v0, v0) + 2 * dot(v0, cross(w, s_p)) + dot(w, spin)) / 2 +
+                       dot(v0, s_rate) + dot(w, l_rate) + elastic_kinetic / 2;
   ex strain = 0;
   for (int k = 0; k < n; ++k) strain += eta[k] * linear_combination(K.row(k).transpose(), eta);
   out.strain_energy = strain / 2;

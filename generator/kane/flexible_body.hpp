@@ -48,6 +48,11 @@ FlexibleTerms flexible_terms(const fem::ModelBeam& beam, bool geometric_stiffeni
                              const kinematics::BodyState& b, const std::vector<GiNaC::ex>& eta,
                              const std::vector<GiNaC::ex>& eta_dot, symbolic::Program& program);
 
+/// The matrix with the round-off of exact zeros (entries at most 1e-13 of
+/// its largest) set to zero, so that sparsity shows in the generated code.
+/// Applied to a row, the threshold is relative to that row.
+Eigen::MatrixXd cleaned(const Eigen::MatrixXd& m);
+
 /// sum_k c_k x_k over the nonzero c_k, as one sum.
 GiNaC::ex linear_combination(const Eigen::Ref<const Eigen::VectorXd>& c, const std::vector<GiNaC::ex>& x);
 

@@ -23,18 +23,15 @@ Eigen::MatrixXd resultants_at(const fem::ModelBeam& beam, int node) {
       const auto* element = dynamic_cast<const fem::BeamElement*>(placement.element.get());
       if (!element) throw std::logic_error("node outputs: not a beam element");
       Eigen::MatrixXd rows(placement.dofs.size(), beam.reduced.basis.cols());
-      for (std::size_t i = 0; i < placement.dofs.size(); ++i) rows.row(i) = beam.reduced.basis.row(placement.dofs[i]);
+      for (std::size_t i = 0; i < placement.dofs.size(); ++i)
+        rows.row(i) = beam.reduced.basis.row(placement.dofs[i]);
       return element->resultant_matrix(pass == 0 ? 0.0 : 1.0) * placement.T * rows;
     }
   throw std::logic_error("node outputs: node without an element");
 }
 
 ex row_times(const Eigen::MatrixXd& m, int row, const std::vector<ex>& eta) {
-  Eigen::VectorXd c = m.row(row).transpose();
-  const double largest = c.size() ? c.cwiseAbs().maxCoeff() : 0.0;
-  for (Eigen::Index k = 0; k < c.size(); ++k)
-    if (std::abs(c[k]) <= 1e-13 * largest) c[k] = 0.0;
-  return linear_combination(c, eta);
+  return linear_combination(cleaned(m.row(row).transpose()), eta);
 }
 
 }  // namespace
@@ -73,7 +70,8 @@ NodeOutputs node_outputs(const model::Body& body, const fem::ModelBeam& beam, co
       break;
     default: {  // bending_stress: the extreme fibre's |N/A| + |M_z| y/Iz + |M_y| z/Iy
       const model::FlexibleBeam& f = body.beam;
-      ex stress = GiNaC::abs(axial) / symbolic::number(f.A) + GiNaC::abs(moment_z) * symbolic::number(f.fibre_y / f.Iz);
+      ex stress = GiNaC::abs(axial) / symbolic::number(f.A) +
+                  GiNaC::abs(moment_z) * symbolic::number(f.fibre_y / f.Iz);
       if (spatial) stress += GiNaC::abs(moment_y) * symbolic::number(f.fibre_z / f.Iy);
       out.values = {stress};
       out.names = {name};

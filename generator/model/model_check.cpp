@@ -133,7 +133,8 @@ class Checker {
         values["t"] = piece.has_until ? piece.until : 0.0;
         const double value = evaluate_expression(piece.q, values);
         if (!std::isfinite(value))
-          error(piece.where, "prescribed motion '" + piece.q + "' is not finite at t = " + format(values["t"]),
+          error(piece.where,
+                "prescribed motion '" + piece.q + "' is not finite at t = " + format(values["t"]),
                 "check it at the parameters' default values");
       }
   }
@@ -329,42 +330,49 @@ class Checker {
       error(section, "missing 'Iz' of the beam of body '" + b.name + "'",
             "give \"Iz\": int y^2 dA in m^4 (bending in the body x-y plane)");
     if (!planar) {
-      if (f.Iy <= 0) error(section, "missing 'Iy' of the spatial beam of body '" + b.name + "'", "give \"Iy\": int z^2 dA in m^4");
-      if (f.J <= 0) error(section, "missing 'J' of the spatial beam of body '" + b.name + "'", "give \"J\", the torsion constant in m^4");
+      if (f.Iy <= 0)
+        error(section, "missing 'Iy' of the spatial beam of body '" + b.name + "'",
+              "give \"Iy\": int z^2 dA in m^4");
+      if (f.J <= 0)
+        error(section, "missing 'J' of the spatial beam of body '" + b.name + "'",
+              "give \"J\", the torsion constant in m^4");
       if (f.G <= 0)
         error(material, "missing 'G' of the spatial beam of body '" + b.name + "'",
               "give \"G\" (Pa) or \"poisson\", for the torsional stiffness");
     }
     if (f.num_elements() > kMaxElements)
-      error(f.where, "the beam of body '" + b.name + "' has " + std::to_string(f.num_elements()) + " elements, more than the limit of " +
-                         std::to_string(kMaxElements),
+      error(f.where,
+            "the beam of body '" + b.name + "' has " + std::to_string(f.num_elements()) +
+                " elements, more than the limit of " + std::to_string(kMaxElements),
             "use fewer elements, or modal reduction (\"modes\") for a fine mesh");
     std::array<double, 3> from{0.0, 0.0, 0.0};
     for (const BeamSegment& s : f.segments) {
       const double dx = s.to[0] - from[0], dy = s.to[1] - from[1], dz = s.to[2] - from[2];
       for (double v : s.to)
-        if (!std::isfinite(v)) error(s.where, "a coordinate of the segment is not finite", "use finite numbers");
+        if (!std::isfinite(v))
+          error(s.where, "a coordinate of the segment is not finite", "use finite numbers");
       if (!(std::sqrt(dx * dx + dy * dy + dz * dz) > 1e-12))
         error(s.where, "zero-length beam segment in body '" + b.name + "'",
               "give a positive length, or an end point away from the previous one");
       if (!planar && std::abs(dx) < 1e-9 * std::abs(dz) && std::abs(dy) < 1e-9 * std::abs(dz))
-        error(s.where, "a spatial beam segment along the body z axis is not supported (its section axes are "
-                       "taken from the body z axis)",
+        error(s.where,
+              "a spatial beam segment along the body z axis is not supported (its section axes are "
+              "taken from the body z axis)",
               "turn the body frame (the joint origin's rpy) so that the segment is not along z");
       if (planar && std::abs(dz) > 0)
         error(s.where, "a planar beam must lie in the body x-y plane (z = 0)",
               "make the segment's z zero, or use \"formulation\": \"spatial\"");
       from = s.to;
     }
-    if (f.support == BeamSupport::pinned_pinned &&
-        (f.segments.size() != 1 || f.segments[0].to[1] != 0 || f.segments[0].to[2] != 0 || f.segments[0].to[0] <= 0))
+    if (f.support == BeamSupport::pinned_pinned && (f.segments.size() != 1 || f.segments[0].to[1] != 0 ||
+                                                    f.segments[0].to[2] != 0 || f.segments[0].to[0] <= 0))
       error(at(f.where, "support"), "a pinned-pinned beam must be one straight run along the body's +x axis",
             "use \"length\" and \"elements\", or \"clamped\"");
     const int available = free_coordinates(f);
     if (f.modes > available)
       error(at(f.where, "modes"),
-            std::to_string(f.modes) + " modes asked, but the supported beam of body '" + b.name + "' has only " +
-                std::to_string(available) + " coordinates (the limit)",
+            std::to_string(f.modes) + " modes asked, but the supported beam of body '" + b.name +
+                "' has only " + std::to_string(available) + " coordinates (the limit)",
             "ask for at most " + std::to_string(available) + " modes, or use more elements");
     if (f.support == BeamSupport::free)
       error(at(f.where, "support"), "a free beam would have rigid-body modes in its elastic coordinates",
@@ -377,10 +385,14 @@ class Checker {
         if (v != 0) error(at(f.where, "tip"), "a tip inertia without a tip mass", "give the tip a mass");
   }
 
-  /// Resolves kTipNode and checks that `node` is a node of flexible body `body_name`.
-  void check_node(int& node, const std::string& body_name, const std::string& place, const std::string& what) const {
-    const auto b = std::find_if(m_.bodies.begin(), m_.bodies.end(), [&](const Body& x) { return x.name == body_name; });
-    if (b == m_.bodies.end()) return;  // reported by check_references
+  /// Resolves kTipNode and checks that `node` is a node of flexible body
+  /// `body_name`; returns that body (nullptr if there is none of that name,
+  /// which check_tree or check_references report).
+  const Body* check_node(int& node, const std::string& body_name, const std::string& place,
+                         const std::string& what) const {
+    const auto b =
+        std::find_if(m_.bodies.begin(), m_.bodies.end(), [&](const Body& x) { return x.name == body_name; });
+    if (b == m_.bodies.end()) return nullptr;
     if (!b->flexible)
       error(place, what + " names a node of body '" + body_name + "', which is rigid",
             "remove the node, or make '" + body_name + "' flexible");
@@ -389,6 +401,7 @@ class Checker {
     if (node < 0 || node > last)
       error(place, "node " + std::to_string(node) + " of body '" + body_name + "' does not exist",
             "give a node from 0 (at the body frame's origin) to " + std::to_string(last) + " (\"tip\")");
+    return &*b;
   }
 
   void check_flexible() {
@@ -398,21 +411,20 @@ class Checker {
       if (j.parent_node != -1) {
         if (j.parent == m_.ground)
           error(at(j.where, "parent_node"), "the ground has no nodes", "remove \"parent_node\"");
-        check_node(j.parent_node, j.parent, at(j.where, "parent_node"), "joint '" + j.name + "'");
-        const auto parent =
-            std::find_if(m_.bodies.begin(), m_.bodies.end(), [&](const Body& x) { return x.name == j.parent; });
-        if (parent != m_.bodies.end() && (parent->beam.formulation != BeamFormulation::planar || j.type == JointType::prismatic))
+        const Body* parent =
+            check_node(j.parent_node, j.parent, at(j.where, "parent_node"), "joint '" + j.name + "'");
+        if (parent && (parent->beam.formulation != BeamFormulation::planar || j.type == JointType::prismatic))
           error(at(j.where, "parent_node"),
                 "only revolute, continuous and fixed joints on the nodes of planar beams are supported",
-                "attach joint '" + j.name + "' to the body frame (remove \"parent_node\"), or make the beam planar");
+                "attach joint '" + j.name +
+                    "' to the body frame (remove \"parent_node\"), or make the beam planar");
       }
     for (PointForce& f : m_.forces)
       if (f.node != -1) check_node(f.node, f.body, at(f.where, "node"), "force '" + f.name + "'");
     for (Output& o : m_.outputs) {
       if (o.node == -1) continue;
-      check_node(o.node, o.body, at(o.where, "node"), "output '" + o.name + "'");
-      const auto b = std::find_if(m_.bodies.begin(), m_.bodies.end(), [&](const Body& x) { return x.name == o.body; });
-      if (o.kind == OutputKind::bending_stress &&
+      const Body* b = check_node(o.node, o.body, at(o.where, "node"), "output '" + o.name + "'");
+      if (b && o.kind == OutputKind::bending_stress &&
           (b->beam.fibre_y <= 0 || (b->beam.formulation == BeamFormulation::spatial && b->beam.fibre_z <= 0)))
         error(at(o.where, "type"), "a stress output needs the extreme fibre distances of the section",
               "give \"fibre_y\" (and \"fibre_z\" for a spatial beam) under the body's flexible/section");
@@ -422,7 +434,8 @@ class Checker {
   void check_moving_mass() const {
     if (std::none_of(m_.joints.begin(), m_.joints.end(), [](const Joint& j) { return j.moves(); }) &&
         std::none_of(m_.bodies.begin(), m_.bodies.end(), [](const Body& b) { return b.flexible; }))
-      error(root_place_, "the model has no moving joint and no flexible body, so there is nothing to simulate",
+      error(root_place_,
+            "the model has no moving joint and no flexible body, so there is nothing to simulate",
             "make at least one joint revolute, continuous or prismatic");
     // A moving joint that carries only massless bodies gives a zero row in M(q).
     std::map<std::string, std::vector<std::size_t>> children;  // body name -> child bodies

@@ -2,8 +2,9 @@
 // runtime integrators, total energy, and random states.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <kanegen/runtime/integrators.hpp>
-
 #include <random>
 #include <vector>
 
@@ -22,6 +23,35 @@ kanegen::runtime::Rhs rhs(const typename System::Params& p) {
 template <class System>
 double energy(const typename System::Params& p, const double* x) {
   return System::kinetic_energy(p, x, x + System::nq) + System::potential_energy(p, x);
+}
+
+/// Energy drift of a conservative model from state x0 with Dormand-Prince
+/// at rtol 1e-10: max |E(t) - E(0)| over [0, t_end] relative to |E(0)|.
+struct EnergyDrift {
+  double initial_energy = 0.0, relative_drift = 0.0;
+  kanegen::runtime::IntegrationResult result;
+};
+
+template <class System>
+EnergyDrift energy_drift(std::vector<double> x, double t_end, long max_steps) {
+  typename System::Params p;
+  EnergyDrift d;
+  d.initial_energy = energy<System>(p, x.data());
+  double worst = 0.0;
+  kanegen::runtime::IntegrationOptions opt;
+  opt.t_end = t_end;
+  opt.dt = 0.01;
+  opt.rtol = 1e-10;
+  opt.atol = 1e-12;
+  opt.max_steps = max_steps;
+  d.result = kanegen::runtime::integrate(kanegen::runtime::Method::kDopri5, rhs<System>(p), 0.0, x.data(),
+                                         static_cast<int>(x.size()), opt, [&](double, const double* state) {
+                                           worst = std::max(
+                                               worst, std::abs(energy<System>(p, state) - d.initial_energy));
+                                           return true;
+                                         });
+  d.relative_drift = worst / std::abs(d.initial_energy);
+  return d;
 }
 
 /// A state with q uniform in [-q_range, q_range] and u in [-u_range, u_range].

@@ -18,45 +18,23 @@
 #include <string>
 #include <vector>
 
+#include "../support/run_kanegen.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-  int status = -1;
-  std::string out, err;
-};
+using kanegen_test::Result;
+using kanegen_test::slurp;
 
 fs::path scratch() {
-  static const fs::path dir = [] {
-    // One directory per process (ctest runs test cases in parallel processes).
-    fs::path d = fs::path(KANEGEN_SCRATCH_DIR) / std::to_string(::getpid());
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
-  }();
+  static const fs::path dir = kanegen_test::process_scratch(KANEGEN_SCRATCH_DIR);
   return dir;
 }
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-/// Runs kanegen with the given arguments (shell syntax) and a private runner cache.
+/// Runs kanegen (arguments in shell syntax) with a private runner cache.
 Result kanegen(const std::string& args) {
-  const fs::path out = scratch() / "stdout.txt", err = scratch() / "stderr.txt";
-  const std::string command =
-      std::string("KANEGEN_CACHE_DIR='" KANEGEN_SCRATCH_DIR "/cache' '" KANEGEN_EXE "' ") + args + " >'" +
-      out.string() + "' 2>'" + err.string() + "'";
-  const int raw = std::system(command.c_str());
-  Result r;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
+  return kanegen_test::run_kanegen(KANEGEN_EXE, KANEGEN_SCRATCH_DIR "/cache", scratch(), args);
 }
 
 std::string source(const std::string& relative) { return std::string(KANEGEN_SOURCE_DIR) + "/" + relative; }
