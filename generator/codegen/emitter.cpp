@@ -104,6 +104,134 @@ KernelText kernel(const ExpressionGraph& graph, const std::vector<Assignment>& a
   return {printed.body, printed.operations};
 }
 
+// The saddle-point solve of a model with closed loops, by the range-space
+// method: M = L L^T (Cholesky), Y = L^-1 C^T, S = Y^T Y = C M^-1 C^T,
+// S lambda = g - Y^T L^-1 b, then udot = L^-T (L^-1 b + Y lambda). Where
+// loop equations become dependent (a parallelogram's cranks in line, a dead
+// point, or a loop that repeats a constraint) S loses rank; that is
+// reported, not smoothed over: near such a point the loop forces grow
+// without bound and the motion may leave its branch. Loops over the fixed
+// sizes, no allocation.
+const char* const kSaddleSolver = R"(namespace {
+
+constexpr int NS = {{NS}};  // speeds solved for (not prescribed)
+
+// M: NS*NS (overwritten by L), b: NS (the right-hand side; udot on return),
+// C: NC*NS (overwritten by Y^T), g: NC. Returns 0, k > 0 for a non-positive
+// k-th pivot of M, -k when the k-th loop equation is (nearly) a combination
+// of the earlier ones.
+int solve_saddle(double* M, double* b, double* C, const double* g, double* lambda) {
+  for (int j = 0; j < NS; ++j) {
+    double s = M[j * NS + j];
+    for (int k = 0; k < j; ++k) s -= M[j * NS + k] * M[j * NS + k];
+    if (!(s > 0.0)) return j + 1;
+    const double l = std::sqrt(s);
+    M[j * NS + j] = l;
+    for (int i = j + 1; i < NS; ++i) {
+      double v = M[i * NS + j];
+      for (int k = 0; k < j; ++k) v -= M[i * NS + k] * M[j * NS + k];
+      M[i * NS + j] = v / l;
+    }
+  }
+  const auto forward = [M](double* x) {
+    for (int i = 0; i < NS; ++i) {
+      for (int k = 0; k < i; ++k) x[i] -= M[i * NS + k] * x[k];
+      x[i] /= M[i * NS + i];
+    }
+  };
+  forward(b);
+  for (int c = 0; c < NC; ++c) forward(C + c * NS);
+  double S[NC * NC];
+  for (int c = 0; c < NC; ++c) {
+    lambda[c] = g[c];
+    for (int i = 0; i < NS; ++i) lambda[c] -= C[c * NS + i] * b[i];
+    for (int d = 0; d <= c; ++d) {
+      double v = 0.0;
+      for (int i = 0; i < NS; ++i) v += C[c * NS + i] * C[d * NS + i];
+      S[c * NC + d] = v;
+    }
+  }
+  // A pivot small against the largest diagonal entry: a row that is
+  // (nearly) a combination of the others, or one whose Jacobian vanishes
+  // (a parallelogram's cranks in line).
+  double largest = 0.0;
+  for (int j = 0; j < NC; ++j)
+    if (S[j * NC + j] > largest) largest = S[j * NC + j];
+  for (int j = 0; j < NC; ++j) {
+    double s = S[j * NC + j];
+    for (int k = 0; k < j; ++k) s -= S[j * NC + k] * S[j * NC + k];
+    if (!(s > 1e-6 * largest)) return -(j + 1);
+    const double l = std::sqrt(s);
+    S[j * NC + j] = l;
+    for (int i = j + 1; i < NC; ++i) {
+      double v = S[i * NC + j];
+      for (int k = 0; k < j; ++k) v -= S[i * NC + k] * S[j * NC + k];
+      S[i * NC + j] = v / l;
+    }
+  }
+  for (int i = 0; i < NC; ++i) {
+    for (int k = 0; k < i; ++k) lambda[i] -= S[i * NC + k] * lambda[k];
+    lambda[i] /= S[i * NC + i];
+  }
+  for (int i = NC - 1; i >= 0; --i) {
+    for (int k = i + 1; k < NC; ++k) lambda[i] -= S[k * NC + i] * lambda[k];
+    lambda[i] /= S[i * NC + i];
+  }
+  for (int i = 0; i < NS; ++i)
+    for (int c = 0; c < NC; ++c) b[i] += C[c * NS + i] * lambda[c];
+  for (int i = NS - 1; i >= 0; --i) {
+    for (int k = i + 1; k < NS; ++k) b[i] -= M[k * NS + i] * b[k];
+    b[i] /= M[i * NS + i];
+  }
+  return 0;
+}
+
+}  // namespace
+
+)";
+
+const char* const kConstraintDeclarations = R"(constexpr int NC = {{NC}};  ///< loop-closure equations
+
+extern const char* const constraint_names[NC];
+/// Per coordinate: 0 free, 1 an independent coordinate chosen in the model
+/// (assembly keeps it), 2 prescribed.
+extern const int coordinate_roles[{{NQ_ARRAY}}];
+
+/// phi: NC, the loop-closure residuals Phi(q) (position rows in m; the hinge
+/// alignment rows of a spatial revolute are cosines).
+void constraints(const Params& p, const double* q, double* phi);
+/// C: NC*NU, row-major, the Jacobian dPhi/dq (q_dot = u).
+void constraint_jacobian(const Params& p, const double* q, double* C);
+/// gamma: NC, the acceleration level C udot = gamma = -(dC/dt) u.
+void constraint_bias(const Params& p, const double* q, const double* u, double* gamma);
+/// udot: NU and lambda: NC from M udot = f + C^T lambda, C udot = gamma, the
+/// prescribed speeds taking their given acceleration. lambda are the loop
+/// forces (see constraint_names). Returns 0; k > 0 when the k-th pivot of M
+/// is not positive; -k when the loop equations are dependent at q (a
+/// singular configuration: the k-th pivot of C M^-1 C^T vanished).
+int constrained_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
+                         double* udot, double* lambda);
+
+)";
+
+const char* const kConstraintSystem = R"(  static constexpr int nc = NC;
+  static const char* const* constraint_names() { return ::kanegen_models::{{MODEL_NAME}}::constraint_names; }
+  static const int* coordinate_roles() { return ::kanegen_models::{{MODEL_NAME}}::coordinate_roles; }
+  static void constraints(const Params& p, const double* q, double* phi) {
+    ::kanegen_models::{{MODEL_NAME}}::constraints(p, q, phi);
+  }
+  static void constraint_jacobian(const Params& p, const double* q, double* C) {
+    ::kanegen_models::{{MODEL_NAME}}::constraint_jacobian(p, q, C);
+  }
+  static void constraint_bias(const Params& p, const double* q, const double* u, double* gamma) {
+    ::kanegen_models::{{MODEL_NAME}}::constraint_bias(p, q, u, gamma);
+  }
+  static int constrained_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
+                                  double* udot, double* lambda) {
+    return ::kanegen_models::{{MODEL_NAME}}::constrained_dynamics(p, t, q, u, tau, udot, lambda);
+  }
+)";
+
 }  // namespace
 
 std::string fill_template(const std::string& text, const std::map<std::string, std::string>& values) {
@@ -204,13 +332,96 @@ EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, co
   kernels["forward_dynamics"].operations += ldlt + prescribed_operations;
   kernels["forward_dynamics"].body = prescribed_text + kernels["forward_dynamics"].body;
 
+  // Closed loops: the constraint kernels and the saddle-point dynamics.
+  const int nc = eq.loops.size();
+  std::string dynamics_return = "  return 0;\n", constraint_declarations, constraint_system, constraint_definitions,
+              reaction_text;
+  if (nc > 0) {
+    std::vector<Assignment> phi, jac, bias, saddle;
+    for (int c = 0; c < nc; ++c) {
+      phi.push_back({"phi[" + std::to_string(c) + "]", graph.add(eq.loops.phi[c])});
+      bias.push_back({"gamma[" + std::to_string(c) + "]", graph.add(eq.loops.bias[c])});
+      GiNaC::ex g = eq.loops.bias[c];  // gamma - sum_p C_cp a_p over the prescribed speeds p
+      for (int i = 0; i < n; ++i) {
+        const GiNaC::ex& entry = eq.loops.jacobian[c * n + i];
+        jac.push_back({"C[" + std::to_string(c * n + i) + "]", graph.add(entry)});
+        if (local[i] >= 0)
+          saddle.push_back({"Cs[" + std::to_string(c * ns + local[i]) + "]", graph.add(entry)});
+        else
+          g -= entry * vars.prescribed_acceleration.at(i);
+      }
+      saddle.push_back({"g[" + std::to_string(c) + "]", graph.add(g)});
+    }
+    // M over the solved speeds, and the right-hand side f - M_p a_p.
+    for (int i = 0; i < ns; ++i)
+      for (int j = 0; j < ns; ++j)
+        saddle.push_back({"Ms[" + std::to_string(i * ns + j) + "]", graph.add(eq.mass_matrix[solved[i] * n + solved[j]])});
+    for (int i = 0; i < ns; ++i) {
+      GiNaC::ex rhs = eq.forcing[solved[i]];
+      for (const auto& [pi, a] : vars.prescribed_acceleration) rhs -= eq.mass_matrix[solved[i] * n + pi] * a;
+      saddle.push_back({"b[" + std::to_string(i) + "]", graph.add(rhs)});
+    }
+    kernels["constraints"] = kernel(graph, phi);
+    kernels["constraint_jacobian"] = kernel(graph, jac);
+    kernels["constraint_bias"] = kernel(graph, bias);
+    const KernelText body = kernel(graph, saddle);
+    kernels["constrained_dynamics"] = {body.body, body.operations + prescribed_operations};
+    std::map<std::string, std::string> sizes{{"NS", std::to_string(ns)},
+                                             {"NC", std::to_string(nc)},
+                                             {"NQ_ARRAY", array_size(eq.nq)},
+                                             {"MODEL_NAME", model.name}};
+    constraint_declarations = fill_template(kConstraintDeclarations, sizes);
+    constraint_system = fill_template(kConstraintSystem, sizes);
+    std::vector<std::string> roles;
+    for (int role : eq.coordinate_role) roles.push_back(std::to_string(role));
+    std::string roles_text;
+    for (const std::string& r : roles) roles_text += (roles_text.empty() ? "" : ", ") + r;
+    std::string unpack;  // the solved accelerations back into udot, the prescribed ones given
+    for (int i = 0; i < ns; ++i) unpack += "  udot[" + std::to_string(solved[i]) + "] = b[" + std::to_string(i) + "];\n";
+    for (const kane::PrescribedSpeed& ps : eq.prescribed)
+      unpack += "  udot[" + std::to_string(ps.speed) + "] = ap" + std::to_string(ps.speed) + ";\n";
+    constraint_definitions =
+        "\nconst char* const constraint_names[NC] = {" + quoted_list(eq.loops.names) + "};\n" +
+        "const int coordinate_roles[" + array_size(eq.nq) + "] = {" + roles_text + "};\n\n" +
+        "void constraints(const Params& p, const double* q, double* phi) {\n  (void)p;\n  (void)q;\n" +
+        kernels["constraints"].body + "}\n\n" +
+        "void constraint_jacobian(const Params& p, const double* q, double* C) {\n  (void)p;\n  (void)q;\n" +
+        kernels["constraint_jacobian"].body + "}\n\n" +
+        "void constraint_bias(const Params& p, const double* q, const double* u, double* gamma) {\n"
+        "  (void)p;\n  (void)q;\n  (void)u;\n" +
+        kernels["constraint_bias"].body + "}\n\n" + fill_template(kSaddleSolver, sizes) +
+        "int constrained_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,\n"
+        "                         double* udot, double* lambda) {\n"
+        "  (void)p;\n  (void)t;\n  (void)q;\n  (void)u;\n  (void)tau;\n" +
+        prescribed_text + "  double Ms[NS * NS], b[NS], Cs[NC * NS], g[NC];\n" + body.body +
+        "  const int status = solve_saddle(Ms, b, Cs, g, lambda);\n" + unpack + "  return status;\n}\n";
+    kernels["forward_dynamics"] = {"  double lambda[NC];\n  return constrained_dynamics(p, t, q, u, tau, udot, lambda);\n",
+                                   kernels["constrained_dynamics"].operations};
+    solve = {"", 0};
+    dynamics_return.clear();
+    if (!eq.reaction_outputs.empty()) {
+      reaction_text =
+          "  // Loop forces: lambda of the dynamics at these inputs of zero (NaN where it cannot be solved).\n"
+          "  double reaction_udot[NU], lambda[NC];\n  const double no_inputs[" +
+          array_size(eq.input_names.size()) + "] = {};\n" +
+          "  const bool solved = constrained_dynamics(p, t, q, u, no_inputs, reaction_udot, lambda) == 0;\n";
+      for (const auto& [index, row] : eq.reaction_outputs)
+        reaction_text += "  y[" + std::to_string(index) + "] = solved ? lambda[" + std::to_string(row) +
+                         "] : std::nan(\"\");\n";
+    }
+  }
+
   EmittedModel emitted;
   std::string counts;
-  for (const char* name : {"mass_matrix", "forcing", "forward_dynamics", "kinetic_energy", "potential_energy",
-                           "outputs"}) {
+  std::vector<std::string> counted{"mass_matrix", "forcing", "forward_dynamics", "kinetic_energy",
+                                   "potential_energy", "outputs"};
+  if (nc > 0) counted.insert(counted.end(), {"constraints", "constraint_jacobian", "constraint_bias"});
+  for (const std::string& name : counted) {
     emitted.operations[name] = kernels[name].operations;
-    counts += "//   " + std::string(name) + ": " + std::to_string(kernels[name].operations) +
-              (std::string(name) == "forward_dynamics" ? " (" + std::to_string(ldlt) + " of them in LDL^T)" : "") +
+    counts += "//   " + name + ": " + std::to_string(kernels[name].operations) +
+              (name == "forward_dynamics" && nc == 0 ? " (" + std::to_string(ldlt) + " of them in LDL^T)"
+               : name == "forward_dynamics"          ? " (and the saddle-point solve)"
+                                                     : "") +
               "\n";
   }
 
@@ -257,6 +468,11 @@ EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, co
       {"MASS_MATRIX", kernels["mass_matrix"].body},
       {"FORCING", kernels["forcing"].body},
       {"DYNAMICS", kernels["forward_dynamics"].body},
+      {"DYNAMICS_RETURN", dynamics_return},
+      {"CONSTRAINT_DECLARATIONS", constraint_declarations},
+      {"CONSTRAINT_SYSTEM", constraint_system},
+      {"CONSTRAINT_DEFINITIONS", constraint_definitions},
+      {"REACTION_OUTPUTS", reaction_text},
       {"LDLT_SOLVE", solve.body},
       {"COORDINATE_RATES", kernels["coordinate_rates"].body},
       {"KINETIC_ENERGY", kernels["kinetic_energy"].body},

@@ -381,6 +381,13 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
     }
   }
 
+  eq.loops = derive_loop_constraints(model, vars, program, tree, flexible);
+  eq.coordinate_role.assign(eq.nq, 0);
+  for (std::size_t k = 0; k < model.joints.size(); ++k) {
+    const int r = tree.joints()[k].speed;
+    if (r >= 0) eq.coordinate_role[r] = model.joints[k].is_prescribed() ? 2 : model.joints[k].independent ? 1 : 0;
+  }
+
   for (const model::Output& out : model.outputs) {
     if (out.node >= 0) {
       const int body = tree.bodies()[tree.state_of(out.body)].body;
@@ -400,6 +407,15 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
         eq.outputs.push_back(p[i]);
         eq.output_names.push_back(out.name + axes[i]);
       }
+      continue;
+    }
+    if (out.kind == model::OutputKind::reaction) {
+      for (int c = 0; c < eq.loops.size(); ++c)
+        if (eq.loops.loops[c] == out.loop) {
+          eq.reaction_outputs.emplace_back(static_cast<int>(eq.outputs.size()), c);
+          eq.outputs.push_back(0);  // filled from lambda by the emitted code
+          eq.output_names.push_back(out.name + eq.loops.names[c].substr(out.loop.size()));
+        }
       continue;
     }
     int r = -1;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "fem/model_beam.hpp"
+#include "kane/loop_constraints.hpp"
 #include "model/model.hpp"
 #include "symbolic/program.hpp"
 #include "symbolic/variables.hpp"
@@ -39,6 +40,12 @@ struct Equations {
   std::vector<GiNaC::ex> outputs;
   std::vector<std::string> output_names;
   std::vector<std::string> coordinate_names, speed_names, input_names;
+  /// Closed loops: M u_dot = f + C^T lambda with C u_dot = gamma.
+  LoopConstraints loops;
+  /// Per coordinate: 0 free, 1 marked independent (assembly keeps it), 2 prescribed.
+  std::vector<int> coordinate_role;
+  /// Outputs that are constraint forces: (index in outputs, row of lambda).
+  std::vector<std::pair<int, int>> reaction_outputs;
 };
 
 /// Derives the equations from the partial velocities v_r, w_r of the tree:

@@ -29,6 +29,8 @@ class JsonReader {
     for (std::size_t i = 0; i < doc_["joints"].size(); ++i) m.joints.push_back(joint(i));
     if (doc_.contains("forces"))
       for (std::size_t i = 0; i < doc_["forces"].size(); ++i) m.forces.push_back(force(i));
+    if (doc_.contains("loops"))
+      for (std::size_t i = 0; i < doc_["loops"].size(); ++i) m.loops.push_back(loop(i));
     if (doc_.contains("outputs"))
       for (std::size_t i = 0; i < doc_["outputs"].size(); ++i) m.outputs.push_back(output(i));
     return m;
@@ -213,6 +215,12 @@ class JsonReader {
     out.q0 = initial.value("q", 0.0);
     out.u0 = initial.value("u", 0.0);
     if (j.contains("parent_node")) out.parent_node = node(j["parent_node"]);
+    if (j.contains("independent")) {
+      if (!out.moves())
+        error(place + "/independent", "fixed joint '" + out.name + "' has no coordinate to be independent",
+              "remove it");
+      out.independent = j["independent"].get<bool>();
+    }
     if (j.contains("prescribed")) {
       const std::string at = place + "/prescribed";
       if (!out.moves()) error(at, "fixed joint '" + out.name + "' has no coordinate to prescribe", "remove it");
@@ -259,6 +267,41 @@ class JsonReader {
     return f;
   }
 
+  Loop loop(std::size_t i) const {
+    const json& j = doc_["loops"][i];
+    const std::string place = "/loops/" + std::to_string(i);
+    check_names(j, place, "loop");
+    Loop l;
+    l.name = j["name"].get<std::string>();
+    l.where = place;
+    const std::string type = j["type"].get<std::string>();
+    l.type = type == "revolute" ? LoopType::revolute : type == "spherical" ? LoopType::spherical : LoopType::slider;
+    l.planar = j.value("planar", false);
+    if (l.planar && l.type == LoopType::spherical)
+      error(place + "/planar", "a spherical loop joint cannot be planar",
+            "use \"type\": \"revolute\" with \"planar\": true for a hinge of a planar mechanism");
+    l.body = j["body"].get<std::string>();
+    l.body2 = j["body2"].get<std::string>();
+    for (const char* key : {"", "2"}) {
+      const std::string point = std::string("point") + key, node_key = std::string("node") + key;
+      if (j.contains(point) && j.contains(node_key))
+        error(place + "/" + node_key, "both '" + point + "' and '" + node_key + "' given",
+              "give one: a point of the body frame, or a node");
+    }
+    l.point = vec3(j, "point", place, {0, 0, 0});
+    l.point2 = vec3(j, "point2", place, {0, 0, 0});
+    if (j.contains("node")) l.node = node(j["node"]);
+    if (j.contains("node2")) l.node2 = node(j["node2"]);
+    if (j.contains("axis")) {
+      if (l.type == LoopType::spherical)
+        error(place + "/axis", "a spherical loop joint has no axis", "remove \"axis\"");
+      for (int k = 0; k < 3; ++k) l.axis[k] = j["axis"][k].get<double>();
+    } else if (l.type == LoopType::slider) {
+      error(place, "missing required key 'axis' for a slider", "add \"axis\": the sliding direction in the frame of '" + l.body + "'");
+    }
+    return l;
+  }
+
   Output output(std::size_t i) const {
     const json& j = doc_["outputs"][i];
     const std::string place = "/outputs/" + std::to_string(i);
@@ -273,12 +316,14 @@ class JsonReader {
              : type == "node_displacement" ? OutputKind::node_displacement
              : type == "axial_force"       ? OutputKind::axial_force
              : type == "bending_moment"    ? OutputKind::bending_moment
+             : type == "reaction"          ? OutputKind::reaction
                                            : OutputKind::bending_stress;
     const bool node_output = o.kind != OutputKind::point_position && o.kind != OutputKind::joint_coordinate &&
-                             o.kind != OutputKind::joint_speed;
+                             o.kind != OutputKind::joint_speed && o.kind != OutputKind::reaction;
     // Each output type takes its own keys; a key of another type is a mistake.
     const std::vector<std::string> needed = o.kind == OutputKind::point_position ? std::vector<std::string>{"body", "point"}
                                             : node_output ? std::vector<std::string>{"body", "node"}
+                                            : o.kind == OutputKind::reaction ? std::vector<std::string>{"loop"}
                                                           : std::vector<std::string>{"joint"};
     for (const std::string& key : needed)
       if (!j.contains(key))
@@ -286,18 +331,21 @@ class JsonReader {
               key == "joint"  ? "add \"joint\": the joint name"
               : key == "body" ? "add \"body\": the body name"
               : key == "node" ? "add \"node\": a node index of the flexible body, or \"tip\""
+              : key == "loop" ? "add \"loop\": the loop name"
                               : "add \"point\": [x, y, z] in the body frame");
-    for (const char* key : {"body", "point", "joint", "node"})
+    for (const char* key : {"body", "point", "joint", "node", "loop"})
       if (j.contains(key) && std::find(needed.begin(), needed.end(), key) == needed.end())
         error(place + "/" + key, "'" + std::string(key) + "' does not apply to a '" + type + "' output",
               "remove it (a point output takes body and point, joint and joint_speed take joint, the node "
-              "outputs take body and node)");
+              "outputs take body and node, reaction takes loop)");
     if (o.kind == OutputKind::point_position) {
       o.body = j["body"].get<std::string>();
       o.point = vec3(j, "point", place, {0, 0, 0});
     } else if (node_output) {
       o.body = j["body"].get<std::string>();
       o.node = node(j["node"]);
+    } else if (o.kind == OutputKind::reaction) {
+      o.loop = j["loop"].get<std::string>();
     } else {
       o.joint = j["joint"].get<std::string>();
     }

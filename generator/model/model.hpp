@@ -134,6 +134,8 @@ struct Joint {
   /// its acceleration is imposed (the second derivative). Empty: a free
   /// coordinate.
   std::vector<PrescribedPiece> prescribed;
+  /// Marked as an independent coordinate of a closed loop: assembly keeps it.
+  bool independent = false;
   std::string where;
 
   bool moves() const { return type != JointType::fixed; }
@@ -161,7 +163,8 @@ enum class OutputKind {
   node_displacement,  ///< NAME.x, .y, .z: the node's elastic displacement, body axes
   axial_force,        ///< N at the node (tension positive)
   bending_moment,     ///< planar: M_z; spatial: NAME.y, NAME.z (M_y, M_z)
-  bending_stress      ///< peak |N/A| + |M_z| fibre_y/Iz (+ |M_y| fibre_z/Iy) at the node
+  bending_stress,     ///< peak |N/A| + |M_z| fibre_y/Iz (+ |M_y| fibre_z/Iy) at the node
+  reaction            ///< a loop's constraint force, one column per constraint equation
 };
 
 /// A named quantity written by `simulate`. A point position expands to the
@@ -173,6 +176,26 @@ struct Output {
   Vec3 point;         ///< for point_position, in the body frame
   std::string joint;  ///< for joint_coordinate / joint_speed
   int node = -1;      ///< for the node outputs of a flexible body
+  std::string loop;   ///< for reaction
+  std::string where;
+};
+
+enum class LoopType { revolute, spherical, slider };
+
+/// A joint that closes a loop: it ties a point of `body` (or one of its
+/// nodes) to a point of `body2` (or the ground) instead of adding a body to
+/// the tree. Its equations Phi(q) = 0 are position differences in world
+/// axes: planar loops keep the components normal to `axis` (world), a
+/// spatial revolute adds the hinge alignment, a slider keeps the components
+/// across its line.
+struct Loop {
+  std::string name;
+  LoopType type = LoopType::revolute;
+  bool planar = false;
+  std::string body, body2;  ///< body2 may be Model::ground
+  Vec3 point, point2;       ///< in the bodies' frames (world axes for the ground)
+  int node = -1, node2 = -1;
+  std::array<double, 3> axis{0.0, 0.0, 1.0};  ///< unit; see the type
   std::string where;
 };
 
@@ -186,6 +209,7 @@ struct Model {
   std::vector<Joint> joints;  ///< file order; moving joints give the coordinates in this order
   Vec3 gravity;               ///< world frame, m/s^2
   std::vector<PointForce> forces;
+  std::vector<Loop> loops;  ///< loop-closing joints; empty for a tree
   std::vector<Output> outputs;
 };
 

@@ -52,6 +52,7 @@ class Checker {
     check_tree();
     check_references();
     check_flexible();
+    check_loops();
     check_moving_mass();
   }
 
@@ -79,6 +80,7 @@ class Checker {
     unique(m_.joints, "joint");
     unique(m_.forces, "force");
     unique(m_.outputs, "output");
+    unique(m_.loops, "loop");
     for (const Body& b : m_.bodies)
       if (b.name == m_.ground)
         error(at(b.where, "name"), "'" + b.name + "' names the fixed ground, not a body", "rename the body");
@@ -101,6 +103,10 @@ class Checker {
     for (const PointForce& f : m_.forces) {
       for (const Scalar& s : f.point) visit(s);
       for (const Scalar& s : f.force) visit(s);
+    }
+    for (const Loop& l : m_.loops) {
+      for (const Scalar& s : l.point) visit(s);
+      for (const Scalar& s : l.point2) visit(s);
     }
     for (const Output& o : m_.outputs)
       if (o.kind == OutputKind::point_position)
@@ -250,8 +256,8 @@ class Checker {
         error(at(j.where, "child"),
               "body '" + j.child + "' is already the child of joint '" + m_.joints[parent].name + "' (" +
                   m_.joints[parent].where + ")",
-              "a body hangs from exactly one joint (closed loops are not supported), so remove one of the "
-              "joints");
+              "a body hangs from exactly one joint: remove one of the joints, and close the loop with an "
+              "entry in \"loops\" instead");
       parent = static_cast<int>(k);
     }
     for (std::size_t b = 0; b < m_.bodies.size(); ++b)
@@ -292,6 +298,14 @@ class Checker {
         error(at(f.where, "body"), "force '" + f.name + "' names unknown body '" + f.body + "'",
               unknown_body_fix(f.body, false));
     for (const Output& o : m_.outputs) {
+      if (o.kind == OutputKind::reaction) {
+        if (std::none_of(m_.loops.begin(), m_.loops.end(), [&](const Loop& l) { return l.name == o.loop; })) {
+          const std::string guess = nearest(o.loop, names_of(m_.loops));
+          error(at(o.where, "loop"), "output '" + o.name + "' names unknown loop '" + o.loop + "'",
+                guess.empty() ? "use the name of an entry in \"loops\"" : "did you mean '" + guess + "'?");
+        }
+        continue;
+      }
       if (o.kind == OutputKind::point_position || o.node != -1) {
         if (!bodies.count(o.body))
           error(at(o.where, "body"), "output '" + o.name + "' names unknown body '" + o.body + "'",
@@ -429,6 +443,37 @@ class Checker {
         error(at(o.where, "type"), "a stress output needs the extreme fibre distances of the section",
               "give \"fibre_y\" (and \"fibre_z\" for a spatial beam) under the body's flexible/section");
     }
+  }
+
+  void check_loops() {
+    std::set<std::string> bodies;
+    for (const Body& b : m_.bodies) bodies.insert(b.name);
+    for (Loop& l : m_.loops) {
+      const std::string what = "loop '" + l.name + "'";
+      if (!bodies.count(l.body))
+        error(at(l.where, "body"), what + " names unknown body '" + l.body + "'",
+              l.body == m_.ground ? "give the ground as \"body2\" and a moving body as \"body\""
+                                  : unknown_body_fix(l.body, false));
+      if (l.body2 != m_.ground && !bodies.count(l.body2))
+        error(at(l.where, "body2"), what + " names unknown body '" + l.body2 + "'", unknown_body_fix(l.body2, true));
+      if (l.body == l.body2)
+        error(at(l.where, "body2"), what + " ties body '" + l.body + "' to itself", "give two different bodies");
+      if (l.node != -1) check_node(l.node, l.body, at(l.where, "node"), what);
+      if (l.node2 != -1) {
+        if (l.body2 == m_.ground) error(at(l.where, "node2"), "the ground has no nodes", "use \"point2\"");
+        check_node(l.node2, l.body2, at(l.where, "node2"), what);
+      }
+      for (double a : l.axis)
+        if (!std::isfinite(a)) error(at(l.where, "axis"), "number is not finite (" + format(a) + ")", "use a finite value");
+      const double norm = std::sqrt(l.axis[0] * l.axis[0] + l.axis[1] * l.axis[1] + l.axis[2] * l.axis[2]);
+      if (!(norm > 1e-12))
+        error(at(l.where, "axis"), "zero-length axis of " + what, "give the axis a direction, e.g. [0, 0, 1]");
+      for (double& a : l.axis) a /= norm;
+    }
+    if (!m_.loops.empty() &&
+        std::none_of(m_.joints.begin(), m_.joints.end(), [](const Joint& j) { return j.moves() && !j.is_prescribed(); }))
+      error(m_.loops.front().where, "the loops close a mechanism with no free coordinate",
+            "make a joint revolute, continuous or prismatic, and not prescribed");
   }
 
   void check_moving_mass() const {

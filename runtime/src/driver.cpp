@@ -13,6 +13,7 @@
 #include "batch.hpp"
 #include "kanegen/runtime/csv.hpp"
 #include "kanegen/runtime/integrators.hpp"
+#include "kanegen/runtime/loops.hpp"
 #include "kanegen/runtime/text.hpp"
 
 namespace kanegen::runtime {
@@ -185,7 +186,11 @@ void apply_state(const std::vector<Assignment>& sets, const char* option, const 
   }
 }
 
-std::string pivot_message(int pivot) {
+std::string pivot_message(const ModelInfo& info, int pivot) {
+  if (pivot < 0)
+    return std::string("singular configuration: loop equation ") + info.constraint_names[-pivot - 1] +
+           " is (nearly) dependent on the ones before it, so the loop forces grow without bound and the "
+           "motion may change branch; the mechanism is at or near a dead point or a bifurcation (links in line)";
   return "mass matrix is not positive definite (pivot " + std::to_string(pivot) +
          " of its LDL^T factorisation is not positive)";
 }
@@ -325,6 +330,20 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
   apply_state(a.q0, "--q0", "coordinates", info.coordinate_names, nq, x.data());
   apply_state(a.u0, "--u0", "speeds", info.speed_names, info.nu, x.data() + nq);
 
+  // Closed loops: a consistent start, then every accepted step projected.
+  const LoopSolver loops(model);
+  if (loops.active()) {
+    const Assembly assembly = loops.assemble(x.data(), x.data() + nq);
+    const std::string held =
+        assembly.independent.empty()
+            ? std::string("no independent coordinate (the prescribed motion drives the mechanism)")
+            : "independent coordinates " + loops.describe(assembly.independent) +
+                  (assembly.picked ? " (picked by the solver; mark joints \"independent\": true to choose)" : "");
+    print(err, "assembly: " + held + "; loops closed to |phi| = " + format_double(assembly.residual) + " in " +
+                   std::to_string(assembly.iterations) + " Newton steps\n");
+  }
+  std::vector<double> projected(static_cast<size_t>(std::max(n, 1)));
+
   const bool to_stdout = a.output.empty() || a.output == "-";
   auto csv = to_stdout ? std::make_unique<CsvWriter>(out) : std::make_unique<CsvWriter>(a.output);
   if (!csv->ok()) throw RunError(csv->error());
@@ -344,12 +363,17 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
     if (g_stop_signal != 0) return false;
     model.coordinate_rates(xs, xs + nq, xdot);
     const int pivot = model.forward_dynamics(t, xs, xs + nq, tau.data(), xdot + nq);
-    if (pivot != 0) why = pivot_message(pivot);
+    if (pivot != 0) why = pivot_message(info, pivot);
     return pivot == 0;
   };
   const Observer observer = [&](double t, const double* xs) {
     if (g_stop_signal != 0) return false;
     row[0] = t;
+    if (loops.active()) {  // rows between steps come from the dense output: project them too
+      std::copy(xs, xs + n, projected.begin());
+      std::string ignored;
+      if (loops.project(projected.data(), projected.data() + nq, &ignored)) xs = projected.data();
+    }
     std::copy(xs, xs + n, row.begin() + 1);
     model.outputs(t, xs, xs + nq, row.data() + 1 + n);
     t_last_row = t;
@@ -358,6 +382,8 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
   };
   IntegrationOptions opt = a.opt;
   opt.state_names = names;
+  if (loops.active())
+    opt.project = [&](double, double* xs, std::string* why) { return loops.project(xs, xs + nq, why); };
   const IntegrationResult r = integrate(a.method, rhs, 0.0, x.data(), n, opt, observer);
   if (a.stats) {
     std::fprintf(err, "stats: integrator=%s accepted=%ld rejected=%ld rhs_evals=%ld t=%s\n",
@@ -438,7 +464,7 @@ int eval_command(Model& model, ArgScanner& args, std::FILE* out) {
   model.mass_matrix(q.data(), M.data());
   model.forcing(t, q.data(), u.data(), tau.data(), f.data());
   if (const int pivot = model.forward_dynamics(t, q.data(), u.data(), tau.data(), udot.data()); pivot != 0) {
-    throw RunError(pivot_message(pivot) + " at q=" + json_numbers(q.data(), info.nq));
+    throw RunError(pivot_message(info, pivot) + " at q=" + json_numbers(q.data(), info.nq));
   }
   std::string rows = "[";
   for (int i = 0; i < nu; ++i) rows += (i ? ", " : "") + json_numbers(M.data() + i * nu, nu);

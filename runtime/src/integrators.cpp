@@ -102,6 +102,15 @@ class Run {
     }
   }
 
+  // Applies opt.project to an accepted state; false (and a result) if it fails.
+  bool project(double t, double* x) {
+    if (!opt_.project) return true;
+    std::string why;
+    if (opt_.project(t, x, &why)) return true;
+    fail(Status::kRhsFailed, "projection onto the constraints failed: " + why, t, x);
+    return false;
+  }
+
   // Calls the observer; false (and a result) if it asks to stop.
   bool emit(double t, const double* x) {
     if (!observer_ || observer_(t, x)) return true;
@@ -205,6 +214,7 @@ double integrate_rk4(Run& run, double t0, double* x) {
     }
     ++run.stats().accepted;
     t = t_next;
+    if (!run.project(t, x)) return t;
     if (!run.emit(t, x)) return t;
   }
   return t;
@@ -296,6 +306,9 @@ class Dopri5 {
       std::copy(y1_.begin(), y1_.begin() + n_, y_);
       k1_.swap(k7_);  // FSAL: f(t_new, y_new) is the next step's first stage
       t = t_new;
+      if (opt.project) {  // the projected state has its own first stage
+        if (!run_.project(t, y_) || !run_.eval(t, y_, k1_.data())) return t;
+      }
       if (next <= grid.intervals() && grid.time(next) == t) {
         if (!run_.emit(t, y_)) return t;
         ++next;

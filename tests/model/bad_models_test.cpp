@@ -319,3 +319,31 @@ TEST_CASE("bad prescribed motion: an undefined name, a damping that cannot apply
   expect_model_error(bad_model("prescribed_with_damping.json"), "/joints/0/damping",
                      "'damping' does not apply to prescribed joint 'hub'", "remove it");
 }
+
+// ---- Closed loops ----
+
+TEST_CASE("bad loop: unknown body suggests the nearest", "[bad][loops]") {
+  expect_model_error(bad_model("loop_unknown_body.json"), "/loops/0/body2", "loop 'E' names unknown body 'slidr'",
+                     "did you mean 'slider'?");
+}
+
+TEST_CASE("bad loop: a body tied to itself", "[bad][loops]") {
+  expect_model_error(bad_model("loop_self.json"), "/loops/0/body2", "loop 'E' ties body 'rod' to itself",
+                     "give two different bodies");
+}
+
+TEST_CASE("bad loop: a slider needs its axis", "[bad][loops]") {
+  expect_model_error(bad_model("loop_slider_without_axis.json"), "/loops/0", "missing required key 'axis' for a slider",
+                     "add \"axis\": the sliding direction in the frame of 'rod'");
+}
+
+TEST_CASE("bad loop: a spherical loop joint cannot be planar", "[bad][loops]") {
+  expect_model_error(bad_model("loop_spherical_planar.json"), "/loops/0/planar",
+                     "a spherical loop joint cannot be planar",
+                     "use \"type\": \"revolute\" with \"planar\": true for a hinge of a planar mechanism");
+}
+
+TEST_CASE("bad loop: a reaction output of an unknown loop", "[bad][loops]") {
+  expect_model_error(bad_model("loop_unknown_reaction.json"), "/outputs/5/loop", "output 'E_reaction' names unknown loop 'e'",
+                     "did you mean 'E'?");
+}

@@ -43,6 +43,10 @@ struct IntegrationOptions {
   double pi_beta = 0.04;                   ///< PI controller gain (Hairer's beta); 0: plain I controller
   /// Optional names of the state components, used in error messages.
   std::vector<std::string> state_names;
+  /// Optional: called on every accepted state to put it back on a manifold
+  /// (closed loops); false, with the reason, stops the run (kRhsFailed).
+  /// Output between steps comes from the unprojected dense output.
+  std::function<bool(double t, double* x, std::string* why)> project;
 };
 
 struct StepStats {

@@ -3,6 +3,7 @@
 // the runtime library instead of in every model's executable.
 #pragma once
 
+#include <type_traits>
 #include <utility>
 
 #include "kanegen/runtime/system.hpp"
@@ -20,6 +21,10 @@ struct ModelInfo {
   const char* const* parameter_names;
   const double* q0;
   const double* u0;
+  /// Closed loops (0 and null for an open tree).
+  int nc = 0;
+  const char* const* constraint_names = nullptr;
+  const int* coordinate_roles = nullptr;  ///< nq: 0 free, 1 marked independent, 2 prescribed
 };
 
 /// A model together with one set of parameter values. The functions are
@@ -45,6 +50,15 @@ class Model {
   /// starts where its motion does); info().q0, u0 hold it for the defaults.
   virtual void initial_state(double* q, double* u) const = 0;
 
+  // Closed loops (info().nc > 0; no-ops for an open tree).
+  /// phi: nc, the loop-closure residuals.
+  virtual void constraints(const double* q, double* phi) const = 0;
+  /// C: nc*nu, row-major, dPhi/dq.
+  virtual void constraint_jacobian(const double* q, double* C) const = 0;
+  /// udot: nu, lambda: nc; as forward_dynamics, and -k for a singular configuration (nearly dependent loop equations).
+  virtual int constrained_dynamics(double t, const double* q, const double* u, const double* tau, double* udot,
+                                   double* lambda) const = 0;
+
  private:
   ModelInfo info_;
 };
@@ -56,7 +70,8 @@ class SystemModel final : public Model {
   SystemModel()
       : Model(ModelInfo{System::name, System::nq, System::nu, System::ntau, System::ny, System::np,
                         System::coordinate_names(), System::speed_names(), System::input_names(),
-                        System::output_names(), System::parameter_names(), System::q0(), System::u0()}) {}
+                        System::output_names(), System::parameter_names(), System::q0(), System::u0(),
+                        loops<System>::nc, loops<System>::names(), loops<System>::roles()}) {}
 
   bool set_parameter(const char* name, double value) override {
     return System::set_parameter(params_, name, value);
@@ -81,8 +96,45 @@ class SystemModel final : public Model {
     System::outputs(params_, t, q, u, y);
   }
   void initial_state(double* q, double* u) const override { initial_state_of<System>(0, q, u); }
+  void constraints(const double* q, double* phi) const override { loops<System>::constraints(params_, q, phi); }
+  void constraint_jacobian(const double* q, double* C) const override {
+    loops<System>::jacobian(params_, q, C);
+  }
+  int constrained_dynamics(double t, const double* q, const double* u, const double* tau, double* udot,
+                           double* lambda) const override {
+    return loops<System>::dynamics(params_, t, q, u, tau, udot, lambda);
+  }
 
  private:
+  // The loop functions of a System that has closed loops (S::nc), else
+  // those of an open tree.
+  template <class S, class = void>
+  struct loops {
+    static constexpr int nc = 0;
+    static const char* const* names() { return nullptr; }
+    static const int* roles() { return nullptr; }
+    static void constraints(const typename S::Params&, const double*, double*) {}
+    static void jacobian(const typename S::Params&, const double*, double*) {}
+    static int dynamics(const typename S::Params& p, double t, const double* q, const double* u, const double* tau,
+                        double* udot, double*) {
+      return S::forward_dynamics(p, t, q, u, tau, udot);
+    }
+  };
+  template <class S>
+  struct loops<S, std::void_t<decltype(S::nc)>> {
+    static constexpr int nc = S::nc;
+    static const char* const* names() { return S::constraint_names(); }
+    static const int* roles() { return S::coordinate_roles(); }
+    static void constraints(const typename S::Params& p, const double* q, double* phi) { S::constraints(p, q, phi); }
+    static void jacobian(const typename S::Params& p, const double* q, double* C) {
+      S::constraint_jacobian(p, q, C);
+    }
+    static int dynamics(const typename S::Params& p, double t, const double* q, const double* u, const double* tau,
+                        double* udot, double* lambda) {
+      return S::constrained_dynamics(p, t, q, u, tau, udot, lambda);
+    }
+  };
+
   // System::initial_state(p, q, u) if the System has it (generated ones do),
   // else the constant q0 and u0.
   template <class S>

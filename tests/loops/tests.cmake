@@ -1,0 +1,22 @@
+# Closed loops (issue 4): the shipped loop models simulated through the
+# runtime (assembly, projection, energy, exact and reference solutions), the
+# generated constraint kernels against finite differences, and the command
+# line's assembly and singular-configuration errors.
+add_executable(test_loops ${CMAKE_CURRENT_LIST_DIR}/../regression/main.cpp ${CMAKE_CURRENT_LIST_DIR}/test_loops.cpp
+                          ${CMAKE_CURRENT_LIST_DIR}/test_loop_kernels.cpp)
+target_include_directories(test_loops PRIVATE ${CMAKE_CURRENT_LIST_DIR}/../regression)
+target_compile_options(test_loops PRIVATE ${KANEGEN_WARNINGS})
+target_link_libraries(test_loops PRIVATE kanegen_model_four_bar kanegen_model_slider_crank kanegen_model_nfourbar2
+                                         kanegen_runtime Catch2::Catch2)
+catch_discover_tests(test_loops TEST_PREFIX "loops: ")
+
+add_executable(test_loop_cli ${CMAKE_CURRENT_LIST_DIR}/test_loop_cli.cpp)
+target_include_directories(test_loop_cli PRIVATE ${CMAKE_CURRENT_LIST_DIR}/../support)
+target_compile_options(test_loop_cli PRIVATE ${KANEGEN_WARNINGS})
+target_compile_definitions(test_loop_cli PRIVATE KANEGEN_EXE="$<TARGET_FILE:kanegen>"
+                                                 KANEGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+                                                 KANEGEN_CACHE="${CMAKE_CURRENT_BINARY_DIR}/loops_cache"
+                                                 KANEGEN_SCRATCH_DIR="${CMAKE_CURRENT_BINARY_DIR}/loops_scratch")
+target_link_libraries(test_loop_cli PRIVATE Catch2::Catch2)
+add_dependencies(test_loop_cli kanegen kanegen_runtime)
+catch_discover_tests(test_loop_cli TEST_PREFIX "loops cli: ")
