@@ -103,6 +103,15 @@ void for_each_scalar(const Model& m, const std::function<void(const Scalar&)>& v
     for (const Scalar& s : f.point) visit(s);
     for (const Scalar& s : f.force) visit(s);
   }
+  for (const auto& sp : m.springs) {
+    for (const Scalar& s : sp.point) visit(s);
+    for (const Scalar& s : sp.point2) visit(s);
+    visit(sp.stiffness);
+    visit(sp.rest_length);
+    visit(sp.damping);
+  }
+  for (const auto& e : m.joint_efforts)  // an expression may use t: read in load()
+    if (e.value.is_literal) visit(e.value);
   for (const auto& o : m.outputs)
     if (o.kind == model::OutputKind::point_position)
       for (const Scalar& s : o.point) visit(s);
@@ -192,6 +201,9 @@ void load(const std::uint8_t* data, std::size_t size, MemoryFile& file, Load&& l
   for_each_scalar(m, [&](const Scalar& s) {
     if (!s.is_literal) read_with_ginac(variables, s, parameters);
   });
+  parameters.push_back("t");
+  for (const auto& e : m.joint_efforts)
+    if (!e.value.is_literal) read_with_ginac(variables, e.value, parameters);
 }
 
 }  // namespace

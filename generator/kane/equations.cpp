@@ -4,6 +4,7 @@
 
 #include "fem/rotating.hpp"
 #include "kane/flexible_body.hpp"
+#include "kane/force_elements.hpp"
 #include "kane/node_outputs.hpp"
 #include "kinematics/tree_kinematics.hpp"
 #include "model/model_error.hpp"
@@ -229,6 +230,17 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
     elastic.emplace(i, std::move(terms));
   }
 
+  // Springs: their forces at the ends join the bodies' wrenches (so they
+  // also enter the pull of a subtree on a beam node), their energy V.
+  for (const model::Spring& spring : model.springs) {
+    const SpringLoads s = spring_loads(spring, tree, vars, program);
+    for (const PointLoad& load : s.loads) {
+      wrench[load.state].force = wrench[load.state].force + load.force;
+      wrench[load.state].moment = wrench[load.state].moment + cross(load.at, load.force);
+    }
+    eq.potential_energy += s.energy;
+  }
+
   // Composite bodies and subtree wrenches, leaves first, each in its own frame.
   for (std::size_t i = states.size(); i-- > 0;) {
     SpatialInertia& c = inertia[i];
@@ -344,6 +356,8 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
     const ex stretch = vars.q[r] - vars.scalar(joint.spring_rest);
     eq.forcing[r] += -stiffness * stretch - vars.scalar(joint.damping) * vars.u[r];
     if (joint.actuated) eq.forcing[r] += vars.tau[r];
+    for (const model::JointEffort& effort : model.joint_efforts)
+      if (effort.joint == joint.name) eq.forcing[r] += joint_effort_value(effort, vars);
     eq.potential_energy += stiffness * stretch * stretch / 2;
     eq.coordinate_rates.push_back(vars.u[r]);
     eq.coordinate_names.push_back(joint.name);

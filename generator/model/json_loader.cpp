@@ -1,5 +1,8 @@
 #include "model/json_loader.hpp"
 
+#include <algorithm>
+#include <vector>
+
 #include "model/json_document.hpp"
 #include "model/model_check.hpp"
 #include "model/model_error.hpp"
@@ -28,7 +31,7 @@ class JsonReader {
     for (std::size_t i = 0; i < doc_["bodies"].size(); ++i) m.bodies.push_back(body(i));
     for (std::size_t i = 0; i < doc_["joints"].size(); ++i) m.joints.push_back(joint(i));
     if (doc_.contains("forces"))
-      for (std::size_t i = 0; i < doc_["forces"].size(); ++i) m.forces.push_back(force(i));
+      for (std::size_t i = 0; i < doc_["forces"].size(); ++i) read_force(m, i);
     if (doc_.contains("loops"))
       for (std::size_t i = 0; i < doc_["loops"].size(); ++i) m.loops.push_back(loop(i));
     if (doc_.contains("outputs"))
@@ -83,7 +86,7 @@ class JsonReader {
   }
 
   void check_names(const json& item, const std::string& place, const std::string& what) const {
-    for (const char* key : {"name", "body", "parent", "child", "joint"})
+    for (const char* key : {"name", "body", "body2", "parent", "child", "joint"})
       if (item.contains(key))
         check_identifier(item[key].get<std::string>(), place + "/" + key, what + " " + key);
   }
@@ -250,10 +253,73 @@ class JsonReader {
     return out;
   }
 
-  PointForce force(std::size_t i) const {
+  /// One entry of "forces", by its type. The schema lists the keys of all
+  /// types; each type takes its own, and a key of another type is a mistake.
+  void read_force(Model& m, std::size_t i) const {
     const json& j = doc_["forces"][i];
     const std::string place = "/forces/" + std::to_string(i);
     check_names(j, place, "force");
+    const std::string type = j.value("type", "constant");
+    struct Key {
+      const char* name;
+      bool required;
+      const char* fix;  ///< for a missing required key
+    };
+    const std::vector<Key> keys =
+        type == "spring"
+            ? std::vector<Key>{{"body", true, "add \"body\": the body of the spring's first point"},
+                               {"point", false, ""},
+                               {"body2", true, "add \"body2\": the body of its second point, or \"ground\""},
+                               {"point2", false, ""},
+                               {"stiffness", true, "add \"stiffness\": k in N/m"},
+                               {"rest_length", false, ""},
+                               {"damping", false, ""}}
+        : type == "joint_effort"
+            ? std::vector<Key>{{"joint", true, "add \"joint\": the name of a moving joint"},
+                               {"value", true,
+                                "add \"value\": the torque (N m) or force (N), a scalar or an "
+                                "expression in the parameters and t"}}
+            : std::vector<Key>{{"body", true, "add \"body\": the body it acts on"},
+                               {"point", false, ""},
+                               {"node", false, ""},
+                               {"force", true, "add \"force\": [fx, fy, fz] in N"},
+                               {"frame", false, ""}};
+    for (const Key& key : keys)
+      if (key.required && !j.contains(key.name))
+        error(place, "missing required key '" + std::string(key.name) + "' for a '" + type + "' force",
+              key.fix);
+    for (const auto& [key, unused] : j.items()) {
+      if (key == "name" || key == "type") continue;
+      if (std::none_of(keys.begin(), keys.end(), [&](const Key& k) { return key == k.name; }))
+        error(place + "/" + pointer_token(key), "'" + key + "' does not apply to a '" + type + "' force",
+              "remove it (the keys of a constant force: body, point or node, force, frame. Of a "
+              "spring: body, point, body2, point2, stiffness, rest_length, damping. Of a joint_effort: "
+              "joint, value)");
+    }
+    if (type == "spring")
+      m.springs.push_back(spring(j, place));
+    else if (type == "joint_effort")
+      m.joint_efforts.push_back({j["name"].get<std::string>(), j["joint"].get<std::string>(),
+                                 scalar(j["value"], place + "/value"), place});
+    else
+      m.forces.push_back(force(j, place));
+  }
+
+  static Spring spring(const json& j, const std::string& place) {
+    Spring s;
+    s.name = j["name"].get<std::string>();
+    s.where = place;
+    s.body = j["body"].get<std::string>();
+    s.point = vec3(j, "point", place, {0, 0, 0});
+    s.body2 = j["body2"].get<std::string>();
+    s.point2 = vec3(j, "point2", place, {0, 0, 0});
+    s.stiffness = scalar(j["stiffness"], place + "/stiffness");
+    s.rest_length = scalar(j, "rest_length", place, 0.0);
+    s.damping = scalar(j, "damping", place, 0.0);
+    return s;
+  }
+
+  PointForce force(const json& j, const std::string& place) const {
     PointForce f;
     f.name = j["name"].get<std::string>();
     f.where = place;

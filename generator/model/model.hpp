@@ -156,6 +156,35 @@ struct PointForce {
   std::string where;
 };
 
+/// A linear spring-damper between a point of `body` and a point of `body2`
+/// (or of the ground). With l the distance between the points, it pulls
+/// the first point towards the second with -(k (l - l0) + c l_dot) along
+/// the line between them and the second with the opposite force; its
+/// potential energy is k (l - l0)^2 / 2. Singular at l = 0, where the line
+/// (the gradient of l) is undefined.
+struct Spring {
+  std::string name;
+  std::string body;    ///< the first point's body (not the ground)
+  Vec3 point;          ///< in `body`'s frame
+  std::string body2;   ///< a body, or Model::ground
+  Vec3 point2;         ///< in `body2`'s frame; world axes on the ground
+  Scalar stiffness;    ///< k, N/m
+  Scalar rest_length;  ///< l0, m
+  Scalar damping;      ///< c, N s/m
+  std::string where;
+};
+
+/// A generalized force (a torque on a revolute joint, a force on a
+/// prismatic one) on the coordinate of a moving joint: a scalar, or an
+/// expression in the parameters and the time t (so `value.text` may name t,
+/// unlike other scalars).
+struct JointEffort {
+  std::string name;
+  std::string joint;
+  Scalar value;  ///< N m or N
+  std::string where;
+};
+
 enum class OutputKind {
   point_position,
   joint_coordinate,
@@ -208,7 +237,11 @@ struct Model {
   std::vector<Body> bodies;
   std::vector<Joint> joints;  ///< file order; moving joints give the coordinates in this order
   Vec3 gravity;               ///< world frame, m/s^2
+  /// The entries of a model file's "forces", by type (each keeps its
+  /// /forces/N place); their names share one namespace.
   std::vector<PointForce> forces;
+  std::vector<Spring> springs;
+  std::vector<JointEffort> joint_efforts;
   std::vector<Loop> loops;  ///< loop-closing joints; empty for a tree
   std::vector<Output> outputs;
 };

@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <functional>
 #include <map>
 #include <set>
@@ -31,6 +32,12 @@ std::vector<std::string> names_of(const std::vector<Item>& items) {
   for (const Item& i : items) names.push_back(i.name);
   return names;
 }
+
+/// A name and its place, to check names across the kinds of forces.
+struct Named {
+  std::string name;
+  std::string where;
+};
 
 bool all_literal(const std::array<Scalar, 6>& s) {
   for (const Scalar& x : s)
@@ -74,11 +81,26 @@ class Checker {
     }
   }
 
+  /// The names of all entries of "forces", whatever their type, in file order.
+  std::vector<Named> force_names() const {
+    std::vector<Named> names;
+    for (const PointForce& f : m_.forces) names.push_back({f.name, f.where});
+    for (const Spring& s : m_.springs) names.push_back({s.name, s.where});
+    for (const JointEffort& e : m_.joint_efforts) names.push_back({e.name, e.where});
+    const auto index = [](const Named& n) {
+      const auto slash = n.where.rfind('/');
+      return slash == std::string::npos ? 0L : std::strtol(n.where.c_str() + slash + 1, nullptr, 10);
+    };
+    std::stable_sort(names.begin(), names.end(),
+                     [&](const Named& a, const Named& b) { return index(a) < index(b); });
+    return names;
+  }
+
   void check_names() const {
     unique(m_.parameters, "parameter");
     unique(m_.bodies, "body");
     unique(m_.joints, "joint");
-    unique(m_.forces, "force");
+    unique(force_names(), "force");
     unique(m_.outputs, "output");
     unique(m_.loops, "loop");
     for (const Body& b : m_.bodies)
@@ -108,6 +130,16 @@ class Checker {
       for (const Scalar& s : l.point) visit(s);
       for (const Scalar& s : l.point2) visit(s);
     }
+    for (const Spring& s : m_.springs) {
+      for (const Scalar& x : s.point) visit(x);
+      for (const Scalar& x : s.point2) visit(x);
+      visit(s.stiffness);
+      visit(s.rest_length);
+      visit(s.damping);
+    }
+    // A joint effort may also use t: check_joint_efforts reads it.
+    for (const JointEffort& e : m_.joint_efforts)
+      if (e.value.is_literal) visit(e.value);
     for (const Output& o : m_.outputs)
       if (o.kind == OutputKind::point_position)
         for (const Scalar& s : o.point) visit(s);
@@ -145,8 +177,25 @@ class Checker {
       }
   }
 
+  /// A joint effort's value: an expression in the parameters and t, finite at t = 0.
+  void check_joint_efforts() const {
+    std::vector<std::string> names = names_of(m_.parameters);
+    names.push_back("t");
+    ParameterValues values = default_parameter_values(m_);
+    values["t"] = 0.0;
+    for (const JointEffort& e : m_.joint_efforts) {
+      if (e.value.is_literal) continue;
+      if (auto issue = check_expression(e.value.text, names))
+        error(e.value.where, describe_with_caret(e.value.text, *issue), issue->fix + " (and t, the time)");
+      if (!std::isfinite(evaluate_expression(e.value.text, values)))
+        error(e.value.where, "joint effort '" + e.value.text + "' is not finite at t = 0",
+              "check it at the parameters' default values");
+    }
+  }
+
   void check_expressions() const {
     check_prescribed();
+    check_joint_efforts();
     const std::vector<std::string> parameters = names_of(m_.parameters);
     const ParameterValues defaults = default_parameter_values(m_);
     for_each_scalar([&](const Scalar& s) {
@@ -297,6 +346,8 @@ class Checker {
       if (!bodies.count(f.body))
         error(at(f.where, "body"), "force '" + f.name + "' names unknown body '" + f.body + "'",
               unknown_body_fix(f.body, false));
+    for (const Spring& s : m_.springs) check_spring(s, bodies);
+    for (const JointEffort& e : m_.joint_efforts) check_joint_effort(e);
     for (const Output& o : m_.outputs) {
       if (o.kind == OutputKind::reaction) {
         if (std::none_of(m_.loops.begin(), m_.loops.end(), [&](const Loop& l) { return l.name == o.loop; })) {
@@ -324,6 +375,48 @@ class Checker {
               "output '" + o.name + "' names fixed joint '" + o.joint + "', which has no coordinate",
               "name a revolute, continuous or prismatic joint");
     }
+  }
+
+  void check_spring(const Spring& s, const std::set<std::string>& bodies) const {
+    const std::string what = "spring '" + s.name + "'";
+    if (s.body == m_.ground)
+      error(at(s.where, "body"), what + " has its first point on the ground",
+            "swap the ends: give the moving body as \"body\" and the ground as \"body2\"");
+    if (!bodies.count(s.body))
+      error(at(s.where, "body"), what + " names unknown body '" + s.body + "'",
+            unknown_body_fix(s.body, false));
+    if (s.body2 != m_.ground && !bodies.count(s.body2))
+      error(at(s.where, "body2"), what + " names unknown body '" + s.body2 + "'",
+            unknown_body_fix(s.body2, true));
+    if (s.body2 == s.body)
+      error(at(s.where, "body2"), what + " has both points on body '" + s.body + "'",
+            "attach its second point to another body or to '" + m_.ground +
+                "': between two points of one body it is an internal force and does nothing");
+    const auto non_negative = [&](const Scalar& x, const std::string& quantity, const std::string& unit) {
+      if (x.is_literal && x.value < 0)
+        error(x.where, "negative " + quantity + " (" + format(x.value) + ") of " + what,
+              "give a " + quantity + " >= 0, in " + unit);
+    };
+    non_negative(s.stiffness, "stiffness", "N/m");
+    non_negative(s.rest_length, "rest length", "m");
+    non_negative(s.damping, "damping", "N s/m");
+  }
+
+  void check_joint_effort(const JointEffort& e) const {
+    const std::string what = "joint effort '" + e.name + "'";
+    const auto j =
+        std::find_if(m_.joints.begin(), m_.joints.end(), [&](const Joint& x) { return x.name == e.joint; });
+    if (j == m_.joints.end()) {
+      const std::string guess = nearest(e.joint, names_of(m_.joints));
+      error(at(e.where, "joint"), what + " names unknown joint '" + e.joint + "'",
+            guess.empty() ? "use the name of a moving joint" : "did you mean '" + guess + "'?");
+    }
+    if (!j->moves())
+      error(at(e.where, "joint"), what + " acts on fixed joint '" + e.joint + "', which has no coordinate",
+            "name a revolute, continuous or prismatic joint");
+    if (j->is_prescribed())
+      error(at(e.where, "joint"), what + " acts on prescribed joint '" + e.joint + "', whose motion is given",
+            "remove it, or name a joint that is not prescribed");
   }
 
   static constexpr int kMaxElements = 1000;

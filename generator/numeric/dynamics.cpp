@@ -144,6 +144,33 @@ Vec<S> force_point(const Instance& m, const ForceData& force, const std::vector<
   return to_world(poses[force.body], add(f.nodes[force.node], node_translation(f, dofs[force.body], force.node)));
 }
 
+/// A spring's vector from its second end to its first, world axes.
+template <class S>
+Vec<S> spring_vector(const SpringData& spring, const std::vector<Pose<S>>& poses) {
+  return sub(point_position(poses, spring.body, spring.point),
+             point_position(poses, spring.body2, spring.point2));
+}
+
+/// A spring along the motion: its length l and rate l_dot (the derivative of
+/// l itself, not a formula for it), the tension k (l - l0) + c l_dot and the
+/// unit vector from its second end to its first, world axes. Its force on
+/// the first end is -tension * direction.
+struct SpringState {
+  double length = 0, rate = 0, tension = 0;
+  Vec<double> direction;
+};
+
+SpringState spring_state(const SpringData& spring, const std::vector<Pose<D2>>& poses) {
+  const Vec<D2> d = spring_vector(spring, poses);
+  const D2 l = sqrt(dot(d, d));
+  SpringState st;
+  st.length = l.v.v;
+  st.rate = l.v.d;
+  st.tension = spring.stiffness * (st.length - spring.rest_length) + spring.damping * st.rate;
+  st.direction = {d[0].v.v / st.length, d[1].v.v / st.length, d[2].v.v / st.length};
+  return st;
+}
+
 /// Sums over the elements of a flexible body, of those touched (all if null).
 template <class S, class Term>
 S sum_elements(const FlexibleData& f, const std::vector<S>& dofs, const std::vector<char>* touched, Term&& term) {
@@ -162,6 +189,7 @@ double joint_power(const Instance& m, const State& s) {
     power -= j.damping * s.u[r] * s.u[r];
     if (j.actuated) power += s.tau[r] * s.u[r];
   }
+  for (const EffortData& f : m.efforts) power += f.at(s.t) * s.u[f.coordinate];
   return power;
 }
 
@@ -332,6 +360,11 @@ std::vector<AxialLoad> axial_loads(const Instance& m, const PathMotion& rest,
         force = add(force, scale(sub(m.gravity, rest.element[i].a), elements[i].mass));
     for (const ForceData& f : m.forces)
       if (in_subtree(f.body, j.child)) force = add(force, f.body_frame ? mul(rest.body[f.body].r, f.force) : f.force);
+    for (const SpringData& spring : m.springs) {
+      const SpringState st = spring_state(spring, rest.poses);
+      if (in_subtree(spring.body, j.child)) force = sub(force, scale(st.direction, st.tension));
+      if (in_subtree(spring.body2, j.child)) force = add(force, scale(st.direction, st.tension));
+    }
     const FlexibleData& beam = *m.bodies[j.parent].beam;
     load[j.parent].pulls.emplace_back(beam.nodes[j.parent_node][0], mul(transpose(rest.body[j.parent].r), force)[0]);
   }
@@ -353,6 +386,9 @@ struct Partial {
 struct Pass {
   std::vector<std::vector<D1>> dofs;
   Touched touched;
+  /// Per spring: dl/dq_r (the spring's generalized force is -tension dl/dq_r),
+  /// and |v_r| of its two ends summed (the scale of that term's round-off).
+  std::vector<double> spring_slope, spring_reach;
 };
 
 Pass partial_pass(const Instance& m, const State& s, int r, const std::vector<BodyMotion>& motion,
@@ -376,6 +412,13 @@ Pass partial_pass(const Instance& m, const State& s, int r, const std::vector<Bo
   });
   for (std::size_t f = 0; f < m.forces.size(); ++f)
     forces[f][r] = derivative(force_point(m, m.forces[f], poses, pass.dofs));
+  for (const SpringData& spring : m.springs) {
+    const Vec<D1> d = spring_vector(spring, poses);
+    pass.spring_slope.push_back(sqrt(dot(d, d)).d);
+    const Vec<double> v1 = derivative(point_position(poses, spring.body, spring.point));
+    const Vec<double> v2 = derivative(point_position(poses, spring.body2, spring.point2));
+    pass.spring_reach.push_back(std::sqrt(dot(v1, v1)) + std::sqrt(dot(v2, v2)));
+  }
   return pass;
 }
 
@@ -417,7 +460,10 @@ void add_element(const Instance& m, const MassElement& el, const BodyMotion& k, 
 double joint_forcing(const Instance& m, const State& s, int r) {
   if (r >= m.joint_coordinates()) return 0;
   const JointData& j = m.joints[m.coordinate_joint[r]];
-  return -j.stiffness * (s.q[r] - j.rest) - j.damping * s.u[r] + (j.actuated ? s.tau[r] : 0.0);
+  double effort = 0;
+  for (const EffortData& f : m.efforts)
+    if (f.coordinate == r) effort += f.at(s.t);
+  return -j.stiffness * (s.q[r] - j.rest) - j.damping * s.u[r] + (j.actuated ? s.tau[r] : 0.0) + effort;
 }
 
 /// The power of the beams' damping and geometric stiffness forces:
@@ -474,8 +520,11 @@ Evaluation evaluate(const Instance& m, const State& s) {
   for (int b = 0; b < nb; ++b)
     if (m.bodies[b].beam)
       for (int k = 0; k < m.bodies[b].beam->count(); ++k) owner[m.bodies[b].elastic_first + k] = b;
+  std::vector<std::vector<double>> spring_slope(n), spring_reach(n);  // per coordinate, per spring
   for (int r = 0; r < n; ++r) {
     const Pass pass = partial_pass(m, s, r, motion.body, partials, force_partials);
+    spring_slope[r] = pass.spring_slope;
+    spring_reach[r] = pass.spring_reach;
     const int b = owner[r];
     if (b < 0) continue;
     const FlexibleData& f = *m.bodies[b].beam;
@@ -560,12 +609,27 @@ Evaluation evaluate(const Instance& m, const State& s) {
     }
   }
 
+  // Springs: -tension dl/dq_r on each row; the damper's power -c l_dot^2.
+  for (std::size_t i = 0; i < m.springs.size(); ++i) {
+    const SpringData& spring = m.springs[i];
+    const SpringState st = spring_state(spring, motion.poses);
+    for (int r = 0; r < n; ++r) {
+      e.forcing[r] -= st.tension * spring_slope[r][i];
+      e.forcing_magnitude[r] += std::abs(st.tension) * spring_reach[r][i];
+    }
+    const double stretch = st.length - spring.rest_length;
+    e.potential_energy += 0.5 * spring.stiffness * stretch * stretch;
+    e.nonconservative_power -= spring.damping * st.rate * st.rate;
+  }
+
   for (int r = 0; r < m.joint_coordinates(); ++r) {
     const JointData& j = m.joints[m.coordinate_joint[r]];
     const double stretch = s.q[r] - j.rest;
     e.forcing[r] += joint_forcing(m, s, r);
     e.forcing_magnitude[r] += std::abs(j.stiffness * stretch) + std::abs(j.damping * s.u[r]) +
                               (j.actuated ? std::abs(s.tau[r]) : 0.0);
+    for (const EffortData& f : m.efforts)
+      if (f.coordinate == r) e.forcing_magnitude[r] += std::abs(f.at(s.t));
     e.potential_energy += 0.5 * j.stiffness * stretch * stretch;
     if (j.is_prescribed()) {
       e.prescribed.push_back(r);
@@ -668,14 +732,21 @@ double nonconservative_power(const Instance& m, const State& s, const std::vecto
     const Vec<D2> at = force_point(m, f, motion.poses, motion.dofs);
     power += dot(mul(motion.body[f.body].r, f.force), Vec<double>{at[0].d.v, at[1].d.v, at[2].d.v});
   }
+  std::vector<SpringState> springs;
+  for (const SpringData& spring : m.springs) {
+    springs.push_back(spring_state(spring, motion.poses));
+    power -= spring.damping * springs.back().rate * springs.back().rate;
+  }
   // A prescribed speed's constraint force: lambda_p = (M udot - f)_p, minus
   // the generalized force with the inertia forces at udot.
   for (int r = 0; r < m.joint_coordinates(); ++r) {
     if (!m.joints[m.coordinate_joint[r]].is_prescribed()) continue;
     std::vector<std::vector<Partial>> partials(elements.size());
     std::vector<std::vector<Vec<double>>> force_partials(m.forces.size(), std::vector<Vec<double>>(n));
-    partial_pass(m, s, r, motion.body, partials, force_partials);
+    const Pass pass = partial_pass(m, s, r, motion.body, partials, force_partials);
     std::vector<double> forcing(n, 0.0);
+    for (std::size_t i = 0; i < m.springs.size(); ++i)
+      forcing[r] -= springs[i].tension * pass.spring_slope[i];
     for (std::size_t i = 0; i < elements.size(); ++i)
       add_element(m, elements[i], motion.body[elements[i].body], motion.element[i], partials[i], forcing, nullptr,
                   nullptr);

@@ -9,18 +9,22 @@
 // torsion) and its tip mass one more (turning with the tip node). Then
 //   M_rs = sum m v_r.v_s + W_r.I W_s,
 //   f_r  = sum v_r.m (g - a) - W_r.I alpha - w_r.(omega x I Omega)
-//          + sum_forces v_r(point).F - k (q_r - rest) - c u_r + tau_r
+//          + sum_forces v_r(point).F - k (q_r - rest) - c u_r + tau_r + effort_r(t)
+//          - sum_springs (k (l - l0) + c l_dot) dl/dq_r
 //          - dU/deta_r - (K_G eta)_r - (C eta_dot)_r,
 // with v_r = dx/dq_r, w_r = vee(dR/dq_r R^T) the link's partial angular
 // velocity, W_r = w_r + R dtheta/dq_r, Omega = omega + R theta_dot, I = R J R^T,
 // a, alpha the accelerations at u_dot = 0 (second derivatives along u): for a
 // rigid body this is Newton-Euler, for the rotary inertia of the beams it is
 // Lagrange's equations of T = 1/2 Omega.I Omega with J fixed in the link.
-// U is the beam's strain energy, K_G eta the gradient of the energy of the
-// axial force of the inertia loads (and of the pulls of the bodies carried on
-// its nodes), C Rayleigh or modal damping. Independent
-// of the symbolic generator by construction: no GiNaC, no shared code (the
-// basis of the elastic coordinates aside, see instance.hpp).
+// A spring enters through the gradient of its length l(q) (its force is
+// -(...) times the unit vector along it, and v_r.unit = dl/dq_r), with l_dot
+// the derivative of l along u. U is the beam's strain energy, K_G eta the
+// gradient of the energy of the axial force of the inertia loads (and of the
+// pulls of the bodies carried on its nodes, springs included), C Rayleigh or
+// modal damping. Independent of the symbolic generator by construction: no
+// GiNaC, no shared code (the basis of the elastic coordinates aside, see
+// instance.hpp).
 #pragma once
 
 #include <vector>
@@ -50,8 +54,9 @@ struct Evaluation {
   std::vector<int> prescribed;                 ///< the prescribed speeds
   std::vector<double> prescribed_acceleration;  ///< their accelerations at t
   double kinetic_energy = 0;
-  double potential_energy = 0;  ///< gravity, springs, strain energy, -F.p of world-frame forces
-  /// dampers (joints and beams), inputs, body-frame forces, geometric
+  /// gravity, springs (of joints and between points), strain energy, -F.p of world-frame forces
+  double potential_energy = 0;
+  /// dampers (joints, springs and beams), inputs, joint efforts, body-frame forces, geometric
   /// stiffness, and the constraint forces of the prescribed speeds with this udot.
   double nonconservative_power = 0;
   std::vector<double> outputs;  ///< point outputs as x, y, z; joint outputs one each; node outputs

@@ -214,6 +214,24 @@ Instance instantiate(const model::Model& model, const model::ParameterValues& p,
                         d.node >= static_cast<int>(m.bodies[d.body].beam->nodes.size())))
       throw std::invalid_argument("force '" + f.name + "' is at a node the body does not have");
   }
+  for (const model::Spring& s : model.springs)
+    m.springs.push_back({s.name, body_of(s.body, "spring '" + s.name + "'"), vector_value(s.point, p),
+                         body_of(s.body2, "spring '" + s.name + "'"), vector_value(s.point2, p),
+                         model::evaluate(s.stiffness, p), model::evaluate(s.rest_length, p),
+                         model::evaluate(s.damping, p)});
+  for (const model::JointEffort& f : model.joint_efforts) {
+    EffortData d;
+    d.name = f.name;
+    for (const JointData& j : m.joints)
+      if (j.name == f.joint) d.coordinate = j.coordinate;
+    if (d.coordinate < 0) throw std::invalid_argument("joint effort '" + f.name + "' names no moving joint");
+    d.varies = !f.value.is_literal;
+    if (d.varies)
+      d.function = TimeFunction(f.value.text, p);
+    else
+      d.value = f.value.value;
+    m.efforts.push_back(d);
+  }
   for (const model::Output& o : model.outputs) {
     OutputData d;
     d.name = o.name;

@@ -105,6 +105,27 @@ struct ForceData {
   bool body_frame = false;
 };
 
+/// A spring-damper between a point of `body` and one of `body2` (-1: the ground, point in world axes).
+struct SpringData {
+  std::string name;
+  int body = -1;
+  Vec<double> point;  ///< body frame
+  int body2 = -1;
+  Vec<double> point2;  ///< body2's frame, or world
+  double stiffness = 0, rest_length = 0, damping = 0;
+};
+
+/// A generalized force on a joint coordinate: a constant, or a function of t.
+struct EffortData {
+  std::string name;
+  int coordinate = -1;
+  bool varies = false;  ///< use `function`, else `value`
+  double value = 0;
+  TimeFunction function;
+
+  double at(double t) const { return varies ? function(t) : value; }
+};
+
 struct OutputData {
   std::string name;
   model::OutputKind kind = model::OutputKind::point_position;
@@ -122,6 +143,8 @@ struct Instance {
   std::vector<std::string> coordinate_names;  ///< every coordinate: joints, then "<body>.<name>" elastic ones
   Vec<double> gravity;
   std::vector<ForceData> forces;
+  std::vector<SpringData> springs;
+  std::vector<EffortData> efforts;
   std::vector<OutputData> outputs;
 
   /// Joint coordinates, then the elastic coordinates of the flexible bodies in body order.

@@ -221,6 +221,48 @@ TEST_CASE("bad model: force on an unknown body", "[bad][json]") {
                      "use the name of a body");
 }
 
+// ---- springs and joint efforts ----
+
+TEST_CASE("bad spring: an unknown body, the ground as its first end, both ends on one body",
+          "[bad][json][spring]") {
+  expect_model_error(bad_model("spring_unknown_body.json"), "/forces/0/body2",
+                     "spring 'tether' names unknown body 'grund'", "did you mean 'ground'?");
+  expect_model_error(bad_model("spring_on_ground.json"), "/forces/0/body",
+                     "spring 'tether' has its first point on the ground", "swap the ends");
+  expect_model_error(bad_model("spring_same_body.json"), "/forces/0/body2",
+                     "spring 'tether' has both points on body 'slider'",
+                     "attach its second point to another body");
+}
+
+TEST_CASE("bad spring: a negative stiffness, a missing stiffness, a key of another force type",
+          "[bad][json][spring]") {
+  expect_model_error(bad_model("spring_negative_stiffness.json"), "/forces/0/stiffness",
+                     "negative stiffness (-5) of spring 'tether'", "give a stiffness >= 0, in N/m");
+  expect_model_error(bad_model("spring_missing_stiffness.json"), "/forces/0",
+                     "missing required key 'stiffness' for a 'spring' force", "add \"stiffness\": k in N/m");
+  expect_model_error(bad_model("spring_with_force_key.json"), "/forces/0/force",
+                     "'force' does not apply to a 'spring' force", "remove it");
+  expect_model_error(bad_model("force_bad_type.json"), "/forces/0/type", "invalid value \"sprung\"",
+                     "did you mean \"spring\"? use one of constant, spring, joint_effort");
+}
+
+TEST_CASE("bad force: a spring and a joint effort with the same name", "[bad][json][spring]") {
+  expect_model_error(bad_model("force_duplicate_across_types.json"), "/forces/1/name",
+                     "duplicate force name 'tether' (also at /forces/0)", "rename one of them");
+}
+
+TEST_CASE("bad joint effort: a fixed, unknown or prescribed joint, an unknown name", "[bad][json][effort]") {
+  expect_model_error(bad_model("effort_fixed_joint.json"), "/forces/0/joint",
+                     "joint effort 'motor' acts on fixed joint 'mount', which has no coordinate",
+                     "name a revolute, continuous or prismatic joint");
+  expect_model_error(bad_model("effort_unknown_joint.json"), "/forces/0/joint",
+                     "joint effort 'motor' names unknown joint 'spn'", "did you mean 'spin'?");
+  expect_model_error(bad_model("effort_prescribed_joint.json"), "/forces/0/joint",
+                     "joint effort 'motor' acts on prescribed joint 'spin'", "remove it");
+  expect_model_error(bad_model("effort_unknown_name.json"), "/forces/0/value",
+                     "unknown name 'tau1' in expression\n  tau1*t\n  ^", "(and t, the time)");
+}
+
 // ---- files ----
 
 TEST_CASE("bad file: unsupported extension", "[bad]") {

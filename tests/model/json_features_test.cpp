@@ -57,3 +57,37 @@ TEST_CASE("the schema is embedded and matches models/schema", "[json]") {
   text << in.rdbuf();
   CHECK(text.str() == model_schema_text());
 }
+
+TEST_CASE("springs and joint efforts are read by type, constant forces by default",
+          "[json][spring][effort]") {
+  const Model m = load_model(kanegen::model::test::source_path("tests/data/models/force_elements.json"));
+  REQUIRE(m.springs.size() == 2);
+  const Spring& anchor = m.springs[0];
+  CHECK(anchor.name == "anchor");
+  CHECK(anchor.where == "/forces/0");
+  CHECK(anchor.body == "lower");
+  CHECK(anchor.point[2].text == "-l2");
+  CHECK(anchor.body2 == "ground");
+  CHECK(anchor.point2[1].value == Approx(0.2));
+  CHECK(anchor.stiffness.text == "k1");
+  CHECK(anchor.rest_length.text == "l01");
+  CHECK(anchor.damping.text == "c1");
+  CHECK(m.springs[1].body2 == "upper");
+
+  REQUIRE(m.joint_efforts.size() == 2);
+  CHECK(m.joint_efforts[0].joint == "shoulder");
+  CHECK(m.joint_efforts[0].value.text == "A*sin(w*t)");  // t is allowed in an effort
+  CHECK(m.joint_efforts[0].where == "/forces/2");
+  CHECK(m.joint_efforts[1].value.text == "F");
+
+  REQUIRE(m.forces.size() == 1);  // no "type": a constant force
+  CHECK(m.forces[0].name == "wind");
+  CHECK(m.forces[0].where == "/forces/4");
+
+  // Default: no damping.
+  const Model pendulum =
+      load_model(kanegen::model::test::source_path("tests/data/models/spring_pendulum.json"));
+  CHECK(pendulum.springs[0].rest_length.text == "l01");
+  CHECK(pendulum.springs[0].damping.is_literal);
+  CHECK(pendulum.springs[0].damping.value == 0);
+}

@@ -9,3 +9,14 @@ target_link_libraries(test_regression PRIVATE kanegen_model_simple_pendulum kane
                                               kanegen_model_arm7 kanegen_model_chain20
                                               kanegen_test_forced_cart_pendulum Catch2::Catch2 Eigen3::Eigen)
 catch_discover_tests(test_regression TEST_PREFIX "regression: ")
+
+# The force elements (springs, joint efforts) on their own test models, in
+# their own executable so that they build without the large shipped models.
+foreach(name spring_oscillator spring_pendulum effort_rotor)
+  kanegen_add_model(kanegen_test_${name} ${PROJECT_SOURCE_DIR}/tests/data/models/${name}.json)
+endforeach()
+add_executable(test_force_elements ${CMAKE_CURRENT_LIST_DIR}/main.cpp ${CMAKE_CURRENT_LIST_DIR}/test_force_elements.cpp)
+target_compile_options(test_force_elements PRIVATE ${KANEGEN_WARNINGS})
+target_link_libraries(test_force_elements PRIVATE kanegen_test_spring_oscillator kanegen_test_spring_pendulum
+                                                  kanegen_test_effort_rotor Catch2::Catch2)
+catch_discover_tests(test_force_elements TEST_PREFIX "regression: ")

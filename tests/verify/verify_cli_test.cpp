@@ -323,3 +323,59 @@ TEST_CASE("corruption: a wrong prescribed acceleration fails udot, naming it", "
   CHECK(contains(r.err, "error: udot [0] (hub) (prescribed acceleration)"));
   CHECK_FALSE(contains(r.err, "error: forcing"));
 }
+
+// The force elements (tests/data/models/force_elements.json): two
+// spring-dampers, one to a ground point [0.7, 0.2, -1.25], and joint efforts
+// A sin(w t) and F.
+
+TEST_CASE("force elements: verify passes on a copy of the kernels", "[verify][spring][effort]") {
+  const std::string model = "tests/data/models/force_elements.json";
+  const fs::path dir = generate(model, "force_elements_clean");
+  const Result r = kanegen("verify " + source(model) + " --kernels " + dir.string() + " --samples 20 --json");
+  INFO(r.out << r.err);
+  REQUIRE(r.status == 0);
+  CHECK(nlohmann::json::parse(r.out)["passed"].get<bool>());
+}
+
+TEST_CASE("corruption: a spring literal in forcing off by 1e-4 fails, naming forcing",
+          "[verify][corruption][spring]") {
+  const std::string model = "tests/data/models/force_elements.json";
+  const fs::path dir = generate(model, "spring_literal");
+  // The ground point's z, 1.25, only in the spring's terms.
+  corrupt(dir / "force_elements.cpp", "void forcing", "\\b1\\.25\\b", "1.250125");
+  const Result r =
+      kanegen("verify " + source(model) + " --kernels " + dir.string() + " --samples 20 --quiet");
+  INFO(r.out << r.err);
+  CHECK(r.status == 1);
+  CHECK(contains(r.err, "error: forcing ["));
+  CHECK_FALSE(contains(r.err, "error: potential_energy"));
+  CHECK_FALSE(contains(r.err, "error: udot"));  // forward_dynamics is a separate kernel
+}
+
+TEST_CASE("corruption: a spring stiffness in potential_energy fails it and the power balance",
+          "[verify][corruption][spring]") {
+  const std::string model = "tests/data/models/force_elements.json";
+  const fs::path dir = generate(model, "spring_energy");
+  corrupt(dir / "force_elements.cpp", "double potential_energy", "\\bp\\.k2\\b", "(1.001*$&)");
+  const Result r =
+      kanegen("verify " + source(model) + " --kernels " + dir.string() + " --samples 20 --quiet");
+  INFO(r.out << r.err);
+  CHECK(r.status == 1);
+  CHECK(contains(r.err, "error: potential_energy"));
+  CHECK(contains(r.err, "error: power balance"));
+  CHECK_FALSE(contains(r.err, "error: forcing"));
+}
+
+TEST_CASE("corruption: a joint effort off by 1% in forward_dynamics fails udot and the power balance",
+          "[verify][corruption][effort]") {
+  const std::string model = "tests/data/models/force_elements.json";
+  const fs::path dir = generate(model, "effort");
+  corrupt(dir / "force_elements.cpp", "int forward_dynamics", "\\bp\\.A\\b", "(1.01*$&)");
+  const Result r =
+      kanegen("verify " + source(model) + " --kernels " + dir.string() + " --samples 20 --quiet");
+  INFO(r.out << r.err);
+  CHECK(r.status == 1);
+  CHECK(contains(r.err, "error: udot"));
+  CHECK(contains(r.err, "error: power balance"));
+  CHECK_FALSE(contains(r.err, "error: forcing"));
+}
