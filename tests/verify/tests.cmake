@@ -28,9 +28,11 @@ catch_discover_tests(test_verify_cli TEST_PREFIX "verify: ")
 # (prismatic joint, spring, damper, world and body forces) and on the
 # flexible test models: a planar strip on a hub (nodal; modal with modal
 # damping), a spatial beam on a gimbal, a prescribed hub with a free pendulum,
-# a body on a beam tip node (its pull in the geometric stiffness).
+# a body on a beam tip node (its pull in the geometric stiffness), assumed
+# modes on a planar hub arm with a pendulum on its tip and on the spatial gimbal.
 file(GLOB KANEGEN_VERIFY_MODELS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/models/*.json ${PROJECT_SOURCE_DIR}/models/*.urdf)
-foreach(name forced_cart_pendulum flex_hub_planar flex_hub_modal flex_spatial_hub flex_prescribed_hub flex_tip_body)
+foreach(name forced_cart_pendulum flex_hub_planar flex_hub_modal flex_spatial_hub flex_prescribed_hub flex_tip_body
+             assumed_hub assumed_spatial_hub)
   list(APPEND KANEGEN_VERIFY_MODELS ${PROJECT_SOURCE_DIR}/tests/data/models/${name}.json)
 endforeach()
 foreach(model ${KANEGEN_VERIFY_MODELS})
