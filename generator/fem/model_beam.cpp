@@ -1,5 +1,6 @@
 #include "fem/model_beam.hpp"
 
+#include "fem/assumed_modes.hpp"
 #include "fem/beam_body.hpp"
 #include "fem/boundary.hpp"
 #include "fem/rotating.hpp"
@@ -29,12 +30,23 @@ ModelBeam build_model_beam(const model::Body& body, const std::string& file) {
     inertia << i[0], i[3], i[4], i[3], i[1], i[5], i[4], i[5], i[2];
     out.body.add_point_mass(last, f.tip_mass, inertia);
   }
-  const Support support = f.support == model::BeamSupport::clamped         ? Support::kClamped
-                          : f.support == model::BeamSupport::pinned_pinned ? Support::kPinnedPinned
-                                                                           : Support::kFree;
-  const Constraint constraint = support_constraint(out.body, support);
-  out.reduced =
-      f.modes > 0 ? reduce_modal(out.body, constraint, f.modes) : reduce_nodal(out.body, constraint);
+  if (!f.assumed_modes.empty()) {
+    out.reduced = reduce_assumed(out.body, assumed_mode_basis(out.body, f, file));
+    // check_model has made the sampled shapes independent; this guards the
+    // exact basis (a shape independent only through its finite-difference slope).
+    if (out.reduced.mass.llt().info() != Eigen::Success)
+      throw model::ModelError(file, f.where + "/assumed_modes",
+                              "the mass matrix of the assumed modes of body '" + body.name +
+                                  "' is singular: the shapes are linearly dependent at the nodes",
+                              "remove the dependent shapes, or give more \"elements\"");
+  } else {
+    const Support support = f.support == model::BeamSupport::clamped         ? Support::kClamped
+                            : f.support == model::BeamSupport::pinned_pinned ? Support::kPinnedPinned
+                                                                             : Support::kFree;
+    const Constraint constraint = support_constraint(out.body, support);
+    out.reduced =
+        f.modes > 0 ? reduce_modal(out.body, constraint, f.modes) : reduce_nodal(out.body, constraint);
+  }
   if (f.geometric_stiffening && !out.reduced.geometric)
     throw model::ModelError(
         file, f.where + "/geometric_stiffening",

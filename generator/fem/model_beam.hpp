@@ -1,6 +1,7 @@
 // A flexible body of the model (model::FlexibleBeam) as the finite-element
 // layer's reduced body: nodes along the segments, beam elements, the tip
-// mass, the support, nodal or modal coordinates, and the damping matrix.
+// mass, the support, nodal or modal coordinates or assumed modes, and the
+// damping matrix.
 // This is the bridge from the plain model data to the generator.
 #pragma once
 

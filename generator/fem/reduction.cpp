@@ -65,4 +65,11 @@ ReducedBody reduce_modal(const Body& body, const Constraint& constraint, int mod
   return r;
 }
 
+ReducedBody reduce_assumed(const Body& body, Eigen::MatrixXd basis) {
+  if (basis.rows() != body.num_dofs()) throw std::invalid_argument("reduce_assumed: basis size");
+  std::vector<std::string> names;
+  for (Eigen::Index i = 1; i <= basis.cols(); ++i) names.push_back("mode" + std::to_string(i));
+  return reduce_with(body, std::move(basis), std::move(names));
+}
+
 }  // namespace kanegen::fem

@@ -1,5 +1,6 @@
 // One flexible body as the generator will take it: elastic coordinates eta
-// (the free nodal dofs, or the amplitudes of the first k modes), u = B eta,
+// (the free nodal dofs, or the amplitudes of the first k modes or of given
+// shapes), u = B eta,
 // and every matrix and invariant in those coordinates.
 #pragma once
 
@@ -36,5 +37,8 @@ struct ReducedBody {
 ReducedBody reduce_nodal(const Body& body, const Constraint& constraint);
 /// Modal coordinates: the first `modes` modes of the constrained body (canonical orientation).
 ReducedBody reduce_modal(const Body& body, const Constraint& constraint, int modes);
+/// Given shapes (assumed modes): u = basis eta, basis num_dofs x k, no
+/// constraint (the shapes carry it); named "mode1", ... as modal coordinates.
+ReducedBody reduce_assumed(const Body& body, Eigen::MatrixXd basis);
 
 }  // namespace kanegen::fem

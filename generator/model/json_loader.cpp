@@ -119,10 +119,15 @@ class JsonReader {
     if (j.contains("segments") == j.contains("length"))
       error(place, j.contains("length") ? "both 'length' and 'segments' given" : "missing 'length' (or 'segments')",
             "give either \"length\" and \"elements\" (a beam along the body x axis) or \"segments\"");
+    const bool assumed = j.contains("assumed_modes");
+    if (assumed) read_assumed_modes(j, place, f);
     if (j.contains("length")) {
-      if (!j.contains("elements"))
+      // Assumed modes are sampled on an internal mesh, fine unless told otherwise.
+      if (!j.contains("elements") && !assumed)
         error(place, "missing required key 'elements'", "add \"elements\": the number of finite elements (1 to 200)");
-      f.segments.push_back({{j["length"].get<double>(), 0.0, 0.0}, j["elements"].get<int>(), place + "/length"});
+      f.segments.push_back({{j["length"].get<double>(), 0.0, 0.0},
+                            j.value("elements", kAssumedModeElements),
+                            place + "/length"});
     } else {
       if (j.contains("elements"))
         error(place + "/elements", "'elements' does not apply with 'segments'",
@@ -176,6 +181,42 @@ class JsonReader {
     }
     f.geometric_stiffening = j.value("geometric_stiffening", true);
     return f;
+  }
+
+  /// The assumed modes; they carry the boundary conditions and are the
+  /// coordinates, so `support` and `modes` do not apply, and the shapes are
+  /// functions of x along one straight run.
+  void read_assumed_modes(const json& j, const std::string& place, FlexibleBeam& f) const {
+    for (const char* key : {"modes", "support"})
+      if (j.contains(key))
+        error(place + "/" + key, std::string("'") + key + "' does not apply with 'assumed_modes'",
+              std::string("remove \"") + key + "\"" +
+                  (key == std::string("modes")
+                       ? ": the amplitudes of the assumed modes are the coordinates"
+                       : ": the shape functions carry the boundary conditions (make them vanish where the "
+                         "beam is held)"));
+    if (j.contains("segments"))
+      error(place + "/segments", "assumed modes need a straight beam along the body x axis",
+            "give \"length\" (and optionally \"elements\", the mesh they are sampled on) instead of "
+            "\"segments\"");
+    const bool planar = f.formulation == BeamFormulation::planar;
+    const json& modes = j["assumed_modes"];
+    for (std::size_t k = 0; k < modes.size(); ++k) {
+      AssumedMode mode;
+      mode.where = place + "/assumed_modes/" + std::to_string(k);
+      for (const auto& [key, value] : modes[k].items()) {
+        if (planar && (key == "w" || key == "theta"))
+          error(mode.where + "/" + key,
+                "a planar beam has no '" + key + "' (" +
+                    (key == "w" ? "bending out of the x-y plane" : "torsion") + ")",
+                "remove it, or use \"formulation\": \"spatial\"");
+        (key == "u"   ? mode.u
+         : key == "v" ? mode.v
+         : key == "w" ? mode.w
+                      : mode.theta) = value.get<std::string>();
+      }
+      f.assumed_modes.push_back(mode);
+    }
   }
 
   /// A node given as an index or "tip" (kTipNode, resolved by check_model).

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,22 @@ struct BeamSegment {
   std::string where;
 };
 
+/// An assumed mode of a flexible beam (Rayleigh-Ritz): the displacement of
+/// the beam axis per unit amplitude, link-frame components, as expressions
+/// in the beam coordinate x (0 to L, m), the beam length L, pi and the model
+/// parameters. Planar beams have only u and v.
+struct AssumedMode {
+  std::string u = "0";      ///< along link x (axial)
+  std::string v = "0";      ///< along link y (bending in x-y)
+  std::string w = "0";      ///< along link z (bending in x-z; spatial)
+  std::string theta = "0";  ///< the section's rotation about link x (torsion; spatial)
+  std::string where;        ///< JSON pointer of the mode
+};
+
+/// The elements of the internal mesh that carries assumed modes when the
+/// model gives none: the shapes are sampled at its nodes (docs/flexible-bodies.md).
+inline constexpr int kAssumedModeElements = 100;
+
 /// The finite-element beam of a flexible body, in its link (body) frame.
 /// Its data are numbers: the element matrices and the modal basis are
 /// computed when the code is generated. Nodes are numbered from 0 at the
@@ -65,6 +82,12 @@ struct FlexibleBeam {
   double E = 0.0, G = 0.0, density = 0.0;       ///< Pa, Pa, kg/m^3
   BeamSupport support = BeamSupport::clamped;
   int modes = 0;  ///< 0: nodal coordinates; k: the first k modes
+  /// Non-empty: the amplitudes of these shapes are the coordinates (no
+  /// `modes`; `support` does not apply). The beam is one run along +x.
+  std::vector<AssumedMode> assumed_modes;
+  /// The parameters' default values, which the assumed modes are evaluated
+  /// at (filled by check_model; the shapes are fixed when code is generated).
+  std::map<std::string, double> shape_parameters;
   double tip_mass = 0.0;
   std::array<double, 6> tip_inertia{};  ///< about the last node, body axes: ixx, iyy, izz, ixy, ixz, iyz
   double rayleigh_alpha = 0.0, rayleigh_beta = 0.0;  ///< damping alpha M + beta K

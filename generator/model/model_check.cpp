@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "model/assumed_modes_check.hpp"
 #include "model/expression_check.hpp"
 #include "model/expression_eval.hpp"
 #include "model/model_error.hpp"
@@ -484,6 +485,10 @@ class Checker {
     if (f.support == BeamSupport::free)
       error(at(f.where, "support"), "a free beam would have rigid-body modes in its elastic coordinates",
             "use \"clamped\" or \"pinned-pinned\": the joints carry the rigid motion");
+    if (f.modal_damping > 0 && !f.assumed_modes.empty())
+      error(at(f.where, "damping"),
+            "a modal damping ratio needs the beam's own modes, which assumed modes are not",
+            "use \"rayleigh\": [alpha, beta]");
     if (f.modal_damping > 0 && f.modes == 0)
       error(at(f.where, "damping"), "a modal damping ratio needs modal coordinates",
             "add \"modes\": k, or use \"rayleigh\": [alpha, beta]");
@@ -512,8 +517,11 @@ class Checker {
   }
 
   void check_flexible() {
-    for (const Body& b : m_.bodies)
-      if (b.flexible) check_beam(b);
+    for (Body& b : m_.bodies) {
+      if (!b.flexible) continue;
+      check_beam(b);
+      if (!b.beam.assumed_modes.empty()) check_assumed_modes(m_, b);
+    }
     for (Joint& j : m_.joints)
       if (j.parent_node != -1) {
         if (j.parent == m_.ground)

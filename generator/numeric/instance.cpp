@@ -69,7 +69,8 @@ std::shared_ptr<const FlexibleData> beam_data(const model::Body& body, const std
     const auto& i = f.tip_inertia;
     d->tip_inertia = {i[0], i[3], i[4], i[3], i[1], i[5], i[4], i[5], i[2]};
   }
-  d->modal = f.modes > 0;
+  // Assumed modes are amplitudes of whole-beam shapes too: named as modes.
+  d->modal = f.modes > 0 || !f.assumed_modes.empty();
   if (d->modal && f.modal_damping > 0) {
     d->modal_ratio = f.modal_damping;
   } else {

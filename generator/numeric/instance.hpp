@@ -55,7 +55,8 @@ struct BeamElementData {
 /// theta_z; spatial: u_x, u_y, u_z, theta_x, theta_y, theta_z), and
 /// dofs = B eta. B is the one thing taken from the finite-element layer
 /// (build_model_beam of generator/fem): a choice of coordinates (which dofs the support
-/// leaves free, or the modal shapes), not a derivation (docs/verify.md).
+/// leaves free, the modal shapes, or the assumed modes sampled at the nodes), not a
+/// derivation (docs/verify.md).
 struct FlexibleData {
   std::string body;
   bool planar = true;

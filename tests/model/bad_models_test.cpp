@@ -355,6 +355,53 @@ TEST_CASE("bad flexible body: missing section data, a zero-length segment", "[ba
                      "zero-length beam segment in body 'beam'", "give a positive length");
 }
 
+TEST_CASE("bad assumed modes: an expression that does not read, an undefined name, a name that clashes",
+          "[bad][flexible][assumed]") {
+  expect_model_error(bad_model("flex_assumed_syntax.json"), "/bodies/0/flexible/assumed_modes/0/v",
+                     "unclosed '(' in expression\n  sin(pi*x/L\n     ^", "add the matching ')'");
+  expect_model_error(bad_model("flex_assumed_unknown_name.json"), "/bodies/0/flexible/assumed_modes/1/v",
+                     "unknown name 'y' in expression\n  (y/L)^3\n   ^",
+                     "(shape functions also know x, the beam coordinate, and L, the beam length)");
+  expect_model_error(bad_model("flex_assumed_parameter_x.json"), "/parameters/x",
+                     "parameter 'x' clashes with the beam coordinate x of the assumed modes of body 'beam'",
+                     "rename the parameter");
+  expect_model_error(bad_model("flex_assumed_not_finite.json"), "/bodies/0/flexible/assumed_modes/1/v",
+                     "'v' of assumed mode 2 (beam.mode2) is not a real number (NaN) at x = 0",
+                     "make the shape finite on the whole beam");
+  expect_model_error(bad_model("flex_assumed_planar_w.json"), "/bodies/0/flexible/assumed_modes/1/w",
+                     "a planar beam has no 'w'", "use \"formulation\": \"spatial\"");
+}
+
+TEST_CASE("bad assumed modes: zero, rigid, dependent, too many", "[bad][flexible][assumed]") {
+  expect_model_error(bad_model("flex_assumed_zero.json"), "/bodies/0/flexible/assumed_modes/1",
+                     "assumed mode 2 (beam.mode2) is zero at every node of the beam", "or remove it");
+  expect_model_error(bad_model("flex_assumed_rigid.json"), "/bodies/0/flexible/assumed_modes/0",
+                     "assumed mode 1 (beam.mode1) does not deform the beam (constant u, straight v): it is a "
+                     "rigid motion",
+                     "bends, stretches or twists the beam (the joints carry the rigid motion)");
+  expect_model_error(bad_model("flex_assumed_dependent.json"), "/bodies/0/flexible/assumed_modes/2",
+                     "assumed mode 3 (beam.mode3) is linearly dependent on the modes before it: at the nodes "
+                     "it is 2 * mode 1 - 0.5 * mode 2",
+                     "remove it or change it (the shapes are sampled at the 101 nodes of a mesh of 100");
+  expect_model_error(bad_model("flex_assumed_too_many.json"), "/bodies/0/flexible/assumed_modes",
+                     "31 assumed modes in body 'beam', more than the limit of 30", "keep the 30");
+}
+
+TEST_CASE("bad assumed modes: 'support', 'modes', 'segments' and modal damping do not apply",
+          "[bad][flexible][assumed]") {
+  expect_model_error(bad_model("flex_assumed_segments.json"), "/bodies/0/flexible/segments",
+                     "assumed modes need a straight beam along the body x axis", "give \"length\"");
+  expect_model_error(bad_model("flex_assumed_modal_damping.json"), "/bodies/0/flexible/damping",
+                     "a modal damping ratio needs the beam's own modes, which assumed modes are not",
+                     "use \"rayleigh\": [alpha, beta]");
+  expect_model_error(bad_model("flex_assumed_with_support.json"), "/bodies/0/flexible/support",
+                     "'support' does not apply with 'assumed_modes'",
+                     "remove \"support\": the shape functions carry the boundary conditions");
+  expect_model_error(bad_model("flex_assumed_with_modes.json"), "/bodies/0/flexible/modes",
+                     "'modes' does not apply with 'assumed_modes'",
+                     "remove \"modes\": the amplitudes of the assumed modes are the coordinates");
+}
+
 TEST_CASE("bad prescribed motion: an undefined name, a damping that cannot apply", "[bad][prescribed]") {
   expect_model_error(bad_model("prescribed_undefined_name.json"), "/joints/0/prescribed", "unknown name 'Omega'",
                      "define it under /parameters");
