@@ -220,6 +220,12 @@ ordered_json modes_json(const fem::ModalBasis& basis, const std::vector<std::str
 
 int modes(const ModesOptions& options) {
   const model::Model model = model::load_model(options.model, options.build.load);
+  // Linearising on the constraint manifold needs the tangent space of the
+  // loops; the tree's M and K alone would give the modes of the cut mechanism.
+  if (!model.loops.empty())
+    throw model::ModelError(model.source_file, model.loops.front().where,
+                            "kanegen modes does not support closed loops yet",
+                            "compute the modes of the open tree (remove \"loops\"), or simulate the linkage");
   const std::string runner = build_runner(options.model, options.build);
   const json info = runner_info(runner);
   const Problem pb = set_up(model, info, options);

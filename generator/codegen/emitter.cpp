@@ -334,8 +334,8 @@ EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, co
 
   // Closed loops: the constraint kernels and the saddle-point dynamics.
   const int nc = eq.loops.size();
-  std::string dynamics_return = "  return 0;\n", constraint_declarations, constraint_system, constraint_definitions,
-              reaction_text;
+  std::string dynamics_return = "  return 0;\n", constraint_declarations, constraint_system,
+              constraint_definitions, reaction_text;
   if (nc > 0) {
     std::vector<Assignment> phi, jac, bias, saddle;
     for (int c = 0; c < nc; ++c) {
@@ -355,7 +355,8 @@ EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, co
     // M over the solved speeds, and the right-hand side f - M_p a_p.
     for (int i = 0; i < ns; ++i)
       for (int j = 0; j < ns; ++j)
-        saddle.push_back({"Ms[" + std::to_string(i * ns + j) + "]", graph.add(eq.mass_matrix[solved[i] * n + solved[j]])});
+        saddle.push_back(
+            {"Ms[" + std::to_string(i * ns + j) + "]", graph.add(eq.mass_matrix[solved[i] * n + solved[j]])});
     for (int i = 0; i < ns; ++i) {
       GiNaC::ex rhs = eq.forcing[solved[i]];
       for (const auto& [pi, a] : vars.prescribed_acceleration) rhs -= eq.mass_matrix[solved[i] * n + pi] * a;
@@ -377,7 +378,8 @@ EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, co
     std::string roles_text;
     for (const std::string& r : roles) roles_text += (roles_text.empty() ? "" : ", ") + r;
     std::string unpack;  // the solved accelerations back into udot, the prescribed ones given
-    for (int i = 0; i < ns; ++i) unpack += "  udot[" + std::to_string(solved[i]) + "] = b[" + std::to_string(i) + "];\n";
+    for (int i = 0; i < ns; ++i)
+      unpack += "  udot[" + std::to_string(solved[i]) + "] = b[" + std::to_string(i) + "];\n";
     for (const kane::PrescribedSpeed& ps : eq.prescribed)
       unpack += "  udot[" + std::to_string(ps.speed) + "] = ap" + std::to_string(ps.speed) + ";\n";
     constraint_definitions =
@@ -390,18 +392,21 @@ EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, co
         "void constraint_bias(const Params& p, const double* q, const double* u, double* gamma) {\n"
         "  (void)p;\n  (void)q;\n  (void)u;\n" +
         kernels["constraint_bias"].body + "}\n\n" + fill_template(kSaddleSolver, sizes) +
-        "int constrained_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,\n"
+        "int constrained_dynamics(const Params& p, double t, const double* q, const double* u, const double* "
+        "tau,\n"
         "                         double* udot, double* lambda) {\n"
         "  (void)p;\n  (void)t;\n  (void)q;\n  (void)u;\n  (void)tau;\n" +
         prescribed_text + "  double Ms[NS * NS], b[NS], Cs[NC * NS], g[NC];\n" + body.body +
         "  const int status = solve_saddle(Ms, b, Cs, g, lambda);\n" + unpack + "  return status;\n}\n";
-    kernels["forward_dynamics"] = {"  double lambda[NC];\n  return constrained_dynamics(p, t, q, u, tau, udot, lambda);\n",
-                                   kernels["constrained_dynamics"].operations};
+    kernels["forward_dynamics"] = {
+        "  double lambda[NC];\n  return constrained_dynamics(p, t, q, u, tau, udot, lambda);\n",
+        kernels["constrained_dynamics"].operations};
     solve = {"", 0};
     dynamics_return.clear();
     if (!eq.reaction_outputs.empty()) {
       reaction_text =
-          "  // Loop forces: lambda of the dynamics at these inputs of zero (NaN where it cannot be solved).\n"
+          "  // Loop forces: lambda of the dynamics at these inputs of zero (NaN where it cannot be "
+          "solved).\n"
           "  double reaction_udot[NU], lambda[NC];\n  const double no_inputs[" +
           array_size(eq.input_names.size()) + "] = {};\n" +
           "  const bool solved = constrained_dynamics(p, t, q, u, no_inputs, reaction_udot, lambda) == 0;\n";
@@ -413,8 +418,8 @@ EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, co
 
   EmittedModel emitted;
   std::string counts;
-  std::vector<std::string> counted{"mass_matrix", "forcing", "forward_dynamics", "kinetic_energy",
-                                   "potential_energy", "outputs"};
+  std::vector<std::string> counted{"mass_matrix",    "forcing",          "forward_dynamics",
+                                   "kinetic_energy", "potential_energy", "outputs"};
   if (nc > 0) counted.insert(counted.end(), {"constraints", "constraint_jacobian", "constraint_bias"});
   for (const std::string& name : counted) {
     emitted.operations[name] = kernels[name].operations;

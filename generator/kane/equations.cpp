@@ -399,7 +399,8 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
   eq.coordinate_role.assign(eq.nq, 0);
   for (std::size_t k = 0; k < model.joints.size(); ++k) {
     const int r = tree.joints()[k].speed;
-    if (r >= 0) eq.coordinate_role[r] = model.joints[k].is_prescribed() ? 2 : model.joints[k].independent ? 1 : 0;
+    if (r >= 0)
+      eq.coordinate_role[r] = model.joints[k].is_prescribed() ? 2 : model.joints[k].independent ? 1 : 0;
   }
 
   for (const model::Output& out : model.outputs) {

@@ -382,7 +382,9 @@ class JsonReader {
     l.name = j["name"].get<std::string>();
     l.where = place;
     const std::string type = j["type"].get<std::string>();
-    l.type = type == "revolute" ? LoopType::revolute : type == "spherical" ? LoopType::spherical : LoopType::slider;
+    l.type = type == "revolute"    ? LoopType::revolute
+             : type == "spherical" ? LoopType::spherical
+                                   : LoopType::slider;
     l.planar = j.value("planar", false);
     if (l.planar && l.type == LoopType::spherical)
       error(place + "/planar", "a spherical loop joint cannot be planar",
@@ -404,7 +406,8 @@ class JsonReader {
         error(place + "/axis", "a spherical loop joint has no axis", "remove \"axis\"");
       for (int k = 0; k < 3; ++k) l.axis[k] = j["axis"][k].get<double>();
     } else if (l.type == LoopType::slider) {
-      error(place, "missing required key 'axis' for a slider", "add \"axis\": the sliding direction in the frame of '" + l.body + "'");
+      error(place, "missing required key 'axis' for a slider",
+            "add \"axis\": the sliding direction in the frame of '" + l.body + "'");
     }
     return l;
   }
@@ -428,10 +431,11 @@ class JsonReader {
     const bool node_output = o.kind != OutputKind::point_position && o.kind != OutputKind::joint_coordinate &&
                              o.kind != OutputKind::joint_speed && o.kind != OutputKind::reaction;
     // Each output type takes its own keys; a key of another type is a mistake.
-    const std::vector<std::string> needed = o.kind == OutputKind::point_position ? std::vector<std::string>{"body", "point"}
-                                            : node_output ? std::vector<std::string>{"body", "node"}
-                                            : o.kind == OutputKind::reaction ? std::vector<std::string>{"loop"}
-                                                          : std::vector<std::string>{"joint"};
+    const std::vector<std::string> needed =
+        o.kind == OutputKind::point_position ? std::vector<std::string>{"body", "point"}
+        : node_output                        ? std::vector<std::string>{"body", "node"}
+        : o.kind == OutputKind::reaction     ? std::vector<std::string>{"loop"}
+                                             : std::vector<std::string>{"joint"};
     for (const std::string& key : needed)
       if (!j.contains(key))
         error(place, "missing required key '" + key + "' for a '" + type + "' output",

@@ -556,23 +556,27 @@ class Checker {
               l.body == m_.ground ? "give the ground as \"body2\" and a moving body as \"body\""
                                   : unknown_body_fix(l.body, false));
       if (l.body2 != m_.ground && !bodies.count(l.body2))
-        error(at(l.where, "body2"), what + " names unknown body '" + l.body2 + "'", unknown_body_fix(l.body2, true));
+        error(at(l.where, "body2"), what + " names unknown body '" + l.body2 + "'",
+              unknown_body_fix(l.body2, true));
       if (l.body == l.body2)
-        error(at(l.where, "body2"), what + " ties body '" + l.body + "' to itself", "give two different bodies");
+        error(at(l.where, "body2"), what + " ties body '" + l.body + "' to itself",
+              "give two different bodies");
       if (l.node != -1) check_node(l.node, l.body, at(l.where, "node"), what);
       if (l.node2 != -1) {
         if (l.body2 == m_.ground) error(at(l.where, "node2"), "the ground has no nodes", "use \"point2\"");
         check_node(l.node2, l.body2, at(l.where, "node2"), what);
       }
       for (double a : l.axis)
-        if (!std::isfinite(a)) error(at(l.where, "axis"), "number is not finite (" + format(a) + ")", "use a finite value");
+        if (!std::isfinite(a))
+          error(at(l.where, "axis"), "number is not finite (" + format(a) + ")", "use a finite value");
       const double norm = std::sqrt(l.axis[0] * l.axis[0] + l.axis[1] * l.axis[1] + l.axis[2] * l.axis[2]);
       if (!(norm > 1e-12))
-        error(at(l.where, "axis"), "zero-length axis of " + what, "give the axis a direction, e.g. [0, 0, 1]");
+        error(at(l.where, "axis"), "zero-length axis of " + what,
+              "give the axis a direction, e.g. [0, 0, 1]");
       for (double& a : l.axis) a /= norm;
     }
-    if (!m_.loops.empty() &&
-        std::none_of(m_.joints.begin(), m_.joints.end(), [](const Joint& j) { return j.moves() && !j.is_prescribed(); }))
+    if (!m_.loops.empty() && std::none_of(m_.joints.begin(), m_.joints.end(),
+                                          [](const Joint& j) { return j.moves() && !j.is_prescribed(); }))
       error(m_.loops.front().where, "the loops close a mechanism with no free coordinate",
             "make a joint revolute, continuous or prismatic, and not prescribed");
   }

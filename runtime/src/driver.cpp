@@ -190,7 +190,8 @@ std::string pivot_message(const ModelInfo& info, int pivot) {
   if (pivot < 0)
     return std::string("singular configuration: loop equation ") + info.constraint_names[-pivot - 1] +
            " is (nearly) dependent on the ones before it, so the loop forces grow without bound and the "
-           "motion may change branch; the mechanism is at or near a dead point or a bifurcation (links in line)";
+           "motion may change branch; the mechanism is at or near a dead point or a bifurcation (links in "
+           "line)";
   return "mass matrix is not positive definite (pivot " + std::to_string(pivot) +
          " of its LDL^T factorisation is not positive)";
 }
@@ -338,9 +339,10 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
         assembly.independent.empty()
             ? std::string("no independent coordinate (the prescribed motion drives the mechanism)")
             : "independent coordinates " + loops.describe(assembly.independent) +
-                  (assembly.picked ? " (picked by the solver; mark joints \"independent\": true to choose)" : "");
-    print(err, "assembly: " + held + "; loops closed to |phi| = " + format_double(assembly.residual) + " in " +
-                   std::to_string(assembly.iterations) + " Newton steps\n");
+                  (assembly.picked ? " (picked by the solver; mark joints \"independent\": true to choose)"
+                                   : "");
+    print(err, "assembly: " + held + "; loops closed to |phi| = " + format_double(assembly.residual) +
+                   " in " + std::to_string(assembly.iterations) + " Newton steps\n");
   }
   std::vector<double> projected(static_cast<size_t>(std::max(n, 1)));
 

@@ -3,10 +3,12 @@
 # generated constraint kernels against finite differences, and the command
 # line's assembly and singular-configuration errors.
 add_executable(test_loops ${CMAKE_CURRENT_LIST_DIR}/../regression/main.cpp ${CMAKE_CURRENT_LIST_DIR}/test_loops.cpp
-                          ${CMAKE_CURRENT_LIST_DIR}/test_loop_kernels.cpp)
+                          ${CMAKE_CURRENT_LIST_DIR}/test_loop_kernels.cpp
+                          ${CMAKE_CURRENT_LIST_DIR}/test_references.cpp)
 target_include_directories(test_loops PRIVATE ${CMAKE_CURRENT_LIST_DIR}/../regression)
 target_compile_options(test_loops PRIVATE ${KANEGEN_WARNINGS})
 target_link_libraries(test_loops PRIVATE kanegen_model_four_bar kanegen_model_slider_crank kanegen_model_nfourbar2
+                                         kanegen_model_andrews_squeezer kanegen_model_simeon_crank kanegen_model_simeon_crank_fe
                                          kanegen_runtime Catch2::Catch2)
 catch_discover_tests(test_loops TEST_PREFIX "loops: ")
 

@@ -412,8 +412,8 @@ TEST_CASE("bad prescribed motion: an undefined name, a damping that cannot apply
 // ---- Closed loops ----
 
 TEST_CASE("bad loop: unknown body suggests the nearest", "[bad][loops]") {
-  expect_model_error(bad_model("loop_unknown_body.json"), "/loops/0/body2", "loop 'E' names unknown body 'slidr'",
-                     "did you mean 'slider'?");
+  expect_model_error(bad_model("loop_unknown_body.json"), "/loops/0/body2",
+                     "loop 'E' names unknown body 'slidr'", "did you mean 'slider'?");
 }
 
 TEST_CASE("bad loop: a body tied to itself", "[bad][loops]") {
@@ -422,7 +422,8 @@ TEST_CASE("bad loop: a body tied to itself", "[bad][loops]") {
 }
 
 TEST_CASE("bad loop: a slider needs its axis", "[bad][loops]") {
-  expect_model_error(bad_model("loop_slider_without_axis.json"), "/loops/0", "missing required key 'axis' for a slider",
+  expect_model_error(bad_model("loop_slider_without_axis.json"), "/loops/0",
+                     "missing required key 'axis' for a slider",
                      "add \"axis\": the sliding direction in the frame of 'rod'");
 }
 
@@ -433,6 +434,6 @@ TEST_CASE("bad loop: a spherical loop joint cannot be planar", "[bad][loops]") {
 }
 
 TEST_CASE("bad loop: a reaction output of an unknown loop", "[bad][loops]") {
-  expect_model_error(bad_model("loop_unknown_reaction.json"), "/outputs/5/loop", "output 'E_reaction' names unknown loop 'e'",
-                     "did you mean 'E'?");
+  expect_model_error(bad_model("loop_unknown_reaction.json"), "/outputs/5/loop",
+                     "output 'E_reaction' names unknown loop 'e'", "did you mean 'E'?");
 }

@@ -55,9 +55,10 @@ class Model {
   virtual void constraints(const double* q, double* phi) const = 0;
   /// C: nc*nu, row-major, dPhi/dq.
   virtual void constraint_jacobian(const double* q, double* C) const = 0;
-  /// udot: nu, lambda: nc; as forward_dynamics, and -k for a singular configuration (nearly dependent loop equations).
-  virtual int constrained_dynamics(double t, const double* q, const double* u, const double* tau, double* udot,
-                                   double* lambda) const = 0;
+  /// udot: nu, lambda: nc; as forward_dynamics, and -k for a singular configuration (nearly dependent loop
+  /// equations).
+  virtual int constrained_dynamics(double t, const double* q, const double* u, const double* tau,
+                                   double* udot, double* lambda) const = 0;
 
  private:
   ModelInfo info_;
@@ -96,7 +97,9 @@ class SystemModel final : public Model {
     System::outputs(params_, t, q, u, y);
   }
   void initial_state(double* q, double* u) const override { initial_state_of<System>(0, q, u); }
-  void constraints(const double* q, double* phi) const override { loops<System>::constraints(params_, q, phi); }
+  void constraints(const double* q, double* phi) const override {
+    loops<System>::constraints(params_, q, phi);
+  }
   void constraint_jacobian(const double* q, double* C) const override {
     loops<System>::jacobian(params_, q, C);
   }
@@ -115,8 +118,8 @@ class SystemModel final : public Model {
     static const int* roles() { return nullptr; }
     static void constraints(const typename S::Params&, const double*, double*) {}
     static void jacobian(const typename S::Params&, const double*, double*) {}
-    static int dynamics(const typename S::Params& p, double t, const double* q, const double* u, const double* tau,
-                        double* udot, double*) {
+    static int dynamics(const typename S::Params& p, double t, const double* q, const double* u,
+                        const double* tau, double* udot, double*) {
       return S::forward_dynamics(p, t, q, u, tau, udot);
     }
   };
@@ -125,12 +128,14 @@ class SystemModel final : public Model {
     static constexpr int nc = S::nc;
     static const char* const* names() { return S::constraint_names(); }
     static const int* roles() { return S::coordinate_roles(); }
-    static void constraints(const typename S::Params& p, const double* q, double* phi) { S::constraints(p, q, phi); }
+    static void constraints(const typename S::Params& p, const double* q, double* phi) {
+      S::constraints(p, q, phi);
+    }
     static void jacobian(const typename S::Params& p, const double* q, double* C) {
       S::constraint_jacobian(p, q, C);
     }
-    static int dynamics(const typename S::Params& p, double t, const double* q, const double* u, const double* tau,
-                        double* udot, double* lambda) {
+    static int dynamics(const typename S::Params& p, double t, const double* q, const double* u,
+                        const double* tau, double* udot, double* lambda) {
       return S::constrained_dynamics(p, t, q, u, tau, udot, lambda);
     }
   };
