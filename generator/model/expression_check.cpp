@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "model/expression_eval.hpp"
 #include "model/names.hpp"
 
 // Grammar (recursive descent):
@@ -159,7 +160,9 @@ class Parser {
     primary();
     if (!is_op("^")) return;
     take();
+    const std::size_t first = next_;
     primary();
+    check_exponent(first, next_);
     if (is_op("^"))
       fail(peek().pos, "chained '^' in expression",
            "add parentheses to say which power comes first: a^(b^c)");
@@ -194,6 +197,28 @@ class Parser {
     fail(t.pos, "'" + t.text + "' where an operand is expected in expression",
          "put a number, a parameter or a parenthesised expression there");
   }
+
+  /// GiNaC raises exact numbers to exact powers: 5555^55555555 would not
+  /// finish. A constant exponent (tokens [first, end) without names) must
+  /// stay within what a double power can use.
+  void check_exponent(std::size_t first, std::size_t end) const {
+    std::string text;
+    for (std::size_t k = first; k < end; ++k) {
+      if (tokens_[k].kind == Token::name) return;
+      text += tokens_[k].text;
+    }
+    double value = 0.0;
+    try {
+      value = evaluate_expression(text, {});
+    } catch (const std::exception&) {
+      return;  // the parse reports what is wrong with it
+    }
+    if (std::isfinite(value) && std::abs(value) <= kMaxExponent) return;
+    fail(tokens_[first].pos, "exponent " + text + " out of range in expression",
+         "use exponents within +-" + std::to_string(static_cast<int>(kMaxExponent)) +
+             " (larger powers of doubles overflow or vanish), or write exp(n*log(b))");
+  }
+  static constexpr double kMaxExponent = 1100.0;
 
   [[noreturn]] void parse_rest_error() {
     const Token& t = peek();
