@@ -16,6 +16,7 @@
 #include "model/load.hpp"
 #include "numeric/dynamics.hpp"
 #include "numeric/instance.hpp"
+#include "numeric/loops.hpp"
 
 namespace kanegen::cli {
 namespace {
@@ -53,7 +54,16 @@ struct Link {
   std::vector<int> parameter;            ///< runner parameter k -> index in Model::parameters
   std::vector<int> input;                ///< runner input k -> coordinate
   std::vector<std::string> outputs;      ///< runner output names
+  std::vector<std::string> constraints;  ///< loop equations, "<loop>.<row>"
 };
+
+/// The names of the loop equations, as the model format gives them.
+std::vector<std::string> constraint_names(const numeric::Instance& instance) {
+  std::vector<std::string> names;
+  for (const numeric::LoopData& l : instance.loops)
+    for (const std::string& row : l.rows) names.push_back(l.name + "." + row);
+  return names;
+}
 
 Link link_runner(const model::Model& model, const numeric::Instance& instance, const json& info) {
   const auto mismatch = [&](const std::string& what) {
@@ -92,6 +102,12 @@ Link link_runner(const model::Model& model, const numeric::Instance& instance, c
                    std::to_string(joints) + ") or per actuated joint (" + std::to_string(actuated.size()) + ")");
   }
 
+  link.constraints = constraint_names(instance);
+  const std::vector<std::string> runner_constraints = info.value("constraints", std::vector<std::string>{});
+  if (runner_constraints != link.constraints)
+    throw mismatch("loop equations " + json(runner_constraints).dump() + ", the model's are " +
+                   json(link.constraints).dump());
+
   link.outputs = info["outputs"].get<std::vector<std::string>>();
   std::vector<std::string> expected;
   for (const numeric::OutputData& o : instance.outputs) {
@@ -100,6 +116,10 @@ Link link_runner(const model::Model& model, const numeric::Instance& instance, c
       parts = {".x", ".y", ".z"};
     else if (o.kind == model::OutputKind::bending_moment && !instance.bodies[o.body].beam->planar)
       parts = {".y", ".z"};
+    if (o.kind == model::OutputKind::reaction) {
+      for (const std::string& row : instance.loops[o.loop].rows) expected.push_back(o.name + "." + row);
+      continue;
+    }
     if (parts.empty()) expected.push_back(o.name);
     for (const char* axis : parts) expected.push_back(o.name + axis);
   }
@@ -143,6 +163,8 @@ struct Sample {
   std::vector<double> mass_matrix, forcing, udot, outputs, hessian;
   double kinetic = 0, potential = 0;
   int pivot = 0;
+  /// Closed loops: the generated Phi, C (row-major), gamma and lambda (NaN where not solved).
+  std::vector<double> phi, jacobian, bias, lambda;
 };
 
 class Sampler {
@@ -221,6 +243,13 @@ void evaluate_generated(RunnerProcess& runner, Sample& s) {
   s.hessian = flatten(reply["kinetic_energy_hessian"]);
   s.kinetic = scalar(reply["kinetic_energy"]);
   s.potential = scalar(reply["potential_energy"]);
+  if (reply.contains("constraints")) {
+    s.phi = numbers(reply["constraints"]);
+    s.jacobian = flatten(reply["constraint_jacobian"]);
+    s.bias = numbers(reply["constraint_bias"]);
+    s.lambda = reply["lambda"].is_null() ? std::vector<double>(s.phi.size(), std::nan(""))
+                                         : numbers(reply["lambda"]);
+  }
 }
 
 std::string describe(const model::Model& model, const Sample& s) {
@@ -286,7 +315,9 @@ class Comparison {
   /// udot by its normwise backward error in the numeric system,
   /// |M udot - f| / (|M| |udot| + |f|) (infinity norms, over the speeds that
   /// are solved for): round-off level whatever the conditioning of M, which
-  /// the forward error is not. A prescribed speed's udot is its prescribed
+  /// the forward error is not. With loops, in the numeric saddle-point
+  /// system with the generated lambda: the rows M udot - C^T lambda = f
+  /// (speeds solved for) and C udot = gamma, x = (udot, lambda). A prescribed speed's udot is its prescribed
   /// acceleration, compared as a value (relative to its size, floored by
   /// kScaleFloor of the largest prescribed acceleration of the run).
   Row udot() const {
@@ -308,7 +339,14 @@ class Comparison {
       std::vector<char> given(n, 0);
       for (int p : s.reference.prescribed) given[p] = 1;
       const std::vector<double>& M = s.reference.mass_matrix;
-      double residual = 0, norm_m = 0, norm_f = 0, norm_udot = max_abs(s.udot);
+      const std::vector<double>& C = s.reference.constraint_jacobian;
+      const int nc = static_cast<int>(s.reference.phi.size());
+      double residual = 0, norm_m = 0, norm_f = 0, norm_udot = std::max(max_abs(s.udot), max_abs(s.lambda));
+      const auto row_done = [&](double sum, double row_sum, double rhs) {
+        residual = std::isnan(sum) || std::isnan(residual) ? std::nan("") : std::max(residual, std::abs(sum));
+        norm_m = std::max(norm_m, row_sum);
+        norm_f = std::max(norm_f, std::abs(rhs));
+      };
       for (int r = 0; r < n; ++r) {
         if (given[r]) continue;
         double row_sum = 0, sum = -s.reference.forcing[r];
@@ -316,9 +354,19 @@ class Comparison {
           sum += M[r * n + c] * s.udot[c];
           row_sum += std::abs(M[r * n + c]);
         }
-        residual = std::isnan(sum) ? sum : std::max(residual, std::abs(sum));
-        norm_m = std::max(norm_m, row_sum);
-        norm_f = std::max(norm_f, std::abs(s.reference.forcing[r]));
+        for (int k = 0; k < nc; ++k) {
+          sum -= C[k * n + r] * s.lambda[k];
+          row_sum += std::abs(C[k * n + r]);
+        }
+        row_done(sum, row_sum, s.reference.forcing[r]);
+      }
+      for (int k = 0; k < nc; ++k) {
+        double row_sum = 0, sum = -s.reference.constraint_bias[k];
+        for (int c = 0; c < n; ++c) {
+          sum += C[k * n + c] * s.udot[c];
+          row_sum += std::abs(C[k * n + c]);
+        }
+        row_done(sum, row_sum, s.reference.constraint_bias[k]);
       }
       const std::vector<double> reference =
           s.reference.udot.empty() ? std::vector<double>(n, std::nan("")) : s.reference.udot;
@@ -401,6 +449,16 @@ class Comparison {
     const int n = static_cast<int>(link_.coordinates.size());
     return [this, n](int k) {
       return "[" + std::to_string(k / n) + "," + std::to_string(k % n) + "] (" + link_.coordinates[k / n] +
+             ", " + link_.coordinates[k % n] + ")";
+    };
+  }
+  EntryName constraint_name() const {
+    return [this](int k) { return "[" + std::to_string(k) + "] (" + link_.constraints[k] + ")"; };
+  }
+  EntryName jacobian_name() const {
+    const int n = static_cast<int>(link_.coordinates.size());
+    return [this, n](int k) {
+      return "[" + std::to_string(k / n) + "," + std::to_string(k % n) + "] (" + link_.constraints[k / n] +
              ", " + link_.coordinates[k % n] + ")";
     };
   }
@@ -540,6 +598,32 @@ int verify(const VerifyOptions& o) {
     rows.back().applicable = false;
     rows.back().note = "the model has no outputs";
   }
+  // Closed loops: the loop kernels and the loop forces (numeric/loops.hpp).
+  const auto loop_row = [&](const std::string& quantity, const std::string& against,
+                            const Comparison::Values& generated, const Comparison::Values& reference,
+                            const EntryName& name) {
+    rows.push_back(c.vectors(quantity, against, generated, reference, name));
+    if (link.constraints.empty()) {
+      rows.back().applicable = false;
+      rows.back().note = "the model has no loops";
+    }
+  };
+  loop_row(
+      "constraints", "numeric Phi", [](const Sample& s) { return s.phi; },
+      [](const Sample& s) { return s.reference.phi; }, c.constraint_name());
+  loop_row(
+      "constraint_jacobian", "numeric dPhi/dq (duals)", [](const Sample& s) { return s.jacobian; },
+      [](const Sample& s) { return s.reference.constraint_jacobian; }, c.jacobian_name());
+  loop_row(
+      "constraint_bias", "numeric -(dC/dt) u (duals)", [](const Sample& s) { return s.bias; },
+      [](const Sample& s) { return s.reference.constraint_bias; }, c.constraint_name());
+  loop_row(
+      "lambda", "numeric lambda", [](const Sample& s) { return s.lambda; },
+      [](const Sample& s) {
+        return s.reference.lambda.empty() ? std::vector<double>(s.reference.phi.size(), std::nan(""))
+                                          : s.reference.lambda;
+      },
+      c.constraint_name());
   rows.push_back(c.symmetry());
   rows.push_back(c.positive_definite());
   rows.push_back(c.kinetic_hessian());
@@ -556,14 +640,28 @@ int verify(const VerifyOptions& o) {
       const Sample& s = samples[k];
       TrajectoryStart from{&s.instance, s.state, s.runner_tau, s.runner_p};
       // Prescribed speeds start on their motion.
+      std::vector<int> prescribed;
       for (int r = 0; r < s.instance.joint_coordinates(); ++r) {
         const numeric::JointData& j = s.instance.joints[s.instance.coordinate_joint[r]];
         if (!j.is_prescribed()) continue;
         const std::array<double, 3> motion = numeric::prescribed_motion(j, s.state.t);
         from.state.q[r] = motion[0];
         from.state.u[r] = motion[1];
+        prescribed.push_back(r);
       }
-      power.consider(power_balance(process, from, o.duration, k, &power.compared));
+      // Closed loops: from the state projected onto the constraints (off
+      // them a random slider-crank's rod soon turns across the slide, a
+      // singular configuration), and if that runs into one too (a projected
+      // parallelogram may land on its folded, singular branch), from the
+      // state as drawn; the loop forces' power makes both valid (docs/verify.md).
+      TrajectoryStart projected = from;
+      const bool loops =
+          !s.instance.loops.empty() &&
+          numeric::project_onto_loops(s.instance, prescribed, projected.state.q, projected.state.u);
+      Worst w = power_balance(process, loops ? projected : from, o.duration, k, &power.compared);
+      if (loops && std::isinf(w.rel) && w.entry.rfind("(integration failed", 0) == 0)
+        w = power_balance(process, from, o.duration, k, &power.compared);
+      power.consider(w);
     }
   } else {
     power.applicable = false;
@@ -575,7 +673,8 @@ int verify(const VerifyOptions& o) {
   // one more row per Jacobian, evaluated through the batch protocol.
   Row jacobians("Jacobians", "finite differences", o.rtol);
   jacobians.applicable = false;
-  jacobians.note = "none emitted (tree)";
+  jacobians.note = link.constraints.empty() ? "none emitted (tree)"
+                                            : "constraint_jacobian is compared with dual numbers above";
   rows.push_back(jacobians);
   process.finish();
 

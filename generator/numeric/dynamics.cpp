@@ -8,6 +8,7 @@
 
 #include "numeric/beam.hpp"
 #include "numeric/dual.hpp"
+#include "numeric/loops.hpp"
 #include "numeric/poses.hpp"
 
 namespace kanegen::numeric {
@@ -657,17 +658,41 @@ Evaluation evaluate(const Instance& m, const State& s) {
     for (int c = 0; c < nf; ++c) mff(a, c) = e.mass_matrix[free[a] * n + free[c]];
   }
   const Eigen::LLT<Eigen::MatrixXd> llt(mff);
-  if (llt.info() == Eigen::Success) {
+  if (m.loops.empty() && llt.info() == Eigen::Success) {
     const Eigen::VectorXd x = llt.solve(rhs);
     for (int a = 0; a < nf; ++a) udot[free[a]] = x[a];
     e.udot = udot;
-    // The work of the constraint forces that hold the prescribed speeds on their motion.
+  }
+  std::vector<double> reaction;  // lambda at inputs of zero, for the reaction outputs
+  if (!m.loops.empty()) {
+    const LoopKinematics loops = loop_kinematics(m, s.q, s.u);
+    e.phi = loops.phi;
+    e.constraint_jacobian = loops.jacobian;
+    e.constraint_bias = loops.bias;
+    const ConstrainedSolution solved =
+        solve_constrained(n, e.mass_matrix, e.forcing, loops, e.prescribed, e.prescribed_acceleration);
+    if (solved.ok) {
+      e.udot = solved.udot;
+      e.lambda = solved.lambda;
+      for (int r : free)
+        for (std::size_t i = 0; i < e.lambda.size(); ++i)
+          e.loop_power += e.lambda[i] * loops.jacobian[i * n + r] * s.u[r];
+      e.nonconservative_power += e.loop_power;
+    }
+    std::vector<double> unforced = e.forcing;
+    for (int r = 0; r < m.joint_coordinates(); ++r)
+      if (m.joints[m.coordinate_joint[r]].actuated) unforced[r] -= s.tau[r];
+    const ConstrainedSolution at_rest =
+        solve_constrained(n, e.mass_matrix, unforced, loops, e.prescribed, e.prescribed_acceleration);
+    reaction = at_rest.ok ? at_rest.lambda : std::vector<double>(loops.phi.size(), std::nan(""));
+  }
+  // The work of the constraint forces that hold the prescribed speeds on their motion.
+  if (!e.udot.empty())
     for (int p : e.prescribed) {
       double lambda = -e.forcing[p];
-      for (int c = 0; c < n; ++c) lambda += e.mass_matrix[p * n + c] * udot[c];
+      for (int c = 0; c < n; ++c) lambda += e.mass_matrix[p * n + c] * e.udot[c];
       e.nonconservative_power += lambda * s.u[p];
     }
-  }
 
   std::vector<Pose<double>> poses(nb);
   for (int b = 0; b < nb; ++b) poses[b] = {motion.body[b].r, motion.body[b].p};
@@ -684,6 +709,13 @@ Evaluation evaluate(const Instance& m, const State& s) {
       case model::OutputKind::joint_speed:
         e.outputs.push_back(s.u[o.coordinate]);
         break;
+      case model::OutputKind::reaction: {
+        std::size_t first = 0;
+        for (int k = 0; k < o.loop; ++k) first += m.loops[k].rows.size();
+        for (std::size_t i = 0; i < m.loops[o.loop].rows.size(); ++i)
+          e.outputs.push_back(reaction[first + i]);
+        break;
+      }
       case model::OutputKind::node_displacement: {
         const Vec<double> t = node_translation(*m.bodies[o.body].beam, dofs[o.body], o.node);
         e.outputs.insert(e.outputs.end(), t.begin(), t.end());
@@ -710,9 +742,11 @@ Evaluation evaluate(const Instance& m, const State& s) {
 
 double nonconservative_power(const Instance& m, const State& s, const std::vector<double>* udot) {
   check_sizes(m, s);
-  if (m.has_prescribed() && !udot) return evaluate(m, s).nonconservative_power;
+  if ((m.has_prescribed() || !m.loops.empty()) && !udot) return evaluate(m, s).nonconservative_power;
   const int n = m.coordinates();
   double power = joint_power(m, s);
+  // The loop forces' power needs lambda, from the whole evaluation (loops are small models).
+  if (!m.loops.empty()) power += evaluate(m, s).loop_power;
   // The motion at the given udot (for the prescribed speeds' constraint
   // forces), and at u_dot = 0 (the beams' axial loads).
   const bool pulls = has_node_pulls(m);

@@ -59,7 +59,19 @@ struct Evaluation {
   /// dampers (joints, springs and beams), inputs, joint efforts, body-frame forces, geometric
   /// stiffness, and the constraint forces of the prescribed speeds with this udot.
   double nonconservative_power = 0;
-  std::vector<double> outputs;  ///< point outputs as x, y, z; joint outputs one each; node outputs
+  std::vector<double> outputs;  ///< point outputs as x, y, z; joint outputs one each; node outputs; reactions
+  // Closed loops (empty for a tree; numeric/loops.hpp). udot is then the
+  // solution of M udot = f + C^T lambda, C udot = gamma (empty if S = C M^-1
+  // C^T is not positive definite), and nonconservative_power includes
+  // loop_power.
+  std::vector<double> phi;                  ///< nc
+  std::vector<double> constraint_jacobian;  ///< nc * n, row-major
+  std::vector<double> constraint_bias;      ///< nc: gamma
+  std::vector<double> lambda;               ///< nc, with this udot
+  /// The power of the loop forces on the speeds that are solved for,
+  /// sum_r (C^T lambda)_r u_r over the free r (the prescribed speeds' rows
+  /// are in their constraint forces' power); zero where C u = 0.
+  double loop_power = 0;
 };
 
 /// Everything at one state. Throws std::invalid_argument on wrong sizes.
@@ -67,7 +79,8 @@ Evaluation evaluate(const Instance& model, const State& state);
 
 /// Only the power of the non-conservative forces. `udot`: the accelerations
 /// the prescribed speeds' constraint forces are taken with ((M udot - f)_p
-/// u_p); null: the numeric udot. Cheaper than evaluate for rigid models
+/// u_p); null: the numeric udot. With loops, plus the loop forces' power
+/// (Evaluation::loop_power, with the numeric lambda). Cheaper than evaluate for rigid models
 /// without prescribed speeds (one pass along u).
 double nonconservative_power(const Instance& model, const State& state, const std::vector<double>* udot = nullptr);
 

@@ -108,6 +108,12 @@ std::shared_ptr<const FlexibleData> beam_data(const model::Body& body, const std
 
 }  // namespace
 
+int Instance::constraints() const {
+  int rows = 0;
+  for (const LoopData& l : loops) rows += static_cast<int>(l.rows.size());
+  return rows;
+}
+
 bool Instance::has_prescribed() const {
   for (const JointData& j : joints)
     if (j.is_prescribed()) return true;
@@ -233,11 +239,46 @@ Instance instantiate(const model::Model& model, const model::ParameterValues& p,
       d.value = f.value.value;
     m.efforts.push_back(d);
   }
+  for (const model::Loop& l : model.loops) {
+    LoopData d;
+    d.name = l.name;
+    d.type = l.type;
+    d.planar = l.planar;
+    d.body = body_of(l.body, "loop '" + l.name + "'");
+    d.node = l.node;
+    d.point = vector_value(l.point, p);
+    d.body2 = body_of(l.body2, "loop '" + l.name + "'");
+    d.node2 = l.node2;
+    d.point2 = vector_value(l.point2, p);
+    d.axis = normalized(Vec<double>{l.axis[0], l.axis[1], l.axis[2]});
+    // The rows as docs/model-format.md lists them; a planar revolute about
+    // z names its rows after the world axes.
+    const bool z_plane = l.axis == std::array<double, 3>{0.0, 0.0, 1.0};
+    if (l.type == model::LoopType::spherical)
+      d.rows = {"x", "y", "z"};
+    else if (l.type == model::LoopType::revolute && l.planar)
+      d.rows = z_plane ? std::vector<std::string>{"x", "y"} : std::vector<std::string>{"f1", "f2"};
+    else if (l.type == model::LoopType::revolute)
+      d.rows = {"x", "y", "z", "m1", "m2"};
+    else
+      d.rows = l.planar ? std::vector<std::string>{"n"} : std::vector<std::string>{"f1", "f2"};
+    const auto has_node = [&](int body, int node) {
+      return node < 0 ||
+             (body >= 0 && m.bodies[body].beam && node < static_cast<int>(m.bodies[body].beam->nodes.size()));
+    };
+    if (!has_node(d.body, d.node) || !has_node(d.body2, d.node2))
+      throw std::invalid_argument("loop '" + l.name + "' is at a node its body does not have");
+    m.loops.push_back(d);
+  }
   for (const model::Output& o : model.outputs) {
     OutputData d;
     d.name = o.name;
     d.kind = o.kind;
-    if (o.kind == model::OutputKind::point_position) {
+    if (o.kind == model::OutputKind::reaction) {
+      for (std::size_t k = 0; k < m.loops.size(); ++k)
+        if (m.loops[k].name == o.loop) d.loop = static_cast<int>(k);
+      if (d.loop < 0) throw std::invalid_argument("output '" + o.name + "' names no loop");
+    } else if (o.kind == model::OutputKind::point_position) {
       d.body = body_of(o.body, "output '" + o.name + "'");
       d.point = vector_value(o.point, p);
     } else if (o.kind != model::OutputKind::joint_coordinate && o.kind != model::OutputKind::joint_speed) {

@@ -134,6 +134,23 @@ struct OutputData {
   Vec<double> point;
   int coordinate = -1;
   int node = -1;  ///< node outputs of a flexible body
+  int loop = -1;  ///< reaction outputs: index in Instance::loops
+};
+
+/// A joint that closes a loop (docs/closed-loops.md): a point of `body` (or
+/// one of its nodes) tied to a point of `body2` (-1: the ground, point in
+/// world axes). Its rows are computed in numeric/loops.hpp.
+struct LoopData {
+  std::string name;
+  model::LoopType type = model::LoopType::revolute;
+  bool planar = false;
+  int body = -1, node = -1;  ///< node: a node of a flexible body instead of `point`
+  Vec<double> point;
+  int body2 = -1, node2 = -1;
+  Vec<double> point2;
+  Vec<double> axis;  ///< unit
+  /// The row names' suffixes ("x", "y", "f1", "m1", "n", ...), one per equation.
+  std::vector<std::string> rows;
 };
 
 struct Instance {
@@ -147,7 +164,10 @@ struct Instance {
   std::vector<SpringData> springs;
   std::vector<EffortData> efforts;
   std::vector<OutputData> outputs;
+  std::vector<LoopData> loops;
 
+  /// The number of loop equations (rows of Phi) over all loops.
+  int constraints() const;
   /// Joint coordinates, then the elastic coordinates of the flexible bodies in body order.
   int coordinates() const { return static_cast<int>(coordinate_names.size()); }
   int joint_coordinates() const { return static_cast<int>(coordinate_joint.size()); }

@@ -249,6 +249,23 @@ std::string respond(Model& model, const Request& r, const std::vector<double>& d
     field("mass_matrix", matrix_json(M, n));
     field("forcing", numbers_json(f.data(), n));
     field("outputs", numbers_json(y.data(), info.ny));
+    if (info.nc > 0) {
+      // The loop kernels, and lambda of the same solve as udot.
+      const size_t nc = static_cast<size_t>(info.nc);
+      std::vector<double> phi(nc), C(nc * m), gamma(nc), udot(m), lambda(nc);
+      model.constraints(q.data(), phi.data());
+      model.constraint_jacobian(q.data(), C.data());
+      model.constraint_bias(q.data(), u.data(), gamma.data());
+      const bool solved =
+          model.constrained_dynamics(r.t, q.data(), u.data(), tau.data(), udot.data(), lambda.data()) == 0;
+      std::string rows = "[";
+      for (int i = 0; i < info.nc; ++i)
+        rows += (i ? "," : "") + numbers_json(C.data() + static_cast<size_t>(i) * n, n);
+      field("constraints", numbers_json(phi.data(), info.nc));
+      field("constraint_jacobian", rows + "]");
+      field("constraint_bias", numbers_json(gamma.data(), info.nc));
+      field("lambda", solved ? numbers_json(lambda.data(), info.nc) : "null");
+    }
   }
   if (r.selection != Selection::udot) {
     field("kinetic_energy", json_number(model.kinetic_energy(q.data(), u.data())));

@@ -500,7 +500,8 @@ int info_command(const Model& model, ArgScanner& args, std::FILE* out) {
                  ", \"outputs\": " + json_names(i.output_names, i.ny) +
                  ", \"parameters\": " + json_names(i.parameter_names, i.np) +
                  ", \"parameter_defaults\": " + json_numbers(defaults.data(), i.np) +
-                 ", \"q0\": " + json_numbers(i.q0, i.nq) + ", \"u0\": " + json_numbers(i.u0, i.nu) + "}\n");
+                 ", \"q0\": " + json_numbers(i.q0, i.nq) + ", \"u0\": " + json_numbers(i.u0, i.nu) + ", " +
+                 size("nc", i.nc) + ", \"constraints\": " + json_names(i.constraint_names, i.nc) + "}\n");
   return 0;
 }
 

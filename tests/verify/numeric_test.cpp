@@ -13,6 +13,7 @@
 #include "numeric/dynamics.hpp"
 #include "numeric/finite_difference.hpp"
 #include "numeric/instance.hpp"
+#include "numeric/loops.hpp"
 
 namespace {
 
@@ -242,4 +243,51 @@ TEST_CASE("finite-difference Jacobians (for emitted Jacobians) are accurate to a
                            -std::sin(x[1]),       x[1] * e,       x[0] * e};
   REQUIRE(J.size() == 6);
   for (int i = 0; i < 6; ++i) CHECK(J[i] == Approx(exact[i]).margin(1e-10));
+}
+
+TEST_CASE("loops: four-bar Phi in closed form, C and gamma against finite differences, the saddle point",
+          "[numeric][loops]") {
+  const Model model = load("models/four_bar.json");
+  const auto m = kanegen::numeric::instantiate(model, kanegen::model::default_parameter_values(model));
+  const std::vector<double> q{0.3, 1.1, 1.9}, u{2.0, -1.5, 0.7};
+  const double a = 0.2, b = 0.6, c = 0.5, d = 0.6;
+  const kanegen::numeric::LoopKinematics k = kanegen::numeric::loop_kinematics(m, q, u);
+  REQUIRE(k.phi.size() == 2);
+  CHECK(k.phi[0] ==
+        Approx(a * std::cos(q[0]) + b * std::cos(q[0] + q[1]) - d - c * std::cos(q[2])).margin(1e-15));
+  CHECK(k.phi[1] ==
+        Approx(a * std::sin(q[0]) + b * std::sin(q[0] + q[1]) - c * std::sin(q[2])).margin(1e-15));
+  const auto phi = [&](const std::vector<double>& x) {
+    return kanegen::numeric::loop_residuals(m, x.data());
+  };
+  const std::vector<double> C = kanegen::numeric::finite_difference_jacobian(phi, q);
+  for (std::size_t i = 0; i < C.size(); ++i) CHECK(k.jacobian[i] == Approx(C[i]).margin(1e-10));
+  // gamma = -d/ds (C(q + s u) u) at s = 0.
+  const auto velocity = [&](const std::vector<double>& s) {
+    std::vector<double> x = q;
+    for (std::size_t r = 0; r < x.size(); ++r) x[r] += s[0] * u[r];
+    const std::vector<double> J = kanegen::numeric::loop_kinematics(m, x, u).jacobian;
+    return std::vector<double>{J[0] * u[0] + J[1] * u[1] + J[2] * u[2],
+                               J[3] * u[0] + J[4] * u[1] + J[5] * u[2]};
+  };
+  const std::vector<double> rate = kanegen::numeric::finite_difference_jacobian(velocity, {0.0});
+  CHECK(k.bias[0] == Approx(-rate[0]).margin(1e-9));
+  CHECK(k.bias[1] == Approx(-rate[1]).margin(1e-9));
+  // The evaluation's udot and lambda solve M udot = f + C^T lambda, C udot = gamma.
+  const Evaluation e = kanegen::numeric::evaluate(m, state(q, u, {0, 0, 0}));
+  REQUIRE(e.udot.size() == 3);
+  REQUIRE(e.lambda.size() == 2);
+  for (int r = 0; r < 3; ++r) {
+    double residual = -e.forcing[r];
+    for (int s = 0; s < 3; ++s) residual += e.mass_matrix[r * 3 + s] * e.udot[s];
+    for (int i = 0; i < 2; ++i) residual -= k.jacobian[i * 3 + r] * e.lambda[i];
+    CHECK(residual == Approx(0).margin(1e-12));
+  }
+  for (int i = 0; i < 2; ++i) {
+    double residual = -k.bias[i];
+    for (int s = 0; s < 3; ++s) residual += k.jacobian[i * 3 + s] * e.udot[s];
+    CHECK(residual == Approx(0).margin(1e-12));
+  }
+  CHECK(e.outputs.size() == 14);  // the reaction at tau = 0: this lambda
+  CHECK(e.outputs[12] == Approx(e.lambda[0]).margin(1e-12));
 }

@@ -379,3 +379,42 @@ TEST_CASE("corruption: a joint effort off by 1% in forward_dynamics fails udot a
   CHECK(contains(r.err, "error: power balance"));
   CHECK_FALSE(contains(r.err, "error: forcing"));
 }
+
+TEST_CASE("loops: verify reports the loop kernels and the loop forces", "[verify][loops]") {
+  const Result r = kanegen("verify " + source("models/four_bar.json") + " --samples 20 --json --quiet");
+  INFO(r.out << r.err);
+  REQUIRE(r.status == 0);
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  std::vector<std::string> names;
+  for (const auto& q : j["quantities"])
+    if (q["applicable"].get<bool>()) names.push_back(q["quantity"]);
+  for (const char* quantity : {"constraints", "constraint_jacobian", "constraint_bias", "lambda", "udot",
+                               "outputs", "power balance"})
+    CHECK(std::find(names.begin(), names.end(), quantity) != names.end());
+}
+
+// The loop kernels are separate from constrained_dynamics (which has its own
+// copy of C and gamma), so a wrong entry shows in its own row only.
+TEST_CASE("corruption: a literal of constraint_jacobian off by 1e-4 fails, naming it",
+          "[verify][corruption][loops]") {
+  const fs::path dir = generate("models/slider_crank.json", "loop_jacobian");
+  corrupt(dir / "slider_crank.cpp", "void constraint_jacobian", "= -1\\.0;", "= -1.0001;");
+  const Result r = kanegen("verify " + source("models/slider_crank.json") + " --kernels " + dir.string() +
+                           " --samples 20 --quiet");
+  INFO(r.out << r.err);
+  CHECK(r.status == 1);
+  CHECK(contains(r.err, "error: constraint_jacobian [0,2] (E.x, slider_x)"));
+  CHECK_FALSE(contains(r.err, "error: udot"));
+}
+
+TEST_CASE("corruption: a term of constraint_bias off by 1e-4 fails, naming it",
+          "[verify][corruption][loops]") {
+  const fs::path dir = generate("models/four_bar.json", "loop_bias");
+  corrupt(dir / "four_bar.cpp", "void constraint_bias", "\\bp\\.c\\b", "(1.0001*$&)");
+  const Result r = kanegen("verify " + source("models/four_bar.json") + " --kernels " + dir.string() +
+                           " --samples 20 --quiet");
+  INFO(r.out << r.err);
+  CHECK(r.status == 1);
+  CHECK(contains(r.err, "error: constraint_bias"));
+  CHECK_FALSE(contains(r.err, "error: constraint_jacobian"));
+}

@@ -55,6 +55,8 @@ class Model {
   virtual void constraints(const double* q, double* phi) const = 0;
   /// C: nc*nu, row-major, dPhi/dq.
   virtual void constraint_jacobian(const double* q, double* C) const = 0;
+  /// gamma: nc, the acceleration-level right-hand side, C udot = gamma = -(dC/dt) u.
+  virtual void constraint_bias(const double* q, const double* u, double* gamma) const = 0;
   /// udot: nu, lambda: nc; as forward_dynamics, and -k for a singular configuration (nearly dependent loop
   /// equations).
   virtual int constrained_dynamics(double t, const double* q, const double* u, const double* tau,
@@ -103,6 +105,9 @@ class SystemModel final : public Model {
   void constraint_jacobian(const double* q, double* C) const override {
     loops<System>::jacobian(params_, q, C);
   }
+  void constraint_bias(const double* q, const double* u, double* gamma) const override {
+    loops<System>::bias(params_, q, u, gamma);
+  }
   int constrained_dynamics(double t, const double* q, const double* u, const double* tau, double* udot,
                            double* lambda) const override {
     return loops<System>::dynamics(params_, t, q, u, tau, udot, lambda);
@@ -118,6 +123,7 @@ class SystemModel final : public Model {
     static const int* roles() { return nullptr; }
     static void constraints(const typename S::Params&, const double*, double*) {}
     static void jacobian(const typename S::Params&, const double*, double*) {}
+    static void bias(const typename S::Params&, const double*, const double*, double*) {}
     static int dynamics(const typename S::Params& p, double t, const double* q, const double* u,
                         const double* tau, double* udot, double*) {
       return S::forward_dynamics(p, t, q, u, tau, udot);
@@ -133,6 +139,9 @@ class SystemModel final : public Model {
     }
     static void jacobian(const typename S::Params& p, const double* q, double* C) {
       S::constraint_jacobian(p, q, C);
+    }
+    static void bias(const typename S::Params& p, const double* q, const double* u, double* gamma) {
+      S::constraint_bias(p, q, u, gamma);
     }
     static int dynamics(const typename S::Params& p, double t, const double* q, const double* u,
                         const double* tau, double* udot, double* lambda) {
