@@ -7,6 +7,7 @@
 #include "loop_helpers.hpp"
 #include "nfourbar2.hpp"
 #include "slider_crank.hpp"
+#include "slider_crank_free.hpp"
 
 namespace {
 
@@ -106,4 +107,16 @@ TEST_CASE("the N four-bar follows the parallelogram, then stops at a singular po
   CHECK(run.why == "singular configuration");
   CHECK(run.result.t > 2.0);
   CHECK(run.result.t < 3.0);
+}
+
+TEST_CASE("a free slider-crank conserves energy and keeps its loop closed", "[loops][slider_crank]") {
+  using System = kanegen_models::slider_crank_free::System;
+  const LoopRun run = run_loops<System>(1.0, 0.001, 1e-10);
+  INFO(run.result.message);
+  REQUIRE(run.result.ok());
+  REQUIRE(run.assembly.independent == std::vector<int>{0});
+  CHECK(run.states.front()[0] == 0.3);
+  CHECK(run.worst_residual < 1e-10);
+  CHECK(run.worst_energy_change / run.initial_energy < 1e-8);
+  CHECK(std::abs(run.states.back()[0]) > 10.0);  // it keeps turning (no dead point stops it)
 }

@@ -2,6 +2,7 @@
 # runtime (assembly, projection, energy, exact and reference solutions), the
 # generated constraint kernels against finite differences, and the command
 # line's assembly and singular-configuration errors.
+kanegen_add_model(kanegen_test_slider_crank_free ${PROJECT_SOURCE_DIR}/tests/data/models/slider_crank_free.json)
 add_executable(test_loops ${CMAKE_CURRENT_LIST_DIR}/../regression/main.cpp ${CMAKE_CURRENT_LIST_DIR}/test_loops.cpp
                           ${CMAKE_CURRENT_LIST_DIR}/test_loop_kernels.cpp
                           ${CMAKE_CURRENT_LIST_DIR}/test_references.cpp)
@@ -9,6 +10,7 @@ target_include_directories(test_loops PRIVATE ${CMAKE_CURRENT_LIST_DIR}/../regre
 target_compile_options(test_loops PRIVATE ${KANEGEN_WARNINGS})
 target_link_libraries(test_loops PRIVATE kanegen_model_four_bar kanegen_model_slider_crank kanegen_model_nfourbar2
                                          kanegen_model_andrews_squeezer kanegen_model_simeon_crank kanegen_model_simeon_crank_fe
+                                         kanegen_test_slider_crank_free
                                          kanegen_runtime Catch2::Catch2)
 catch_discover_tests(test_loops TEST_PREFIX "loops: ")
 
