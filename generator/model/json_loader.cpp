@@ -329,7 +329,8 @@ class JsonReader {
       if (key.required && !j.contains(key.name))
         error(place, "missing required key '" + std::string(key.name) + "' for a '" + type + "' force",
               key.fix);
-    for (const auto& [key, unused] : j.items()) {
+    for (const auto& item : j.items()) {
+      const std::string& key = item.key();  // not a structured binding: lambdas cannot capture those in C++17
       if (key == "name" || key == "type") continue;
       if (std::none_of(keys.begin(), keys.end(), [&](const Key& k) { return key == k.name; }))
         error(place + "/" + pointer_token(key), "'" + key + "' does not apply to a '" + type + "' force",
