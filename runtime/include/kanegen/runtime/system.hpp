@@ -27,6 +27,16 @@
 //     static double kinetic_energy(const Params& p, const double* q, const double* u);
 //     static double potential_energy(const Params& p, const double* q);
 //     static void outputs(const Params& p, double t, const double* q, const double* u, double* y);  // ny
+//     // Only models with closed loops (docs/closed-loops.md) have these; the
+//     // runtime treats a System without `nc` as an open tree:
+//     static constexpr int nc;                          // loop-closure equations
+//     static const char* const* constraint_names();     // nc entries
+//     static const int* coordinate_roles();             // nq: 0 free, 1 marked independent, 2 prescribed
+//     static void constraints(const Params& p, const double* q, double* phi);               // nc
+//     static void constraint_jacobian(const Params& p, const double* q, double* C);         // nc*nu
+//     static void constraint_bias(const Params& p, const double* q, const double* u, double* gamma);  // nc
+//     static int constrained_dynamics(const Params& p, double t, const double* q, const double* u,
+//                                     const double* tau, double* udot, double* lambda);  // -k: singular
 //   };
 //
 // All generated functions are allocation-free and exception-free; arrays
