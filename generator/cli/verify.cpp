@@ -1,5 +1,6 @@
 #include "cli/verify.hpp"
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <chrono>
@@ -99,7 +100,8 @@ Link link_runner(const model::Model& model, const numeric::Instance& instance, c
     link.input = actuated;
   } else {
     throw mismatch("ntau = " + std::to_string(ntau) + ", expected one per joint coordinate (" +
-                   std::to_string(joints) + ") or per actuated joint (" + std::to_string(actuated.size()) + ")");
+                   std::to_string(joints) + ") or per actuated joint (" + std::to_string(actuated.size()) +
+                   ")");
   }
 
   link.constraints = constraint_names(instance);
@@ -167,13 +169,67 @@ struct Sample {
   std::vector<double> phi, jacobian, bias, lambda;
 };
 
+/// A random state of a closed mechanism is not on its loops, and there the
+/// loop equations can be dependent (a spatial hinge's alignment rows lose
+/// rank where its axis turns across the other body's). The generated
+/// dynamics then rightly stop at a singular configuration, so such states are
+/// drawn again. The test is the numeric path's own: the eigenvalues of
+/// S = C_f M_ff^-1 C_f^T (free speeds f) within kLoopConditioning, which keeps
+/// every pivot of S far above the generated solver's singular cutoff (1e-6 of
+/// its largest diagonal entry).
+constexpr double kLoopConditioning = 1e-4;
+constexpr int kMaxRedraws = 1000;
+
+bool loops_regular(const numeric::Evaluation& e) {
+  const int nc = static_cast<int>(e.phi.size());
+  if (nc == 0) return true;
+  const int n = static_cast<int>(e.forcing.size());
+  std::vector<int> free;
+  for (int r = 0; r < n; ++r)
+    if (std::find(e.prescribed.begin(), e.prescribed.end(), r) == e.prescribed.end()) free.push_back(r);
+  const int nf = static_cast<int>(free.size());
+  Eigen::MatrixXd mff(nf, nf), cf(nc, nf);
+  for (int a = 0; a < nf; ++a) {
+    for (int b = 0; b < nf; ++b) mff(a, b) = e.mass_matrix[free[a] * n + free[b]];
+    for (int i = 0; i < nc; ++i) cf(i, a) = e.constraint_jacobian[i * n + free[a]];
+  }
+  const Eigen::LLT<Eigen::MatrixXd> m_factor(mff);
+  if (m_factor.info() != Eigen::Success) return false;
+  const Eigen::MatrixXd s = cf * m_factor.solve(cf.transpose());
+  const Eigen::VectorXd eig =
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(s, Eigen::EigenvaluesOnly).eigenvalues();
+  return eig.allFinite() && eig.maxCoeff() > 0 && eig.minCoeff() > kLoopConditioning * eig.maxCoeff();
+}
+
 class Sampler {
  public:
   Sampler(const model::Model& model, const Link& link, const numeric::Instance& base, unsigned long seed,
           double spread)
-      : model_(model), link_(link), base_(base), elastic_(elastic_scales(base)), rng_(seed), spread_(spread) {}
+      : model_(model),
+        link_(link),
+        base_(base),
+        elastic_(elastic_scales(base)),
+        rng_(seed),
+        spread_(spread) {}
 
+  /// A random state at which the loop equations, if any, are regular.
   Sample draw() {
+    for (int attempt = 0; attempt < kMaxRedraws; ++attempt) {
+      Sample s = draw_any();
+      if (loops_regular(s.reference)) return s;
+      ++redrawn_;
+    }
+    throw std::runtime_error("verify: the loop equations of " + model_.name + " were singular at " +
+                             std::to_string(kMaxRedraws) +
+                             " random states in a row; check that the loops can close (kanegen simulate "
+                             "assembles them and names the dependent equation)");
+  }
+
+  /// How many states were drawn again because their loop equations were singular.
+  int redrawn() const { return redrawn_; }
+
+ private:
+  Sample draw_any() {
     Sample s;
     for (const model::Parameter& p : model_.parameters)
       s.parameters[p.name] = p.value != 0 ? p.value * uniform(1 - spread_, 1 + spread_) : uniform(0, spread_);
@@ -202,7 +258,6 @@ class Sampler {
     return s;
   }
 
- private:
   double uniform(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng_); }
 
   const model::Model& model_;
@@ -211,6 +266,7 @@ class Sampler {
   std::vector<double> elastic_;
   std::mt19937_64 rng_;
   double spread_;
+  int redrawn_ = 0;
 };
 
 std::vector<double> flatten(const json& rows) {
@@ -488,8 +544,8 @@ class Comparison {
 };
 
 /// The runner's parameter defaults, q0 and u0 against the model file.
-Row defaults_row(const model::Model& model, const numeric::Instance& defaults, const Link& link, const json& info,
-                 double rtol) {
+Row defaults_row(const model::Model& model, const numeric::Instance& defaults, const Link& link,
+                 const json& info, double rtol) {
   std::vector<double> generated, reference;
   std::vector<std::string> names;
   const std::vector<double> p = info["parameter_defaults"].get<std::vector<double>>();
@@ -571,6 +627,9 @@ int verify(const VerifyOptions& o) {
     samples.push_back(sampler.draw());
     evaluate_generated(process, samples.back());
   }
+  if (sampler.redrawn() > 0)
+    progress(std::to_string(sampler.redrawn()) +
+             " random states had (nearly) dependent loop equations and were drawn again (docs/verify.md)");
 
   const Comparison c(link, samples, o.rtol);
   std::vector<Row> rows;

@@ -7,6 +7,10 @@
 
 #include "four_bar.hpp"
 #include "nfourbar2.hpp"
+#include "quick_return.hpp"
+#include "ring_slider.hpp"
+#include "rsur_revolute.hpp"
+#include "rsur_spherical.hpp"
 #include "slider_crank.hpp"
 
 namespace {
@@ -63,7 +67,9 @@ Worst check_kernels(int samples) {
 
 TEMPLATE_TEST_CASE("generated constraint kernels agree with finite differences", "[loops][kernels]",
                    kanegen_models::four_bar::System, kanegen_models::slider_crank::System,
-                   kanegen_models::nfourbar2::System) {
+                   kanegen_models::nfourbar2::System, kanegen_models::rsur_spherical::System,
+                   kanegen_models::rsur_revolute::System, kanegen_models::ring_slider::System,
+                   kanegen_models::quick_return::System) {
   const Worst worst = check_kernels<TestType>(50);
   INFO(TestType::name);
   CHECK(worst.jacobian < 1e-8);

@@ -32,10 +32,12 @@ catch_discover_tests(test_verify_cli TEST_PREFIX "verify: ")
 # elements: springs between links and to the ground, joint efforts in t, on a
 # rigid chain and on a beam (a spring on its tip body pulls on the node);
 # assumed modes on a planar hub arm with a pendulum on its tip and on the
-# spatial gimbal.
+# spatial gimbal; the loop types the shipped linkages do not use (spherical,
+# spatial revolute, spatial and planar slider).
 file(GLOB KANEGEN_VERIFY_MODELS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/models/*.json ${PROJECT_SOURCE_DIR}/models/*.urdf)
 foreach(name forced_cart_pendulum flex_hub_planar flex_hub_modal flex_spatial_hub flex_prescribed_hub flex_tip_body
-             force_elements flex_spring assumed_hub assumed_spatial_hub)
+             force_elements flex_spring assumed_hub assumed_spatial_hub rsur_spherical rsur_revolute ring_slider
+             quick_return)
   list(APPEND KANEGEN_VERIFY_MODELS ${PROJECT_SOURCE_DIR}/tests/data/models/${name}.json)
 endforeach()
 foreach(model ${KANEGEN_VERIFY_MODELS})
