@@ -15,6 +15,7 @@
 #include "cli/verify_runner.hpp"
 #include "model/expression_eval.hpp"
 #include "model/load.hpp"
+#include "model/model_error.hpp"
 #include "numeric/dynamics.hpp"
 #include "numeric/instance.hpp"
 #include "numeric/loops.hpp"
@@ -169,18 +170,23 @@ struct Sample {
   std::vector<double> phi, jacobian, bias, lambda;
 };
 
-/// A random state of a closed mechanism is not on its loops, and there the
-/// loop equations can be dependent (a spatial hinge's alignment rows lose
-/// rank where its axis turns across the other body's). The generated
-/// dynamics then rightly stop at a singular configuration, so such states are
-/// drawn again. The test is the numeric path's own: the eigenvalues of
-/// S = C_f M_ff^-1 C_f^T (free speeds f) within kLoopConditioning, which keeps
-/// every pivot of S far above the generated solver's singular cutoff (1e-6 of
-/// its largest diagonal entry).
-constexpr double kLoopConditioning = 1e-4;
+/// The generated constrained_dynamics stops at a singular configuration
+/// where a Cholesky pivot of S = C_f M_ff^-1 C_f^T (free speeds f), taken in
+/// row order, is below 1e-6 of S's largest diagonal entry. A random state is
+/// not on the loops, and there the loop equations can be (nearly) dependent
+/// where on the manifold they are not (a spatial hinge's alignment rows lose
+/// rank where its axis turns across the other body's). Such states are drawn
+/// again when the same measure, from the numeric path's M and C, is below
+/// kLoopPivotMargin: ten times the cutoff, so that round-off in either never
+/// decides whether a state is kept, and the generated kernels cannot excuse
+/// themselves (the choice uses the numeric path alone).
+constexpr double kLoopPivotMargin = 1e-5;
 constexpr int kMaxRedraws = 1000;
 
-bool loops_regular(const numeric::Evaluation& e) {
+/// False where the loop equations are nearly dependent by the measure above.
+/// A mass matrix that is not positive definite is not the loops' fault: such
+/// a state is kept, and the mass-matrix rows report it.
+bool loops_independent(const numeric::Evaluation& e) {
   const int nc = static_cast<int>(e.phi.size());
   if (nc == 0) return true;
   const int n = static_cast<int>(e.forcing.size());
@@ -194,11 +200,16 @@ bool loops_regular(const numeric::Evaluation& e) {
     for (int i = 0; i < nc; ++i) cf(i, a) = e.constraint_jacobian[i * n + free[a]];
   }
   const Eigen::LLT<Eigen::MatrixXd> m_factor(mff);
-  if (m_factor.info() != Eigen::Success) return false;
+  if (m_factor.info() != Eigen::Success) return true;
   const Eigen::MatrixXd s = cf * m_factor.solve(cf.transpose());
-  const Eigen::VectorXd eig =
-      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(s, Eigen::EigenvaluesOnly).eigenvalues();
-  return eig.allFinite() && eig.maxCoeff() > 0 && eig.minCoeff() > kLoopConditioning * eig.maxCoeff();
+  const double largest = s.diagonal().maxCoeff();
+  if (!(largest > 0)) return false;
+  const Eigen::LLT<Eigen::MatrixXd> s_factor(s);
+  if (s_factor.info() != Eigen::Success) return false;
+  const Eigen::MatrixXd l = s_factor.matrixL();
+  for (int j = 0; j < nc; ++j)
+    if (!(l(j, j) * l(j, j) > kLoopPivotMargin * largest)) return false;
+  return true;
 }
 
 class Sampler {
@@ -212,20 +223,23 @@ class Sampler {
         rng_(seed),
         spread_(spread) {}
 
-  /// A random state at which the loop equations, if any, are regular.
+  /// A random state at which the loop equations, if any, are independent.
   Sample draw() {
     for (int attempt = 0; attempt < kMaxRedraws; ++attempt) {
       Sample s = draw_any();
-      if (loops_regular(s.reference)) return s;
+      if (loops_independent(s.reference)) return s;
       ++redrawn_;
     }
-    throw std::runtime_error("verify: the loop equations of " + model_.name + " were singular at " +
-                             std::to_string(kMaxRedraws) +
-                             " random states in a row; check that the loops can close (kanegen simulate "
-                             "assembles them and names the dependent equation)");
+    throw model::ModelError(
+        model_.source_file, "/loops",
+        "the loop equations are (nearly) dependent at " + std::to_string(kMaxRedraws) +
+            " random states in a row (a Cholesky pivot of C M^-1 C^T below 1e-5 of its largest diagonal "
+            "entry), so verify cannot compare the constrained dynamics",
+        "remove redundant loop equations (a planar mechanism needs \"planar\": true loops; see "
+        "docs/closed-loops.md, singular configurations)");
   }
 
-  /// How many states were drawn again because their loop equations were singular.
+  /// How many states were drawn again because their loop equations were nearly dependent.
   int redrawn() const { return redrawn_; }
 
  private:

@@ -5,6 +5,7 @@
 // cuts of one linkage to each other.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <utility>
 
 #include "loop_helpers.hpp"
 #include "quick_return.hpp"
@@ -27,10 +28,13 @@ Vec cross(Vec a, Vec b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, 
 }  // namespace
 
 TEST_CASE("assembly of the RSUR linkage finds the independently solved configuration", "[loops][spatial]") {
-  // The configuration at crank angle 0, solved independently: |P - Q| = c for
-  // the rocker angle by bracketing root-finding (SciPy's brentq), then the
-  // universal joint's angles from the direction P -> Q and the ball's z-y-x
-  // angles from the rocker's rotation relative to the coupler (NumPy).
+  // The configuration at crank angle 0, solved independently (SciPy's brentq,
+  // NumPy): the rocker angle th from |Q(th) - P| = c with the crank tip
+  // P = (a, 0, 0) and the rocker tip Q = G + Rx(th) (0, b, 0), on the branch
+  // near -1.37; the universal joint's yaw = atan2(d_y, d_x) and
+  // pitch = -asin(d_z) of d = (Q - P)/c; the ball's z-y-x angles from
+  // Rz(s1) Ry(s2) Rx(s3) = (Rz(yaw) Ry(pitch))^T Rx(th): s2 = -asin(R_20),
+  // s1 = atan2(R_10, R_00), s3 = atan2(R_21, R_22).
   const LoopRun spherical = run_loops<kanegen_models::rsur_spherical::System>(0.0, 0.01, 1e-10);
   const LoopRun revolute = run_loops<kanegen_models::rsur_revolute::System>(0.0, 0.01, 1e-10);
   REQUIRE(spherical.assembly.independent == std::vector<int>{0});
@@ -56,14 +60,26 @@ TEST_CASE("the RSUR linkage cut at its spherical joint and at its hinge moves al
   INFO(a.result.message << " / " << b.result.message);
   REQUIRE(a.result.ok());
   REQUIRE(b.result.ok());
-  REQUIRE(a.times.size() == b.times.size());
+  REQUIRE(a.times == b.times);
+  // The two files must describe the same linkage.
+  const Spherical::Params p;
+  const Revolute::Params p2;
+  for (const auto& [x, y] : {std::pair{p.a, p2.a},
+                             {p.b, p2.b},
+                             {p.c, p2.c},
+                             {p.gx, p2.gx},
+                             {p.gy, p2.gy},
+                             {p.gz, p2.gz},
+                             {p.m1, p2.m1},
+                             {p.m2, p2.m2},
+                             {p.m3, p2.m3}})
+    REQUIRE(x == y);
   for (const LoopRun* run : {&a, &b}) {
     CHECK(run->worst_residual < 1e-10);
     CHECK(run->worst_energy_change / std::abs(run->initial_energy) < 1e-8);
   }
   CHECK(a.initial_energy == Approx(b.initial_energy).epsilon(1e-10));
-  const Spherical::Params p;
-  double worst_angle = 0, worst_rocker = 0, worst_distance = 0;
+  double worst_angle = 0, worst_rocker = 0, worst_joint = 0;
   for (std::size_t k = 0; k < a.times.size(); ++k) {
     const std::vector<double>& x = a.states[k];
     const std::vector<double>& y = b.states[k];
@@ -71,18 +87,22 @@ TEST_CASE("the RSUR linkage cut at its spherical joint and at its hinge moves al
     for (int i = 0; i < 3; ++i) worst_angle = std::max(worst_angle, std::abs(x[i] - y[i]));
     // The rocker's midpoint from the spherical cut's rocker angle, and from the revolute cut's outputs.
     double out[Revolute::ny];
-    Revolute::outputs(Revolute::Params{}, a.times[k], y.data(), y.data() + Revolute::nq, out);
+    Revolute::outputs(p2, b.times[k], y.data(), y.data() + Revolute::nq, out);
     const double th = x[3];
     const Vec mid_a{p.gx, p.gy + p.b / 2 * std::cos(th), p.gz + p.b / 2 * std::sin(th)};
     worst_rocker = std::max(worst_rocker, norm(mid_a - Vec{out[0], out[1], out[2]}));
-    // The spherical joint's meaning: crank tip to rocker tip is the coupler's length.
-    const Vec crank_tip{p.a * std::cos(x[0]), p.a * std::sin(x[0]), 0.0};
+    // The spherical joint's meaning: the coupler's end, from the crank, yaw
+    // (about z) and pitch (about the cross's y) angles, is the rocker's tip.
+    const double yaw = x[0] + x[1], pitch = x[2];
+    const Vec coupler_end{p.a * std::cos(x[0]) + p.c * std::cos(yaw) * std::cos(pitch),
+                          p.a * std::sin(x[0]) + p.c * std::sin(yaw) * std::cos(pitch),
+                          -p.c * std::sin(pitch)};
     const Vec rocker_tip{p.gx, p.gy + p.b * std::cos(th), p.gz + p.b * std::sin(th)};
-    worst_distance = std::max(worst_distance, std::abs(norm(rocker_tip - crank_tip) - p.c));
+    worst_joint = std::max(worst_joint, norm(rocker_tip - coupler_end));
   }
   CHECK(worst_angle < 1e-8);
   CHECK(worst_rocker < 1e-9);
-  CHECK(worst_distance < 1e-10);
+  CHECK(worst_joint < 1e-10);
   CHECK(a.states.back()[0] > 2 * M_PI);  // the crank goes round
 }
 
@@ -103,6 +123,7 @@ TEST_CASE("a rod through a ring keeps the ring on its axis and conserves energy"
     worst = std::max(worst, norm(cross(Vec{p.rx, p.ry, p.rz} - crank_tip, axis)));
   }
   CHECK(worst < 1e-10);
+  CHECK(std::abs(run.states.back()[0]) > 2 * M_PI);  // the crank goes round
 }
 
 TEST_CASE("the quick-return rocker follows the crank pin exactly and energy is conserved",

@@ -155,6 +155,20 @@ TEST_CASE("verify --kernels of another model is a clear error", "[verify]") {
   CHECK(contains(r.err, "error: the kernels do not match"));
 }
 
+TEST_CASE("verify refuses loops that are dependent everywhere, naming the fix", "[verify][loops]") {
+  // The four-bar with a spatial revolute: its out-of-plane rows vanish identically.
+  nlohmann::json model = nlohmann::json::parse(slurp(source("models/four_bar.json")));
+  model["loops"][0]["planar"] = false;
+  const fs::path file = scratch() / "four_bar_redundant.json";
+  write(file, model.dump(2));
+  const Result r = kanegen("verify " + file.string() + " --quiet");
+  CHECK(r.status == 2);
+  CHECK(contains(r.err, file.string() + ": /loops: the loop equations are (nearly) dependent at 1000 random "
+                                        "states in a row"));
+  CHECK(contains(r.err, "\"planar\": true"));
+  CHECK(r.out.empty());
+}
+
 TEST_CASE("verify --kernels passes on an unaltered copy", "[verify][corruption]") {
   const fs::path dir = generate("tests/data/models/forced_cart_pendulum.json", "clean");
   const Result r = kanegen("verify " + source("tests/data/models/forced_cart_pendulum.json") + " --kernels " +
@@ -261,7 +275,8 @@ TEST_CASE("corruption: one stiffness term of a flexible forcing kernel off by 1e
   const fs::path dir = generate(model, "flexible_stiffness");
   // The first literal of at least 1000 that multiplies a coordinate: an entry of K.
   scale_literal(dir / "flex_hub_planar.cpp", "void forcing", "\\*q\\[", 1000.0, 1 + 1e-6);
-  const Result r = kanegen("verify " + source(model) + " --kernels " + dir.string() + " --samples 20 --quiet");
+  const Result r =
+      kanegen("verify " + source(model) + " --kernels " + dir.string() + " --samples 20 --quiet");
   INFO(r.out << r.err);
   CHECK(r.status == 1);
   CHECK(contains(r.err, "error: forcing ["));
@@ -270,19 +285,22 @@ TEST_CASE("corruption: one stiffness term of a flexible forcing kernel off by 1e
   CHECK_FALSE(contains(r.err, "error: udot"));  // forward_dynamics is a separate kernel
 }
 
-TEST_CASE("corruption: a modal velocity term off by 1e-3 fails, naming forcing", "[verify][corruption][flexible]") {
+TEST_CASE("corruption: a modal velocity term off by 1e-3 fails, naming forcing",
+          "[verify][corruption][flexible]") {
   const std::string model = "tests/data/models/flex_hub_modal.json";
   const fs::path dir = generate(model, "flexible_modal");
   // A coefficient of the first mode's speed (modal damping, Coriolis).
   scale_literal(dir / "flex_hub_modal.cpp", "void forcing", "\\*u\\[1\\]", 0.0, 1 + 1e-3);
-  const Result r = kanegen("verify " + source(model) + " --kernels " + dir.string() + " --samples 20 --quiet");
+  const Result r =
+      kanegen("verify " + source(model) + " --kernels " + dir.string() + " --samples 20 --quiet");
   INFO(r.out << r.err);
   CHECK(r.status == 1);
   CHECK(contains(r.err, "error: forcing ["));
   CHECK_FALSE(contains(r.err, "error: mass_matrix"));
 }
 
-TEST_CASE("corruption: a wrong elastic mass fails mass_matrix and d2T/du2", "[verify][corruption][flexible]") {
+TEST_CASE("corruption: a wrong elastic mass fails mass_matrix and d2T/du2",
+          "[verify][corruption][flexible]") {
   const std::string model = "tests/data/models/flex_spatial_hub.json";
   const fs::path dir = generate(model, "flexible_mass");
   // The first constant entry M[r*n + c] = number; of the beam's own block (r, c >= 2: after yaw and pitch).
@@ -305,7 +323,8 @@ TEST_CASE("corruption: a wrong elastic mass fails mass_matrix and d2T/du2", "[ve
     done = true;
   }
   REQUIRE(done);
-  const Result r = kanegen("verify " + source(model) + " --kernels " + dir.string() + " --samples 20 --quiet");
+  const Result r =
+      kanegen("verify " + source(model) + " --kernels " + dir.string() + " --samples 20 --quiet");
   INFO(r.out << r.err);
   CHECK(r.status == 1);
   CHECK(contains(r.err, "error: mass_matrix ["));
@@ -313,11 +332,13 @@ TEST_CASE("corruption: a wrong elastic mass fails mass_matrix and d2T/du2", "[ve
   CHECK(contains(r.err, "error: d2T/du2"));  // M no longer the Hessian of the (unaltered) kinetic energy
 }
 
-TEST_CASE("corruption: a wrong prescribed acceleration fails udot, naming it", "[verify][corruption][flexible]") {
+TEST_CASE("corruption: a wrong prescribed acceleration fails udot, naming it",
+          "[verify][corruption][flexible]") {
   const std::string model = "tests/data/models/flex_prescribed_hub.json";
   const fs::path dir = generate(model, "prescribed");
   corrupt(dir / "flex_prescribed_hub.cpp", "int forward_dynamics", "\\bap0 = (?!0\\.0;)", "$&1.001*");
-  const Result r = kanegen("verify " + source(model) + " --kernels " + dir.string() + " --samples 20 --quiet");
+  const Result r =
+      kanegen("verify " + source(model) + " --kernels " + dir.string() + " --samples 20 --quiet");
   INFO(r.out << r.err);
   CHECK(r.status == 1);
   CHECK(contains(r.err, "error: udot [0] (hub) (prescribed acceleration)"));
