@@ -92,6 +92,16 @@ Eigen::MatrixXd BeamElement::resultant_matrix(double xi) const {
   return r;
 }
 
+Eigen::MatrixXd BeamElement::slope_matrix(double xi) const {
+  const auto planes = bending_planes();
+  Eigen::MatrixXd g = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(planes.size()), num_dofs());
+  const Eigen::Vector4d dh = hermite_dx(xi, length_);
+  for (std::size_t p = 0; p < planes.size(); ++p)
+    for (int i = 0; i < 4; ++i)
+      g(static_cast<Eigen::Index>(p), planes[p].dof[i]) += planes[p].sign[i] * dh[i];
+  return g;
+}
+
 std::vector<BeamElement::Bending> BeamElement::bending_planes() const {
   const double E = material_.E, rho = material_.rho;
   if (kind_ == BeamKind::kPlanar)

@@ -83,6 +83,11 @@ class BeamElement final : public Element {
   /// Bending stress at (y, z) of the section: N / A - M_z y / Iz + M_y z / Iy.
   Eigen::MatrixXd resultant_matrix(double xi) const;
 
+  /// Slopes of the transverse displacements at xi as a linear map of u^e,
+  /// element frame: planar 1 x ndof (v'), spatial 2 x ndof (v', w'). Their
+  /// squares are the Green-Lagrange strain's bending part, 1/2 (v'^2 + w'^2).
+  Eigen::MatrixXd slope_matrix(double xi) const;
+
  private:
   struct Bending {
     int dof[4];  // (v0, theta0, v1, theta1) or (w0, theta_y0, w1, theta_y1)
