@@ -3,10 +3,10 @@
 //
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 502
-//   forcing: 1339
-//   forward_dynamics: 14405 (12772 of them in LDL^T)
+//   forcing: 1384
+//   forward_dynamics: 14450 (12772 of them in LDL^T)
 //   kinetic_energy: 872
-//   potential_energy: 267
+//   potential_energy: 609
 //   outputs: 3
 //
 // Arrays are plain C arrays with their sizes in the comments; no function

@@ -3,10 +3,10 @@
 //
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 0
-//   forcing: 189
-//   forward_dynamics: 749 (560 of them in LDL^T)
+//   forcing: 733
+//   forward_dynamics: 1293 (560 of them in LDL^T)
 //   kinetic_energy: 279
-//   potential_energy: 265
+//   potential_energy: 599
 //   outputs: 9
 //
 // Arrays are plain C arrays with their sizes in the comments; no function

@@ -3,10 +3,10 @@
 //
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 467
-//   forcing: 1012
-//   forward_dynamics: 1756 (560 of them in LDL^T)
+//   forcing: 1299
+//   forward_dynamics: 2043 (560 of them in LDL^T)
 //   kinetic_energy: 817
-//   potential_energy: 243
+//   potential_energy: 570
 //   outputs: 3
 //
 // Arrays are plain C arrays with their sizes in the comments; no function

@@ -3,10 +3,10 @@
 //
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 88
-//   forcing: 737
-//   forward_dynamics: 1073 (560 of them in LDL^T)
+//   forcing: 1047
+//   forward_dynamics: 1383 (560 of them in LDL^T)
 //   kinetic_energy: 377
-//   potential_energy: 290
+//   potential_energy: 632
 //   outputs: 4
 //
 // Arrays are plain C arrays with their sizes in the comments; no function

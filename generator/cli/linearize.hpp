@@ -1,5 +1,6 @@
 // Linearisation of the compiled equations M(q) u_dot = f(t, q, u) about one
-// state, by central differences through the runner's batch mode (one
+// state, by central differences (Richardson-extrapolated from two steps)
+// through the runner's batch mode (one
 // process, one JSON line per state). Some coordinates are selected; the
 // others move with given accelerations (zero for a held joint, the
 // prescribed one for a prescribed joint), so the selected rows read

@@ -216,6 +216,43 @@ ordered_json modes_json(const fem::ModalBasis& basis, const std::vector<std::str
   return modes;
 }
 
+/// Whether a flexible body carries its geometric stiffness in the nonlinear
+/// axial strain (nodal coordinates with stiffening, fem/axial_strain.hpp):
+/// its stiffening lives in the axial stretch of the loaded equilibrium.
+bool stiffens_by_strain(const model::Model& model) {
+  return std::any_of(model.bodies.begin(), model.bodies.end(), [](const model::Body& b) {
+    return b.flexible && b.beam.geometric_stiffening && b.beam.modes == 0 && b.beam.assumed_modes.empty();
+  });
+}
+
+/// Moves the elastic coordinates of the operating point to the equilibrium
+/// of the elastic equations, r(q) = 0 with the joints as set up, by Newton's
+/// method on the linearisation (dq = K^-1 r). Returns the iterations taken;
+/// throws if it does not converge.
+int find_elastic_equilibrium(RunnerProcess& process, Problem& pb, const std::vector<bool>& elastic,
+                             const std::string& file) {
+  LinearizeOptions lin = pb.linearize;
+  lin.velocity = false;
+  for (int iteration = 1; iteration <= 30; ++iteration) {
+    const Linearization lz = linearize(process, pb.point, lin);
+    const Eigen::VectorXd dq = lz.stiffness.fullPivLu().solve(lz.forcing);
+    if (!dq.allFinite())
+      throw std::runtime_error(file +
+                               ": no elastic equilibrium near the initial state (K is singular there)");
+    double largest = 0.0;
+    for (std::size_t i = 0; i < lin.selected.size(); ++i) {
+      if (!elastic[i]) continue;
+      double& q = pb.point.q[static_cast<std::size_t>(lin.selected[i])];
+      q += dq[static_cast<Eigen::Index>(i)];
+      largest = std::max(largest, std::abs(dq[static_cast<Eigen::Index>(i)]) / std::max(1.0, std::abs(q)));
+    }
+    if (largest < 1e-13) return iteration;
+  }
+  throw std::runtime_error(file +
+                           ": no elastic equilibrium near the initial state after 30 Newton steps (the "
+                           "loads may be past buckling); the modes need the prestressed equilibrium");
+}
+
 }  // namespace
 
 int modes(const ModesOptions& options) {
@@ -228,11 +265,18 @@ int modes(const ModesOptions& options) {
                             "compute the modes of the open tree (remove \"loops\"), or simulate the linkage");
   const std::string runner = build_runner(options.model, options.build);
   const json info = runner_info(runner);
-  const Problem pb = set_up(model, info, options);
+  Problem pb = set_up(model, info, options);
+  const int joint_count = static_cast<int>(std::count_if(model.joints.begin(), model.joints.end(),
+                                                         [](const model::Joint& j) { return j.moves(); }));
+  std::vector<bool> elastic;
+  for (int k : pb.linearize.selected) elastic.push_back(k >= joint_count);
 
   Linearization lz;
+  int equilibrium_iterations = 0;
   {
     RunnerProcess process(runner, {"batch"});
+    if (stiffens_by_strain(model))
+      equilibrium_iterations = find_elastic_equilibrium(process, pb, elastic, model.source_file);
     lz = linearize(process, pb.point, pb.linearize);
     if (process.finish() != 0) throw std::runtime_error(runner + " batch failed");
   }
@@ -253,6 +297,13 @@ int modes(const ModesOptions& options) {
   for (std::size_t k = 0; k < pb.parameter_names.size(); ++k) params[pb.parameter_names[k]] = pb.point.p[k];
   out["parameters"] = params;
   out["coordinates"] = pb.names;
+  if (equilibrium_iterations > 0) {
+    // The operating point's elastic coordinates, moved to their equilibrium.
+    ordered_json at = ordered_json::object();
+    for (std::size_t i = 0; i < pb.names.size(); ++i)
+      if (elastic[i]) at[pb.names[i]] = pb.point.q[static_cast<std::size_t>(pb.linearize.selected[i])];
+    out["equilibrium"] = {{"newton_steps", equilibrium_iterations}, {"q", at}};
+  }
   out["held"] = pb.held;
   out["prescribed"] = pb.prescribed;
   out["stable"] = first_unstable < 0;

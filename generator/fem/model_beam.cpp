@@ -3,7 +3,6 @@
 #include "fem/assumed_modes.hpp"
 #include "fem/beam_body.hpp"
 #include "fem/boundary.hpp"
-#include "fem/rotating.hpp"
 #include "model/model_error.hpp"
 
 namespace kanegen::fem {
@@ -19,8 +18,13 @@ ModelBeam build_model_beam(const model::Body& body, const std::string& file) {
   properties.section.J = planar ? 0.0 : f.J;
   properties.material = {f.E, f.G, f.density};
 
-  ModelBeam out{
-      Body(planar ? planar_layout() : spatial_layout()), {}, {}, properties.section, properties.material};
+  ModelBeam out{Body(planar ? planar_layout() : spatial_layout()),
+                {},
+                {},
+                properties.section,
+                properties.material,
+                {},
+                std::nullopt};
   int last = out.body.add_node(Eigen::Vector3d::Zero());
   for (const model::BeamSegment& s : f.segments)
     last = add_beam_run(out.body, last, Eigen::Vector3d(s.to[0], s.to[1], s.to[2]), s.elements, properties);
@@ -47,13 +51,28 @@ ModelBeam build_model_beam(const model::Body& body, const std::string& file) {
     out.reduced =
         f.modes > 0 ? reduce_modal(out.body, constraint, f.modes) : reduce_nodal(out.body, constraint);
   }
-  if (f.geometric_stiffening && !out.reduced.geometric)
-    throw model::ModelError(
-        file, f.where + "/geometric_stiffening",
-        "geometric stiffening is available only for a beam that is one straight run along the "
-        "body's +x axis (body '" +
-            body.name + "')",
-        "set \"geometric_stiffening\": false, or lay the beam along x");
+  if (f.geometric_stiffening) {
+    if (f.modes > 0 || !f.assumed_modes.empty()) {
+      // Kept to second order, the foreshortening of a bent beam moves its
+      // later legs along their own bending (a first-order coupling in the
+      // elastic block that the truncation drops): the mass matrix then loses
+      // definiteness at deflections of a millimetre. A straight beam has none.
+      for (int e = 1; e < out.body.num_elements(); ++e)
+        if (!out.body.element(e).R.col(0).isApprox(out.body.element(0).R.col(0), 1e-12))
+          throw model::ModelError(
+              file, f.where + "/geometric_stiffening",
+              "geometric stiffening of a beam in modes needs a straight beam, and body '" + body.name +
+                  "' turns at its element " + std::to_string(e) +
+                  " (its modal foreshortening would not keep the "
+                  "mass matrix positive definite)",
+              "give the beam in nodal coordinates (remove \"modes\"), where the stiffening is the nonlinear "
+              "axial strain and any shape works, or set \"geometric_stiffening\": false");
+      // The segments run on from node 0, so every element starts at a node already reached.
+      out.foreshortening = foreshortening(out.body, out.reduced.basis);
+    } else {
+      out.axial_strain = axial_strain_elements(out.body, out.reduced.basis);
+    }
+  }
 
   const int n = static_cast<int>(out.reduced.names.size());
   if (f.modes > 0 && f.modal_damping > 0) {

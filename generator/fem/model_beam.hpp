@@ -6,27 +6,36 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <optional>
 #include <string>
 
-#include "fem/body.hpp"
+#include "fem/axial_strain.hpp"
 #include "fem/beam_element.hpp"
+#include "fem/body.hpp"
+#include "fem/foreshortening.hpp"
 #include "fem/reduction.hpp"
 #include "model/model.hpp"
 
 namespace kanegen::fem {
 
 struct ModelBeam {
-  Body body;             ///< all nodal dofs, link frame
-  ReducedBody reduced;   ///< the elastic coordinates eta: u = basis eta
+  Body body;                ///< all nodal dofs, link frame
+  ReducedBody reduced;      ///< the elastic coordinates eta: u = basis eta
   Eigen::MatrixXd damping;  ///< n x n: alpha M + beta K, or 2 zeta omega_i in modal coordinates
   /// The section and material of every element, for the stress outputs.
   BeamSection section;
   Material material;
+  /// Geometric stiffening, in one of two forms. Nodal coordinates keep the
+  /// axial displacements: the nonlinear axial strain energy
+  /// (fem/axial_strain.hpp). Modes and assumed modes leave the stiff axial
+  /// motion out: the foreshortening of the bending (fem/foreshortening.hpp)
+  /// carries the axial force instead. Both are conservative.
+  std::vector<AxialStrainElement> axial_strain;
+  std::optional<Foreshortening> foreshortening;
 };
 
 /// Builds the body; throws model::ModelError (naming the body's place) when
-/// the beam cannot be built, e.g. geometric stiffening asked for a beam that
-/// is not one straight run along the link x axis.
+/// the beam cannot be built.
 ModelBeam build_model_beam(const model::Body& body, const std::string& file);
 
 }  // namespace kanegen::fem

@@ -2,7 +2,7 @@
 
 #include <map>
 
-#include "fem/rotating.hpp"
+#include "kane/beam_node.hpp"
 #include "kane/flexible_body.hpp"
 #include "kane/force_elements.hpp"
 #include "kane/node_outputs.hpp"
@@ -70,8 +70,7 @@ Wrench to_parent(Program& program, const Wrench& w, const Mat3& to_child, const 
 /// its share of their mass block and its wrench to their forcing.
 /// `inertia` and `wrench`: the subtree's, about P's origin in P's axes.
 void add_node_subtree(FlexibleTerms& p, const kinematics::BodyState& child, const SpatialInertia& inertia,
-                      const Wrench& wrench, const kinematics::NodeAttachment& node,
-                      const std::vector<ex>& eta, Program& program) {
+                      const Wrench& wrench, Program& program) {
   const std::size_t n = child.node_partial_angular.size();
   std::vector<Vec3> angular(n), linear(n);
   for (std::size_t l = 0; l < n; ++l) {
@@ -87,13 +86,6 @@ void add_node_subtree(FlexibleTerms& p, const kinematics::BodyState& child, cons
     for (std::size_t l = 0; l < n; ++l)
       p.elastic_mass[k * count + l] += dot(w, angular[l]) + dot(v, linear[l]);
     p.elastic_forcing[k] += dot(w, wrench.moment) + dot(v, wrench.force);
-    // Geometric stiffening by the subtree's axial pull on the node (its
-    // force at u_dot = 0, as for the beam's own inertia loads).
-    if (node.axial_geometric.size())
-      p.elastic_forcing[k] -=
-          wrench.force[0] *
-          linear_combination(cleaned(node.axial_geometric.row(static_cast<Eigen::Index>(k)).transpose()),
-                             eta);
   }
   for (std::size_t l = 0; l < n; ++l) {
     p.angular_momentum[l] = p.angular_momentum[l] + angular[l];
@@ -106,7 +98,7 @@ void add_node_subtree(FlexibleTerms& p, const kinematics::BodyState& child, cons
 Equations derive_equations(const model::Model& model, const symbolic::Variables& vars,
                            symbolic::Program& program, MassMatrixMethod method,
                            const FlexibleBodies& flexible) {
-  // Joints on nodes of flexible parents (planar beams only, for now).
+  // Joints on nodes of flexible parents.
   std::map<int, kinematics::NodeAttachment> attachments;
   for (std::size_t k = 0; k < model.joints.size(); ++k) {
     const model::Joint& j = model.joints[k];
@@ -114,24 +106,21 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
     int parent = -1;
     for (std::size_t b = 0; b < model.bodies.size(); ++b)
       if (model.bodies[b].name == j.parent) parent = static_cast<int>(b);
-    const model::Body& body = model.bodies[parent];
-    if (body.beam.formulation != model::BeamFormulation::planar || j.type == model::JointType::prismatic)
-      throw model::ModelError(
-          model.source_file, j.where + "/parent_node",
-          "only revolute, continuous and fixed joints on the nodes of planar beams are supported",
-          "attach joint '" + j.name +
-              "' to the body frame (remove \"parent_node\"), or make "
-              "the beam planar");
+    if (j.type == model::JointType::prismatic)
+      throw model::ModelError(model.source_file, j.where + "/parent_node",
+                              "only revolute, continuous and fixed joints on beam nodes are supported",
+                              "attach prismatic joint '" + j.name +
+                                  "' to the body frame (remove \"parent_node\"), or put a fixed joint "
+                                  "and a body on the node and the slide on that body");
     const fem::ModelBeam& beam = flexible.at(parent);
     kinematics::NodeAttachment a;
     a.position = beam.body.node_position(j.parent_node);
     a.translation = beam.reduced.node_translation(beam.body, j.parent_node);
-    a.rotation_z = beam.reduced.node_rotation(beam.body, j.parent_node).row(2).transpose();
+    a.rotation = beam.reduced.node_rotation(beam.body, j.parent_node);
     a.first = vars.elastic_first[parent];
-    if (body.beam.geometric_stiffening) {
-      const Eigen::MatrixXd& basis = beam.reduced.basis;
-      a.axial_geometric =
-          basis.transpose() * fem::node_force_geometric_stiffness(beam.body, j.parent_node) * basis;
+    if (beam.foreshortening) {
+      const auto& h = beam.foreshortening->node[j.parent_node];
+      a.shortening.assign(h.begin(), h.end());
     }
     attachments.emplace(static_cast<int>(k), a);
   }
@@ -198,25 +187,19 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
     const std::vector<ex> eta(vars.q.begin() + first, vars.q.begin() + first + count);
     const std::vector<ex> eta_dot(vars.u.begin() + first, vars.u.begin() + first + count);
     const fem::ModelBeam& beam = flexible.at(b.body);
-    FlexibleTerms terms = flexible_terms(beam, body.beam.geometric_stiffening, b, eta, eta_dot, program);
+    FlexibleTerms terms = flexible_terms(beam, b, eta, eta_dot, program);
     for (const model::PointForce& pf : model.forces) {
       if (pf.body != body.name || pf.node < 0) continue;
-      // At the deformed node p = r + T eta: a force and moment about the
-      // origin on the link, and T^T f on the elastic coordinates.
-      const Eigen::MatrixXd t = beam.reduced.node_translation(beam.body, pf.node);
-      const Eigen::Vector3d r = beam.body.node_position(pf.node);
-      Vec3 at;
-      for (int a = 0; a < 3; ++a)
-        at[a] = symbolic::number(r[a]) + linear_combination(t.row(a).transpose(), eta);
-      at = named(program, at);
+      // At the deformed node p = r + T eta (+ f, the foreshortening): a force
+      // and moment about the origin on the link, and (T + D)^T f on eta.
+      const NodePoint node = node_point(beam, pf.node, eta, &program);
+      const Vec3& at = node.position;
       const Vec3 given = vec(vars, pf.force);
       const Vec3 f =
           pf.frame == model::ForceFrame::body ? given : named(program, mul_transposed(b.rotation, given));
       terms.force = terms.force + f;
       terms.moment = terms.moment + cross(at, f);
-      for (int k = 0; k < count; ++k)
-        terms.elastic_forcing[k] += symbolic::number(t(0, k)) * f[0] + symbolic::number(t(1, k)) * f[1] +
-                                    symbolic::number(t(2, k)) * f[2];
+      for (int k = 0; k < count; ++k) terms.elastic_forcing[k] += dot(node.partial[k], f);
       if (pf.frame == model::ForceFrame::world) eq.potential_energy -= dot(given, tree.world_point(b, at));
     }
     wrench[i].force = wrench[i].force + terms.force;
@@ -255,12 +238,8 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
     inertia[parent].moment = inertia[parent].moment + moved.moment;
     for (int k = 0; k < 9; ++k) inertia[parent].second[k] += moved.second[k];
     const Wrench w = to_parent(program, wrench[i], states[i].to_child, states[i].offset);
-    if (states[i].node_first >= 0) {
-      const kinematics::NodeAttachment& node = attachments.at(states[i].joint);
-      const std::vector<ex> eta(vars.q.begin() + node.first,
-                                vars.q.begin() + node.first + node.rotation_z.size());
-      add_node_subtree(elastic.at(static_cast<std::size_t>(parent)), states[i], moved, w, node, eta, program);
-    }
+    if (states[i].node_first >= 0)
+      add_node_subtree(elastic.at(static_cast<std::size_t>(parent)), states[i], moved, w, program);
     wrench[parent].moment = wrench[parent].moment + w.moment;
     wrench[parent].force = wrench[parent].force + w.force;
   }
@@ -408,7 +387,7 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
       const int body = tree.bodies()[tree.state_of(out.body)].body;
       const int first = vars.elastic_first[body];
       const std::vector<ex> eta(vars.q.begin() + first, vars.q.begin() + first + vars.elastic_count[body]);
-      const NodeOutputs node = node_outputs(model.bodies[body], flexible.at(body), out, eta);
+      const NodeOutputs node = node_outputs(model.bodies[body], flexible.at(body), out, eta, program);
       eq.outputs.insert(eq.outputs.end(), node.values.begin(), node.values.end());
       eq.output_names.insert(eq.output_names.end(), node.names.begin(), node.names.end());
       continue;

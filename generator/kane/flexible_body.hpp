@@ -1,10 +1,12 @@
-// The generalized inertia, elastic and geometric-stiffness forces of one
-// flexible body in its link frame (floating frame of reference), built from
-// the inertia invariants of the finite-element layer: constant matrices
-// (numbers in the generated code) times the elastic coordinates eta, their
-// rates and the link's motion. Nothing is integrated point by point
-// (formulation.md section 3). fem/floating_frame.hpp is the numeric
-// statement of the same formulas.
+// The generalized inertia and elastic forces of one flexible body in its
+// link frame (floating frame of reference), built from the inertia
+// invariants of the finite-element layer: constant matrices (numbers in the
+// generated code) times the elastic coordinates eta, their rates and the
+// link's motion. Nothing is integrated point by point (formulation.md
+// section 3). fem/floating_frame.hpp is the numeric statement of the same
+// formulas. With geometric stiffening, the beam's foreshortening
+// (fem/foreshortening.hpp) enters the positions and partial velocities, which
+// gives the geometric stiffness of every load with its reaction on the joints.
 #pragma once
 
 #include <ginac/ginac.h>
@@ -34,7 +36,7 @@ struct FlexibleTerms {
   /// Per elastic speed k: the linear and angular momentum (about the link
   /// origin, link axes) of the body moving with eta_dot_k = 1 alone.
   std::vector<Vec3> linear_momentum, angular_momentum;
-  /// n: the elastic equations' forcing: -int rho N^T a (u_dot = 0) - K eta - C eta_dot - K_G eta.
+  /// n: the elastic equations' forcing: -int rho (N + D)^T a (u_dot = 0) - K eta - C eta_dot.
   std::vector<GiNaC::ex> elastic_forcing;
   /// n x n, row-major: int rho N^T N + Nrot^T J Nrot (constant).
   std::vector<GiNaC::ex> elastic_mass;
@@ -43,10 +45,11 @@ struct FlexibleTerms {
 };
 
 /// `eta`, `eta_dot`: the body's elastic coordinates and speeds; `b`: its
-/// link's kinematics (accel_rest carries gravity).
-FlexibleTerms flexible_terms(const fem::ModelBeam& beam, bool geometric_stiffening,
-                             const kinematics::BodyState& b, const std::vector<GiNaC::ex>& eta,
-                             const std::vector<GiNaC::ex>& eta_dot, symbolic::Program& program);
+/// link's kinematics (accel_rest carries gravity). The foreshortening is
+/// taken when the beam has one (geometric stiffening).
+FlexibleTerms flexible_terms(const fem::ModelBeam& beam, const kinematics::BodyState& b,
+                             const std::vector<GiNaC::ex>& eta, const std::vector<GiNaC::ex>& eta_dot,
+                             symbolic::Program& program);
 
 /// The matrix with the round-off of exact zeros (entries at most 1e-13 of
 /// its largest) set to zero, so that sparsity shows in the generated code.

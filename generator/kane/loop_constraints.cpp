@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "kane/beam_node.hpp"
 #include "model/model_error.hpp"
 #include "symbolic/vec3.hpp"
 
@@ -86,30 +87,24 @@ class Builder {
   }
 
  private:
-  Side side(const std::string& body, const model::Vec3& point, int node, const model::Loop& loop) {
+  Side side(const std::string& body, const model::Vec3& point, int node) {
     if (body == model_.ground)
       return {{vars_.scalar(point[0]), vars_.scalar(point[1]), vars_.scalar(point[2])}, identity_mat()};
     const int state = tree_.state_of(body);
     const kinematics::BodyState& b = tree_.bodies()[state];
     Vec3 local{vars_.scalar(point[0]), vars_.scalar(point[1]), vars_.scalar(point[2])};
+    Mat3 rotation = b.rotation;
     if (node >= 0) {
-      if (loop.type == model::LoopType::revolute && !loop.planar)
-        throw model::ModelError(
-            model_.source_file, loop.where,
-            "a spatial revolute loop joint on a beam node is not supported (the node's rotation "
-            "is not modelled for loops)",
-            "make the loop planar (\"planar\": true), spherical, or attach it to a body point");
+      // The node: displaced (with the foreshortening), and turned by its small rotation, exactly.
       const fem::ModelBeam& beam = flexible_.at(b.body);
-      const Eigen::Vector3d r = beam.body.node_position(node);
-      const Eigen::MatrixXd t = beam.reduced.node_translation(beam.body, node);
       const int first = vars_.elastic_first[b.body];
-      for (int a = 0; a < 3; ++a) {
-        local[a] = symbolic::number(r[a]);
-        for (int k = 0; k < t.cols(); ++k)
-          if (t(a, k) != 0.0) local[a] += symbolic::number(t(a, k)) * vars_.q[first + k];
-      }
+      const std::vector<ex> eta(vars_.q.begin() + first,
+                                vars_.q.begin() + first + vars_.elastic_count[b.body]);
+      const NodePoint at = node_point(beam, node, eta, nullptr);
+      local = at.position;
+      rotation = mul(b.rotation, kinematics::node_turn(at.rotation));
     }
-    Side s{tree_.world_point(b, local), b.rotation};
+    Side s{tree_.world_point(b, local), rotation};
     for (ex& e : s.position) e = written_out(e, program_, memo_);
     for (ex& e : s.rotation) e = written_out(e, program_, memo_);
     return s;
@@ -122,8 +117,8 @@ class Builder {
   }
 
   void add_loop(const model::Loop& loop) {
-    const Side a = side(loop.body, loop.point, loop.node, loop);
-    const Side b = side(loop.body2, loop.point2, loop.node2, loop);
+    const Side a = side(loop.body, loop.point, loop.node);
+    const Side b = side(loop.body2, loop.point2, loop.node2);
     const Vec3 gap = a.position - b.position;
     const bool z_plane = loop.axis == Direction{0.0, 0.0, 1.0};
     switch (loop.type) {

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "fem/beam_element.hpp"
+#include "kane/beam_node.hpp"
 #include "kane/flexible_body.hpp"
 #include "symbolic/variables.hpp"
 
@@ -37,15 +38,15 @@ ex row_times(const Eigen::MatrixXd& m, int row, const std::vector<ex>& eta) {
 }  // namespace
 
 NodeOutputs node_outputs(const model::Body& body, const fem::ModelBeam& beam, const model::Output& output,
-                         const std::vector<ex>& eta) {
+                         const std::vector<ex>& eta, symbolic::Program& program) {
   NodeOutputs out;
   const bool spatial = body.beam.formulation == model::BeamFormulation::spatial;
   const std::string& name = output.name;
   if (output.kind == model::OutputKind::node_displacement) {
-    const Eigen::MatrixXd t = beam.reduced.node_translation(beam.body, output.node);
+    const NodePoint node = node_point(beam, output.node, eta, &program);  // foreshortening included
     const char* axes[] = {".x", ".y", ".z"};
     for (int a = 0; a < 3; ++a) {
-      out.values.push_back(row_times(t, a, eta));
+      out.values.push_back(node.displacement[a]);
       out.names.push_back(name + axes[a]);
     }
     return out;

@@ -12,6 +12,7 @@
 
 #include "fem/model_beam.hpp"
 #include "model/model.hpp"
+#include "symbolic/program.hpp"
 
 namespace kanegen::kane {
 
@@ -20,7 +21,8 @@ struct NodeOutputs {
   std::vector<std::string> names;
 };
 
+/// The node's displacement includes the beam's foreshortening.
 NodeOutputs node_outputs(const model::Body& body, const fem::ModelBeam& beam, const model::Output& output,
-                         const std::vector<GiNaC::ex>& eta);
+                         const std::vector<GiNaC::ex>& eta, symbolic::Program& program);
 
 }  // namespace kanegen::kane

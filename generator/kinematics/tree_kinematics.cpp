@@ -42,8 +42,20 @@ Mat3 rotation_about(const Vec3& a, const ex& angle) {
   const Mat3 skew{0, -a[2], a[1], a[2], 0, -a[0], -a[1], a[0], 0};
   Mat3 r;
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) r[3 * i + j] = (i == j ? c : ex(0)) + s * skew[3 * i + j] + (1 - c) * a[i] * a[j];
+    for (int j = 0; j < 3; ++j)
+      r[3 * i + j] = (i == j ? c : ex(0)) + s * skew[3 * i + j] + (1 - c) * a[i] * a[j];
   return r;
+}
+
+Mat3 node_turn(const std::array<ex, 3>& theta) {
+  Mat3 turn = identity_mat();
+  for (int a = 0; a < 3; ++a) {
+    if (theta[a].is_zero()) continue;
+    Vec3 axis = zero_vec();
+    axis[a] = 1;
+    turn = mul(turn, rotation_about(axis, theta[a]));
+  }
+  return turn;
 }
 
 TreeKinematics::TreeKinematics(const model::Model& model, const symbolic::Variables& vars,
@@ -84,13 +96,14 @@ TreeKinematics::TreeKinematics(const model::Model& model, const symbolic::Variab
       Mat3 r_origin = rotation_rpy(vars.scalar(joint.origin_rpy[0]), vars.scalar(joint.origin_rpy[1]),
                                    vars.scalar(joint.origin_rpy[2]));
       // On a node: the joint frame is the node frame, at node = position +
-      // T eta turned by theta about z; the node moves relative to the parent
-      // frame with node_rate + theta_dot e_z x (the joint origin from it).
+      // T eta (+ f) turned by the node's rotation; the node moves relative to
+      // the parent frame with node_rate + spin x (the joint origin from it).
       Vec3 node = zero_vec(), node_rate = zero_vec(), node_accel = zero_vec(), spin = zero_vec();
+      Vec3 frame_spin_accel = zero_vec();  // the rest angular acceleration of the turn
       const auto attached = attachments.find(static_cast<int>(k));
       if (attached != attachments.end()) {
         const NodeAttachment& a = attached->second;
-        const int n = static_cast<int>(a.rotation_z.size());
+        const int n = static_cast<int>(a.rotation.cols());
         std::vector<GiNaC::ex> eta(vars.q.begin() + a.first, vars.q.begin() + a.first + n);
         std::vector<GiNaC::ex> eta_dot(vars.u.begin() + a.first, vars.u.begin() + a.first + n);
         const auto combine = [&](const Eigen::VectorXd& c, const std::vector<GiNaC::ex>& x) {
@@ -103,22 +116,65 @@ TreeKinematics::TreeKinematics(const model::Model& model, const symbolic::Variab
           node[r] = symbolic::number(a.position[r]) + combine(a.translation.row(r).transpose(), eta);
           node_rate[r] = combine(a.translation.row(r).transpose(), eta_dot);
         }
+        // The foreshortening f_a = -1/2 eta^T H_a eta: its partial velocities
+        // D_k,a = -(H_a eta)_k, its rate D eta_dot and rest acceleration
+        // -eta_dot^T H_a eta_dot.
+        std::vector<Vec3> shortening_partial(n, zero_vec());
+        for (std::size_t r = 0; r < a.shortening.size(); ++r) {
+          const Eigen::MatrixXd& h = a.shortening[r];
+          if (h.cwiseAbs().maxCoeff() == 0.0) continue;
+          GiNaC::ex position = 0, rate = 0, accel = 0;
+          for (int i = 0; i < n; ++i) {
+            if (h.row(i).cwiseAbs().maxCoeff() == 0.0) continue;
+            const GiNaC::ex h_eta = program.define(combine(h.row(i).transpose(), eta));
+            const GiNaC::ex h_rate = program.define(combine(h.row(i).transpose(), eta_dot));
+            shortening_partial[i][r] = -h_eta;
+            position -= eta[i] * h_eta / 2;
+            rate -= eta_dot[i] * h_eta;
+            accel -= eta_dot[i] * h_rate;
+          }
+          node[r] += position;
+          node_rate[r] += rate;
+          node_accel[r] += accel;
+        }
         node = named(program, node);
         node_rate = named(program, node_rate);
-        const GiNaC::ex theta = program.define(combine(a.rotation_z, eta));
-        spin = {0, 0, program.define(combine(a.rotation_z, eta_dot))};
-        const Mat3 turn = named(program, rotation_about(Vec3{0, 0, 1}, theta));
+        // The turn Rx(theta_x) Ry(theta_y) Rz(theta_z), factor by factor: the
+        // axis of each factor is turned by those before it; its rate adds to
+        // the spin, and the spin so far turns that axis (rest acceleration).
+        std::array<GiNaC::ex, 3> theta{0, 0, 0};
+        std::vector<Vec3> turn_partial(n, zero_vec());
+        Mat3 before = identity_mat();
+        Vec3 spin_accel = zero_vec();
+        for (int r = 0; r < 3; ++r) {
+          const Eigen::VectorXd c = a.rotation.row(r).transpose();
+          if (c.cwiseAbs().maxCoeff() == 0.0) continue;
+          theta[r] = program.define(combine(c, eta));
+          const GiNaC::ex rate = program.define(combine(c, eta_dot));
+          Vec3 unit = zero_vec();
+          unit[r] = 1;
+          const Vec3 axis = mul(before, unit);
+          spin_accel = spin_accel + rate * cross(spin, axis);
+          spin = spin + rate * axis;
+          for (int i = 0; i < n; ++i)
+            if (c[i] != 0.0) turn_partial[i] = turn_partial[i] + symbolic::number(c[i]) * axis;
+          before = mul(before, rotation_about(unit, theta[r]));
+        }
+        const Mat3 turn = named(program, before);
+        spin = named(program, spin);
+        spin_accel = named(program, spin_accel);
+        frame_spin_accel = spin_accel;
         xyz = named(program, mul(turn, xyz));
         r_origin = named(program, mul(turn, r_origin));
         node_rate = named(program, node_rate + cross(spin, xyz));
-        node_accel = named(program, cross(spin, cross(spin, xyz)));
+        node_accel = named(program, node_accel + cross(spin, cross(spin, xyz)) + cross(spin_accel, xyz));
         b.node_first = a.first;
         for (int i = 0; i < n; ++i) {
-          const Vec3 w{0, 0, symbolic::number(a.rotation_z[i])};
+          const Vec3& w = turn_partial[i];
           const Vec3 t{symbolic::number(a.translation(0, i)), symbolic::number(a.translation(1, i)),
                        symbolic::number(a.translation(2, i))};
-          b.node_partial_angular.push_back(w);
-          b.node_partial_linear.push_back(named(program, t - cross(w, node)));
+          b.node_partial_angular.push_back(named(program, w));
+          b.node_partial_linear.push_back(named(program, t + shortening_partial[i] - cross(w, node)));
         }
       }
       JointFrame& frame = joints_[k];
@@ -147,8 +203,9 @@ TreeKinematics::TreeKinematics(const model::Model& model, const symbolic::Variab
       const Vec3& r = b.offset;
       // The joint frame's angular velocity and rest acceleration (the node's turn included).
       const Vec3 frame_omega = attached == attachments.end() ? p.omega : named(program, p.omega + spin);
-      const Vec3 frame_alpha =
-          attached == attachments.end() ? p.alpha_rest : named(program, p.alpha_rest + cross(p.omega, spin));
+      const Vec3 frame_alpha = attached == attachments.end()
+                                   ? p.alpha_rest
+                                   : named(program, p.alpha_rest + cross(p.omega, spin) + frame_spin_accel);
       const Vec3 parent_omega = named(program, mul(b.to_child, frame_omega));  // in child axes
       if (joint.moves() && !frame.prismatic) {
         const GiNaC::ex uk = vars.u[frame.speed];
@@ -159,11 +216,12 @@ TreeKinematics::TreeKinematics(const model::Model& model, const symbolic::Variab
         b.alpha_rest = named(program, mul(b.to_child, frame_alpha));
       }
       const Vec3 coriolis = 2 * cross(parent_omega, relative_velocity);
-      b.velocity = named(program, mul(b.to_child, p.velocity + cross(p.omega, r) + node_rate) + relative_velocity);
-      b.accel_rest = named(program, mul(b.to_child, p.accel_rest + cross(p.alpha_rest, r) +
-                                                       cross(p.omega, cross(p.omega, r)) +
-                                                       2 * cross(p.omega, node_rate) + node_accel) +
-                                        coriolis);
+      b.velocity =
+          named(program, mul(b.to_child, p.velocity + cross(p.omega, r) + node_rate) + relative_velocity);
+      b.accel_rest = named(
+          program, mul(b.to_child, p.accel_rest + cross(p.alpha_rest, r) + cross(p.omega, cross(p.omega, r)) +
+                                       2 * cross(p.omega, node_rate) + node_accel) +
+                       coriolis);
       bodies_.push_back(std::move(b));
     }
   }

@@ -30,18 +30,20 @@ struct JointFrame {
   Vec3 axis;  ///< a_k, child axes (unit)
 };
 
-/// A joint on a node of a planar flexible parent: the joint frame is the
-/// node's frame, moved by the node's elastic displacement and turned by its
-/// rotation about the link z axis (the exact rotation, so that its angular
-/// velocity is the rotation's rate).
+/// A joint on a node of a flexible parent: the joint frame is the node's
+/// frame, moved by the node's elastic displacement and turned by its small
+/// rotation theta = C eta, made exact as Rx(theta_x) Ry(theta_y) Rz(theta_z)
+/// (node_turn; a planar beam turns about z only), so that the frame's angular
+/// velocity is that rotation's and the model stays conservative. With
+/// geometric stiffening in modes the node is also carried back by the beam's
+/// foreshortening, f_a = -1/2 eta^T H_a eta (fem/foreshortening.hpp), exactly.
 struct NodeAttachment {
   Eigen::Vector3d position;     ///< undeformed, parent link frame
-  Eigen::MatrixXd translation;  ///< 3 x n: displacement = translation eta
-  Eigen::VectorXd rotation_z;   ///< n: rotation about link z = rotation_z . eta
+  Eigen::MatrixXd translation;  ///< 3 x n: displacement = translation eta (+ f)
+  Eigen::MatrixXd rotation;     ///< 3 x n: small rotation theta = rotation eta, link axes
   int first = 0;                ///< the parent's first elastic coordinate in q and u
-  /// n x n: the parent's geometric stiffness per unit axial force on the
-  /// node (empty without geometric stiffening).
-  Eigen::MatrixXd axial_geometric;
+  /// n x n each: H_a at the node; empty without foreshortening.
+  std::vector<Eigen::MatrixXd> shortening;
 };
 
 struct BodyState {
@@ -55,7 +57,7 @@ struct BodyState {
   Vec3 omega;             ///< angular velocity, body axes
   Vec3 velocity;          ///< velocity of the origin, body axes
   Vec3 alpha_rest;        ///< angular acceleration with u_dot = 0, body axes
-  Vec3 accel_rest;        ///< acceleration of the origin with u_dot = 0, minus the base's (gravity), body axes
+  Vec3 accel_rest;  ///< acceleration of the origin with u_dot = 0, minus the base's (gravity), body axes
   std::vector<int> path;  ///< moving joints from the ground to this body (Model::joints indices)
   /// On a node of a flexible parent: the parent's elastic speeds from
   /// node_first on move this body's subtree rigidly, with the partial
@@ -91,5 +93,7 @@ class TreeKinematics {
 Mat3 rotation_rpy(const GiNaC::ex& roll, const GiNaC::ex& pitch, const GiNaC::ex& yaw);
 /// Rotation by angle about a unit axis (Rodrigues).
 Mat3 rotation_about(const Vec3& axis, const GiNaC::ex& angle);
+/// A node's small rotation theta made exact: Rx(theta_x) Ry(theta_y) Rz(theta_z).
+Mat3 node_turn(const std::array<GiNaC::ex, 3>& theta);
 
 }  // namespace kanegen::kinematics

@@ -528,11 +528,11 @@ class Checker {
           error(at(j.where, "parent_node"), "the ground has no nodes", "remove \"parent_node\"");
         const Body* parent =
             check_node(j.parent_node, j.parent, at(j.where, "parent_node"), "joint '" + j.name + "'");
-        if (parent && (parent->beam.formulation != BeamFormulation::planar || j.type == JointType::prismatic))
-          error(at(j.where, "parent_node"),
-                "only revolute, continuous and fixed joints on the nodes of planar beams are supported",
-                "attach joint '" + j.name +
-                    "' to the body frame (remove \"parent_node\"), or make the beam planar");
+        if (parent && j.type == JointType::prismatic)
+          error(at(j.where, "parent_node"), "only revolute, continuous and fixed joints on beam nodes are supported",
+                "attach prismatic joint '" + j.name +
+                    "' to the body frame (remove \"parent_node\"), or put a fixed joint and a body on the node "
+                    "and the slide on that body");
       }
     for (PointForce& f : m_.forces)
       if (f.node != -1) check_node(f.node, f.body, at(f.where, "node"), "force '" + f.name + "'");

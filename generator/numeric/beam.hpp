@@ -1,7 +1,7 @@
 // The finite-element beam of a flexible body, written for the numeric path
 // over any scalar type: its nodal dofs from the elastic coordinates, the
-// position and small rotation of its material points, its strain energy and
-// the energy of the geometric stiffness. Euler-Bernoulli beams with their
+// position and small rotation of its material points (with the
+// foreshortening of geometric stiffening), and its strain energy. Euler-Bernoulli beams with their
 // own shape functions here (axial displacement and torsion linear; bending
 // by Hermite cubics, theta_z = v', theta_y = -w'), integrated by
 // Gauss-Legendre rules computed here. Nothing is shared with generator/fem
@@ -10,7 +10,6 @@
 
 #include <array>
 #include <cmath>
-#include <utility>
 #include <vector>
 
 #include "numeric/instance.hpp"
@@ -93,8 +92,8 @@ LocalDofs<S> local_dofs(const FlexibleData& f, const BeamElementData& e, const s
 /// Hermite cubics of an element of length L at xi = x / L, and their first
 /// and second derivatives in x.
 inline std::array<double, 4> hermite(double xi, double L) {
-  return {1 - 3 * xi * xi + 2 * xi * xi * xi, L * (xi - 2 * xi * xi + xi * xi * xi), 3 * xi * xi - 2 * xi * xi * xi,
-          L * (xi * xi * xi - xi * xi)};
+  return {1 - 3 * xi * xi + 2 * xi * xi * xi, L * (xi - 2 * xi * xi + xi * xi * xi),
+          3 * xi * xi - 2 * xi * xi * xi, L * (xi * xi * xi - xi * xi)};
 }
 inline std::array<double, 4> hermite_x(double xi, double L) {
   return {6 * (xi * xi - xi) / L, 1 - 4 * xi + 3 * xi * xi, 6 * (xi - xi * xi) / L, 3 * xi * xi - 2 * xi};
@@ -134,9 +133,33 @@ Vec<S> section_rotation(const BeamElementData& e, const LocalDofs<S>& l, double 
   return mul(e.axes, Vec<S>{twist, S(0.0), S(0.0)});
 }
 
-/// Strain energy of the element: 1/2 int EA u'^2 + E Iz v''^2 + E Iy w''^2 + G J theta_x'^2 dx.
+/// 1/2 int_0^(xi L) (v'^2 + w'^2) dx over an element: how much bending
+/// shortens the projection of the element on its axis, up to xi (the
+/// integrand is quartic: 3 Gauss points).
 template <class S>
-S strain_energy(const FlexibleData& f, const BeamElementData& e, const LocalDofs<S>& l) {
+S shortening_integral(const FlexibleData& f, const BeamElementData& e, const LocalDofs<S>& l, double xi) {
+  static const GaussRule rule = gauss_rule(3);
+  const double L = e.length;
+  S sum(0.0);
+  for (std::size_t g = 0; g < rule.points.size(); ++g) {
+    const std::array<double, 4> hx = hermite_x(xi * rule.points[g], L);
+    const S v1 = combine(hx, v_values(l));
+    S slope2 = v1 * v1;
+    if (!f.planar) {
+      const S w1 = combine(hx, w_values(l));
+      slope2 += w1 * w1;
+    }
+    sum += 0.5 * xi * L * rule.weights[g] * slope2;
+  }
+  return sum;
+}
+
+/// Strain energy of the element: 1/2 int EA u'^2 + E Iz v''^2 + E Iy w''^2 + G J theta_x'^2 dx,
+/// with the nonlinear axial strain when the beam has it and `nonlinear` (the
+/// linear part alone is 1/2 u^T K u, for damping).
+template <class S>
+S strain_energy(const FlexibleData& f, const BeamElementData& e, const LocalDofs<S>& l,
+                bool nonlinear = true) {
   static const GaussRule rule = gauss_rule(3);  // v''^2 is quadratic
   const double L = e.length;
   S energy(0.0);
@@ -153,48 +176,44 @@ S strain_energy(const FlexibleData& f, const BeamElementData& e, const LocalDofs
     }
     energy += 0.5 * dx * density;
   }
+  if (!nonlinear || !f.nonlinear_strain()) return energy;
+  // Geometric stiffening in nodal coordinates: the Green-Lagrange axial
+  // strain u' + 1/2 (v'^2 + w'^2), its bending part averaged over the element
+  // (phi = 1/(2L) int v'^2 + w'^2): EA L / 2 ((u' + phi)^2 - u'^2).
+  const S axial = (l.translation[1][0] - l.translation[0][0]) / L;
+  const S phi = shortening_integral(f, e, l, 1.0) / L;
+  energy += f.E * f.A * L * (axial * phi + 0.5 * phi * phi);
   return energy;
 }
 
-/// The axial loads of a chain on the link x axis: a load per unit mass
-/// a(x) = a_const + a_lin x on the beam and its tip mass, and the axial pulls
-/// of the bodies carried on its nodes (the node's x, the force along link x).
-struct AxialLoad {
-  double constant = 0, linear = 0;
-  std::vector<std::pair<double, double>> pulls;
-};
-
-/// The axial force (tension positive) at x:
-/// N(x) = rho A int_x^L a(s) ds + m_tip a(L) + the pulls of the nodes beyond x.
-inline double chain_axial_force(const FlexibleData& f, const AxialLoad& load, double x) {
-  const double L = f.chain_length;
-  double n = f.density * f.A * (load.constant * (L - x) + 0.5 * load.linear * (L * L - x * x)) +
-             f.tip_mass * (load.constant + load.linear * L);
-  for (const auto& [at, pull] : load.pulls)
-    if (x < at) n += pull;
-  return n;
-}
-
-/// 1/2 int N(x) (v'^2 + w'^2) dx over the element: its gradient in the
-/// coordinates is K_G eta.
+/// With geometric stiffening, the beam's foreshortening (second order in
+/// the dofs): each element carries everything beyond it back along its axis
+/// by its shortening_integral. The displacement at xi of an element whose
+/// first node it moves by `start`, link frame.
 template <class S>
-S geometric_energy(const FlexibleData& f, const BeamElementData& e, const LocalDofs<S>& l, const AxialLoad& load) {
-  static const GaussRule rule = gauss_rule(4);  // N quadratic, v'^2 quartic
-  const double L = e.length;
-  S energy(0.0);
-  for (std::size_t g = 0; g < rule.points.size(); ++g) {
-    const double xi = rule.points[g], dx = rule.weights[g] * L;
-    const double N = chain_axial_force(f, load, e.origin[0] + xi * L);
-    const std::array<double, 4> hx = hermite_x(xi, L);
-    const S v1 = combine(hx, v_values(l));
-    S slope2 = v1 * v1;
-    if (!f.planar) {
-      const S w1 = combine(hx, w_values(l));
-      slope2 += w1 * w1;
-    }
-    energy += 0.5 * dx * N * slope2;
-  }
-  return energy;
+Vec<S> shortening_at(const FlexibleData& f, const BeamElementData& e, const LocalDofs<S>& l, double xi,
+                     const Vec<S>& start) {
+  if (!f.shortens()) return start;
+  const S s = shortening_integral(f, e, l, xi);
+  return {start[0] - e.axes[0] * s, start[1] - e.axes[3] * s, start[2] - e.axes[6] * s};
+}
+
+/// The foreshortening's displacement of every node (zero without stiffening).
+/// The elements run from node 0 on, each from its node to the next.
+template <class S>
+std::vector<Vec<S>> node_shortening(const FlexibleData& f, const std::vector<S>& dofs) {
+  std::vector<Vec<S>> out(f.nodes.size(), Vec<S>{S(0.0), S(0.0), S(0.0)});
+  if (!f.shortens()) return out;
+  for (const BeamElementData& e : f.elements)
+    out[e.node + 1] = shortening_at(f, e, local_dofs(f, e, dofs), 1.0, out[e.node]);
+  return out;
+}
+
+/// A node's displaced position, link frame: undeformed + translation + foreshortening.
+template <class S>
+Vec<S> displaced_node(const FlexibleData& f, const std::vector<S>& dofs, int node) {
+  const Vec<S> moved = add(f.nodes[node], node_translation(f, dofs, node));
+  return f.shortens() ? add(moved, node_shortening(f, dofs)[node]) : moved;
 }
 
 }  // namespace kanegen::numeric

@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -79,7 +80,8 @@ struct Touched {
   std::vector<std::vector<char>> node;
 };
 
-Touched touched_by(const Instance& m, const std::vector<Pose<D1>>& poses, const std::vector<std::vector<D1>>& dofs) {
+Touched touched_by(const Instance& m, const std::vector<Pose<D1>>& poses,
+                   const std::vector<std::vector<D1>>& dofs) {
   Touched t;
   t.pose.assign(m.bodies.size(), 0);
   t.node.resize(m.bodies.size());
@@ -91,6 +93,9 @@ Touched touched_by(const Instance& m, const std::vector<Pose<D1>>& poses, const 
     t.node[b].assign(f.nodes.size(), 0);
     for (int d = 0; d < f.num_dofs(); ++d)
       if (dofs[b][d].d != 0) t.node[b][d / f.dofs_per_node] = 1;
+    // The foreshortening moves every point with the dofs of the nodes before it.
+    if (f.shortens())
+      for (std::size_t i = 1; i < f.nodes.size(); ++i) t.node[b][i] = t.node[b][i] || t.node[b][i - 1];
   }
   return t;
 }
@@ -102,10 +107,12 @@ Vec<S> to_world(const Pose<S>& pose, const Vec<S>& local) {
 
 /// Calls visit(index, body, world position, small rotation (link frame)) for
 /// every mass element in mass_elements order; with `touched`, only for the
-/// elements whose inputs vary.
+/// elements whose inputs vary. A beam's own points are placed at its dofs
+/// times `scale` (see truncation_samples).
 template <class S, class Visit>
-void visit_masses(const Instance& m, const std::vector<Pose<S>>& poses, const std::vector<std::vector<S>>& dofs,
-                  const Touched* touched, Visit&& visit) {
+void visit_masses(const Instance& m, const std::vector<Pose<S>>& poses,
+                  const std::vector<std::vector<S>>& dofs, const Touched* touched, Visit&& visit,
+                  double scale = 1.0) {
   const GaussRule& rule = mass_rule();
   const int per_element = static_cast<int>(rule.points.size());
   const Vec<S> zero{S(0.0), S(0.0), S(0.0)};
@@ -118,19 +125,27 @@ void visit_masses(const Instance& m, const std::vector<Pose<S>>& poses, const st
     ++index;
     if (!body.beam) continue;
     const FlexibleData& f = *body.beam;
+    std::vector<S> own = dofs[b];
+    if (scale != 1.0)
+      for (S& x : own) x = x * scale;
+    const std::vector<Vec<S>> shortening = node_shortening(f, own);
     for (const BeamElementData& e : f.elements) {
       if (touched && !touched->pose[b] && !touched->node[b][e.node] && !touched->node[b][e.node + 1]) {
         index += per_element;
         continue;
       }
-      const LocalDofs<S> l = local_dofs(f, e, dofs[b]);
-      for (double xi : rule.points) visit(index++, bi, to_world(pose, beam_point(e, l, xi)), section_rotation(e, l, xi));
+      const LocalDofs<S> l = local_dofs(f, e, own);
+      for (double xi : rule.points)
+        visit(index++, bi,
+              to_world(pose, add(beam_point(e, l, xi), shortening_at(f, e, l, xi, shortening[e.node]))),
+              section_rotation(e, l, xi));
     }
     if (f.tip_mass > 0) {
       const int last = static_cast<int>(f.nodes.size()) - 1;
       if (!touched || touched->pose[b] || touched->node[b][last])
-        visit(index, bi, to_world(pose, add(f.nodes[last], node_translation(f, dofs[b], last))),
-              node_rotation(f, dofs[b], last));
+        visit(index, bi,
+              to_world(pose, add(f.nodes[last], add(node_translation(f, own, last), shortening[last]))),
+              node_rotation(f, own, last));
       ++index;
     }
   }
@@ -142,7 +157,7 @@ Vec<S> force_point(const Instance& m, const ForceData& force, const std::vector<
                    const std::vector<std::vector<S>>& dofs) {
   if (force.node < 0) return to_world(poses[force.body], cast<S>(force.point));
   const FlexibleData& f = *m.bodies[force.body].beam;
-  return to_world(poses[force.body], add(f.nodes[force.node], node_translation(f, dofs[force.body], force.node)));
+  return to_world(poses[force.body], displaced_node(f, dofs[force.body], force.node));
 }
 
 /// A spring's vector from its second end to its first, world axes.
@@ -174,7 +189,8 @@ SpringState spring_state(const SpringData& spring, const std::vector<Pose<D2>>& 
 
 /// Sums over the elements of a flexible body, of those touched (all if null).
 template <class S, class Term>
-S sum_elements(const FlexibleData& f, const std::vector<S>& dofs, const std::vector<char>* touched, Term&& term) {
+S sum_elements(const FlexibleData& f, const std::vector<S>& dofs, const std::vector<char>* touched,
+               Term&& term) {
   S sum(0.0);
   for (const BeamElementData& e : f.elements) {
     if (touched && !(*touched)[e.node] && !(*touched)[e.node + 1]) continue;
@@ -209,9 +225,11 @@ std::array<double, 4> resultants(const FlexibleData& f, const std::vector<double
           f.E * f.Iz * combine(hxx, v_values(l))};
 }
 
-double strain_energy(const FlexibleData& f, const std::vector<double>& dofs) {
-  return sum_elements(f, dofs, nullptr,
-                      [&](const BeamElementData& e, const LocalDofs<double>& l) { return strain_energy(f, e, l); });
+/// The beam's strain energy; with `nonlinear` false, its linear part 1/2 u^T K u.
+double strain_energy(const FlexibleData& f, const std::vector<double>& dofs, bool nonlinear = true) {
+  return sum_elements(f, dofs, nullptr, [&](const BeamElementData& e, const LocalDofs<double>& l) {
+    return strain_energy(f, e, l, nonlinear);
+  });
 }
 
 /// The beam's kinetic energy at elastic rates `rate` with its link at rest:
@@ -234,7 +252,8 @@ double elastic_kinetic_energy(const FlexibleData& f, const std::vector<double>& 
   }
   if (f.tip_mass > 0) {
     const int last = static_cast<int>(f.nodes.size()) - 1;
-    const Vec<double> v = derivative(node_translation(f, dofs, last)), w = derivative(node_rotation(f, dofs, last));
+    const Vec<double> v = derivative(node_translation(f, dofs, last)),
+                      w = derivative(node_rotation(f, dofs, last));
     energy += 0.5 * (f.tip_mass * dot(v, v) + dot(w, mul(f.tip_inertia, w)));
   }
   return energy;
@@ -247,7 +266,7 @@ std::vector<double> modal_damping(const FlexibleData& f) {
   for (int k = 0; k < f.count(); ++k) {
     std::vector<double> unit(f.count(), 0.0);
     unit[k] = 1;
-    const double stiffness = 2 * strain_energy(f, beam_dofs(f, unit.data()));
+    const double stiffness = 2 * strain_energy(f, beam_dofs(f, unit.data()), false);
     const double mass = 2 * elastic_kinetic_energy(f, unit);
     c[k] = 2 * f.modal_ratio * std::sqrt(stiffness * mass);
   }
@@ -274,7 +293,8 @@ struct PathMotion {
 /// Along q(s) with both nesting levels seeded with u (the outer one's
 /// derivative with udot, zero for the accelerations at u_dot = 0): positions,
 /// their rates and accelerations (the inner-outer cross term).
-PathMotion motion_along(const Instance& m, const State& s, const std::vector<double>* udot, std::size_t elements) {
+PathMotion motion_along(const Instance& m, const State& s, const std::vector<double>* udot,
+                        std::size_t elements, double scale = 1.0) {
   const int n = m.coordinates(), nb = static_cast<int>(m.bodies.size());
   std::vector<D2> x(n);
   for (int k = 0; k < n; ++k) x[k] = D2(D1(s.q[k], s.u[k]), D1(s.u[k], udot ? (*udot)[k] : 0.0));
@@ -303,16 +323,19 @@ PathMotion motion_along(const Instance& m, const State& s, const std::vector<dou
   }
   if (elements == 0) return out;
   out.element.resize(elements);
-  visit_masses(m, out.poses, out.dofs, nullptr, [&](int i, int, const Vec<D2>& p, const Vec<D2>& theta) {
-    ElementMotion& e = out.element[i];
-    for (int a = 0; a < 3; ++a) {
-      e.x[a] = p[a].v.v;
-      e.v[a] = p[a].d.v;
-      e.a[a] = p[a].d.d;
-      e.theta_rate[a] = theta[a].d.v;
-      e.theta_accel[a] = theta[a].d.d;
-    }
-  });
+  visit_masses(
+      m, out.poses, out.dofs, nullptr,
+      [&](int i, int, const Vec<D2>& p, const Vec<D2>& theta) {
+        ElementMotion& e = out.element[i];
+        for (int a = 0; a < 3; ++a) {
+          e.x[a] = p[a].v.v;
+          e.v[a] = p[a].d.v;
+          e.a[a] = p[a].d.d;
+          e.theta_rate[a] = theta[a].d.v;
+          e.theta_accel[a] = theta[a].d.d;
+        }
+      },
+      scale);
   return out;
 }
 
@@ -331,53 +354,6 @@ std::pair<double, double> element_gradient(const FlexibleData& f, const std::vec
   return {sum, magnitude};
 }
 
-/// Per flexible body with geometric stiffening, the axial loads of its
-/// link's motion at u_dot = 0 (`rest`, with the mass elements' motion when
-/// bodies sit on its nodes): a_lin = omega_y^2 + omega_z^2, a_const = -(the
-/// link origin's acceleration, gravity as the ground's -g)_x, link axes; and
-/// per joint on a node, the pull of the subtree it carries: the resultant of
-/// its applied and inertia forces (sum m (g - a) + F), link x component.
-std::vector<AxialLoad> axial_loads(const Instance& m, const PathMotion& rest,
-                                   const std::vector<MassElement>& elements) {
-  std::vector<AxialLoad> load(m.bodies.size());
-  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
-    if (!m.bodies[b].beam || !m.bodies[b].beam->stiffening) continue;
-    const Mat<double> rt = transpose(rest.body[b].r);
-    const Vec<double> w = mul(rt, rest.body[b].omega), a0 = mul(rt, sub(rest.body[b].p2, m.gravity));
-    load[b].constant = -a0[0];
-    load[b].linear = w[1] * w[1] + w[2] * w[2];
-  }
-  const auto in_subtree = [&](int body, int root) {
-    for (int c = body; c >= 0; c = m.joints[m.bodies[c].joint].parent)
-      if (c == root) return true;
-    return false;
-  };
-  for (const JointData& j : m.joints) {
-    if (j.parent_node < 0 || !m.bodies[j.parent].beam->stiffening) continue;
-    if (rest.element.size() != elements.size()) throw std::logic_error("axial_loads: element motion missing");
-    Vec<double> force{0, 0, 0};
-    for (std::size_t i = 0; i < elements.size(); ++i)
-      if (in_subtree(elements[i].body, j.child))
-        force = add(force, scale(sub(m.gravity, rest.element[i].a), elements[i].mass));
-    for (const ForceData& f : m.forces)
-      if (in_subtree(f.body, j.child)) force = add(force, f.body_frame ? mul(rest.body[f.body].r, f.force) : f.force);
-    for (const SpringData& spring : m.springs) {
-      const SpringState st = spring_state(spring, rest.poses);
-      if (in_subtree(spring.body, j.child)) force = sub(force, scale(st.direction, st.tension));
-      if (in_subtree(spring.body2, j.child)) force = add(force, scale(st.direction, st.tension));
-    }
-    const FlexibleData& beam = *m.bodies[j.parent].beam;
-    load[j.parent].pulls.emplace_back(beam.nodes[j.parent_node][0], mul(transpose(rest.body[j.parent].r), force)[0]);
-  }
-  return load;
-}
-
-bool has_node_pulls(const Instance& m) {
-  for (const JointData& j : m.joints)
-    if (j.parent_node >= 0 && m.bodies[j.parent].beam->stiffening) return true;
-  return false;
-}
-
 /// Partial velocities of mass elements (v_r; w_r of their link; W_r with
 /// the elastic rotation) and of the forces' points for one coordinate.
 struct Partial {
@@ -392,8 +368,10 @@ struct Pass {
   std::vector<double> spring_slope, spring_reach;
 };
 
+/// `elements` may be null (no mass elements visited); `scale` as for visit_masses.
 Pass partial_pass(const Instance& m, const State& s, int r, const std::vector<BodyMotion>& motion,
-                  std::vector<std::vector<Partial>>& elements, std::vector<std::vector<Vec<double>>>& forces) {
+                  std::vector<std::vector<Partial>>* elements, std::vector<std::vector<Vec<double>>>& forces,
+                  double scale = 1.0) {
   const int n = m.coordinates(), nb = static_cast<int>(m.bodies.size());
   std::vector<D1> x(n);
   for (int k = 0; k < n; ++k) x[k] = D1(s.q[k], k == r ? 1.0 : 0.0);
@@ -405,12 +383,16 @@ Pass partial_pass(const Instance& m, const State& s, int r, const std::vector<Bo
   std::vector<Vec<double>> link_rate(nb);  // w_r of each link
   for (int b = 0; b < nb; ++b)
     if (touched.pose[b]) link_rate[b] = vee(mul(derivative(poses[b].rotation), transpose(motion[b].r)));
-  visit_masses(m, poses, pass.dofs, &touched, [&](int i, int b, const Vec<D1>& p, const Vec<D1>& theta) {
-    const Vec<double> v = derivative(p), w = touched.pose[b] ? link_rate[b] : Vec<double>{0, 0, 0};
-    const Vec<double> W = add(w, mul(motion[b].r, derivative(theta)));
-    if (is_zero(v) && is_zero(W)) return;
-    elements[i].push_back({r, v, w, W});
-  });
+  if (elements)
+    visit_masses(
+        m, poses, pass.dofs, &touched,
+        [&](int i, int b, const Vec<D1>& p, const Vec<D1>& theta) {
+          const Vec<double> v = derivative(p), w = touched.pose[b] ? link_rate[b] : Vec<double>{0, 0, 0};
+          const Vec<double> W = add(w, mul(motion[b].r, derivative(theta)));
+          if (is_zero(v) && is_zero(W)) return;
+          (*elements)[i].push_back({r, v, w, W});
+        },
+        scale);
   for (std::size_t f = 0; f < m.forces.size(); ++f)
     forces[f][r] = derivative(force_point(m, m.forces[f], poses, pass.dofs));
   for (const SpringData& spring : m.springs) {
@@ -428,11 +410,12 @@ Pass partial_pass(const Instance& m, const State& s, int r, const std::vector<Bo
 /// v_r.m (g - a) - W_r.I (alpha + R theta'') - w_r.(omega x I Omega) to
 /// forcing[r]; with `mass_matrix`, m v_r.v_s + W_r.I W_s to M.
 void add_element(const Instance& m, const MassElement& el, const BodyMotion& k, const ElementMotion& x,
-                 const std::vector<Partial>& p, std::vector<double>& forcing, std::vector<double>* mass_matrix,
-                 Eigen::MatrixXd* own_mass, std::vector<double>* magnitude = nullptr) {
+                 const std::vector<Partial>& p, std::vector<double>& forcing,
+                 std::vector<double>* mass_matrix, Eigen::MatrixXd* own_mass,
+                 std::vector<double>* magnitude = nullptr) {
   const int n = m.coordinates();
   const Mat<double> inertia = mul(k.r, mul(el.inertia, transpose(k.r)));  // world axes
-  const Vec<double> spin = add(k.omega, mul(k.r, x.theta_rate));         // Omega
+  const Vec<double> spin = add(k.omega, mul(k.r, x.theta_rate));          // Omega
   const Vec<double> force = scale(sub(m.gravity, x.a), el.mass);
   const Vec<double> torque = mul(inertia, add(k.alpha, mul(k.r, x.theta_accel)));
   const Vec<double> gyroscopic = cross(k.omega, mul(inertia, spin));
@@ -467,31 +450,119 @@ double joint_forcing(const Instance& m, const State& s, int r) {
   return -j.stiffness * (s.q[r] - j.rest) - j.damping * s.u[r] + (j.actuated ? s.tau[r] : 0.0) + effort;
 }
 
-/// The power of the beams' damping and geometric stiffness forces:
-/// -eta_dot^T C eta_dot - eta_dot^T K_G eta.
-double beam_power(const Instance& m, const State& s, const std::vector<AxialLoad>& load) {
+/// The power of the beams' damping forces, -eta_dot^T C eta_dot.
+double beam_power(const Instance& m, const State& s) {
   double power = 0;
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {
     if (!m.bodies[b].beam) continue;
     const FlexibleData& f = *m.bodies[b].beam;
     const int first = m.bodies[b].elastic_first;
     const std::vector<double> rate(s.u.begin() + first, s.u.begin() + first + f.count());
-    if (f.stiffening) {
-      std::vector<D1> x(f.count());
-      for (int k = 0; k < f.count(); ++k) x[k] = D1(s.q[first + k], rate[k]);
-      power -= sum_elements(f, beam_dofs(f, x.data()), nullptr, [&](const BeamElementData& e, const LocalDofs<D1>& l) {
-                 return geometric_energy(f, e, l, load[b]);
-               }).d;
-    }
     if (f.modal_ratio > 0) {
       const std::vector<double> c = modal_damping(f);
       for (int k = 0; k < f.count(); ++k) power -= c[k] * rate[k] * rate[k];
     } else {
       if (f.rayleigh_alpha != 0) power -= f.rayleigh_alpha * 2 * elastic_kinetic_energy(f, rate);
-      if (f.rayleigh_beta != 0) power -= f.rayleigh_beta * 2 * strain_energy(f, beam_dofs(f, rate.data()));
+      if (f.rayleigh_beta != 0)
+        power -= f.rayleigh_beta * 2 * strain_energy(f, beam_dofs(f, rate.data()), false);
     }
   }
   return power;
+}
+
+/// One value of the scale of the beams' own dofs, and its weight.
+struct Sample {
+  double scale, weight;
+};
+
+/// The mass elements of a beam enter Kane's sums to the order the generator
+/// keeps (kane/flexible_body.cpp): the terms of the kinetic energy up to
+/// second order in the beam's own elastic coordinates and rates, which give
+/// the joint rows to second order and the elastic rows to first. With its
+/// own dofs scaled by s, an element's share of M, f, T and V is a polynomial
+/// in s; the sum of its coefficients of degree 0 to 2 is that share. Without
+/// foreshortening the positions are linear in the dofs and the shares of
+/// degree <= 2 already: one pass at s = 1. With it they are of degree <= 4,
+/// and the kept sum is taken exactly from five values of s.
+std::vector<Sample> truncation_samples(const Instance& m) {
+  bool stiffening = false;
+  for (const BodyData& b : m.bodies) stiffening = stiffening || (b.beam && b.beam->shortens());
+  if (!stiffening) return {{1.0, 1.0}};
+  static const std::vector<Sample> samples = [] {
+    const double s[5] = {-1.0, -0.5, 0.0, 0.5, 1.0};
+    Eigen::Matrix<double, 5, 5> vandermonde;  // share(s_i) = sum_d c_d s_i^d
+    for (int i = 0; i < 5; ++i)
+      for (int d = 0; d < 5; ++d) vandermonde(i, d) = std::pow(s[i], d);
+    Eigen::Matrix<double, 5, 1> keep;
+    keep << 1, 1, 1, 0, 0;
+    // c0 + c1 + c2 = keep^T V^-1 shares = w^T shares with V^T w = keep.
+    const Eigen::Matrix<double, 5, 1> w = vandermonde.transpose().fullPivLu().solve(keep);
+    std::vector<Sample> out;
+    for (int i = 0; i < 5; ++i) out.push_back({s[i], w[i]});
+    return out;
+  }();
+  return samples;
+}
+
+/// Kane's sums over the mass elements, truncated as truncation_samples says:
+/// the forcing (with the inertia forces at `udot`, or at u_dot = 0 if null)
+/// of the rows `rows`, and with `all` also M, the beams' own elastic mass
+/// blocks and the kinetic and potential energies.
+struct ElementSums {
+  std::vector<double> forcing, magnitude, mass_matrix;
+  std::vector<Eigen::MatrixXd> own_mass;
+  double kinetic = 0, potential = 0;
+};
+
+ElementSums element_sums(const Instance& m, const State& s, const std::vector<MassElement>& elements,
+                         const std::vector<int>& rows, const std::vector<double>* udot, bool all) {
+  const int n = m.coordinates(), nb = static_cast<int>(m.bodies.size());
+  ElementSums out;
+  out.forcing.assign(n, 0.0);
+  out.magnitude.assign(n, 0.0);
+  if (all) {
+    out.mass_matrix.assign(static_cast<std::size_t>(n) * n, 0.0);
+    out.own_mass.resize(nb);
+    for (int b = 0; b < nb; ++b)
+      if (m.bodies[b].beam)
+        out.own_mass[b] = Eigen::MatrixXd::Zero(m.bodies[b].beam->count(), m.bodies[b].beam->count());
+  }
+  for (const Sample& sample : truncation_samples(m)) {
+    const PathMotion motion = motion_along(m, s, udot, elements.size(), sample.scale);
+    std::vector<std::vector<Partial>> partials(elements.size());
+    std::vector<std::vector<Vec<double>>> force_partials(m.forces.size(), std::vector<Vec<double>>(n));
+    for (int r : rows) partial_pass(m, s, r, motion.body, &partials, force_partials, sample.scale);
+    ElementSums share;
+    share.forcing.assign(n, 0.0);
+    share.magnitude.assign(n, 0.0);
+    if (all) share.mass_matrix.assign(static_cast<std::size_t>(n) * n, 0.0);
+    std::vector<Eigen::MatrixXd> own = out.own_mass;
+    for (auto& block : own) block.setZero();
+    for (std::size_t i = 0; i < elements.size(); ++i) {
+      const MassElement& el = elements[i];
+      const BodyMotion& k = motion.body[el.body];
+      const ElementMotion& x = motion.element[i];
+      add_element(m, el, k, x, partials[i], share.forcing, all ? &share.mass_matrix : nullptr,
+                  all && m.bodies[el.body].beam ? &own[el.body] : nullptr, &share.magnitude);
+      if (!all) continue;
+      const Mat<double> inertia = mul(k.r, mul(el.inertia, transpose(k.r)));
+      const Vec<double> spin = add(k.omega, mul(k.r, x.theta_rate));
+      share.kinetic += 0.5 * (el.mass * dot(x.v, x.v) + dot(spin, mul(inertia, spin)));
+      share.potential -= el.mass * dot(m.gravity, x.x);
+    }
+    const double w = sample.weight;
+    for (int r = 0; r < n; ++r) {
+      out.forcing[r] += w * share.forcing[r];
+      out.magnitude[r] += std::abs(w) * share.magnitude[r];
+    }
+    if (!all) continue;
+    for (std::size_t i = 0; i < out.mass_matrix.size(); ++i) out.mass_matrix[i] += w * share.mass_matrix[i];
+    for (int b = 0; b < nb; ++b)
+      if (own[b].size()) out.own_mass[b] += w * own[b];
+    out.kinetic += w * share.kinetic;
+    out.potential += w * share.potential;
+  }
+  return out;
 }
 
 }  // namespace
@@ -505,71 +576,58 @@ Evaluation evaluate(const Instance& m, const State& s) {
   e.forcing.assign(n, 0.0);
   e.forcing_magnitude.assign(n, 0.0);
   const std::vector<MassElement> elements = mass_elements(m);
-  const PathMotion motion = motion_along(m, s, nullptr, elements.size());
-  const std::vector<AxialLoad> load = axial_loads(m, motion, elements);
+  const PathMotion motion = motion_along(m, s, nullptr, 0);
   std::vector<std::vector<double>> dofs(nb);  // the beams' dofs at q
   for (int b = 0; b < nb; ++b)
     for (const D2& x : motion.dofs[b]) dofs[b].push_back(x.v.v);
 
-  // One pass per coordinate seeded with e_r: the partial velocities, and the
-  // elastic forces of an elastic coordinate from the gradients of the beam's
-  // energies (dU/deta_r, (K_G eta)_r, beta (K eta_dot)_r).
-  std::vector<std::vector<Partial>> partials(elements.size());
+  // One pass per coordinate seeded with e_r: the elastic forces of an elastic
+  // coordinate from the gradients of the beam's energies (dU/deta_r,
+  // beta (K eta_dot)_r), the forces' and springs' partial velocities.
   std::vector<std::vector<Vec<double>>> force_partials(m.forces.size(), std::vector<Vec<double>>(n));
-  std::vector<double> nonconservative(n, 0.0);  // beam damping and geometric stiffness forces
-  std::vector<int> owner(n, -1);                 // the flexible body of an elastic coordinate
+  std::vector<double> nonconservative(n, 0.0);  // beam damping forces
+  std::vector<int> owner(n, -1);                // the flexible body of an elastic coordinate
   for (int b = 0; b < nb; ++b)
     if (m.bodies[b].beam)
       for (int k = 0; k < m.bodies[b].beam->count(); ++k) owner[m.bodies[b].elastic_first + k] = b;
   std::vector<std::vector<double>> spring_slope(n), spring_reach(n);  // per coordinate, per spring
+  std::vector<int> rows(n);
   for (int r = 0; r < n; ++r) {
-    const Pass pass = partial_pass(m, s, r, motion.body, partials, force_partials);
+    rows[r] = r;
+    const Pass pass = partial_pass(m, s, r, motion.body, nullptr, force_partials);
     spring_slope[r] = pass.spring_slope;
     spring_reach[r] = pass.spring_reach;
     const int b = owner[r];
     if (b < 0) continue;
     const FlexibleData& f = *m.bodies[b].beam;
     const std::vector<char>* nodes = &pass.touched.node[b];
-    const auto strain = element_gradient(f, pass.dofs[b], nodes, [&](const BeamElementData& el, const LocalDofs<D1>& l) {
-      return strain_energy(f, el, l);
-    });
+    const auto strain = element_gradient(
+        f, pass.dofs[b], nodes,
+        [&](const BeamElementData& el, const LocalDofs<D1>& l) { return strain_energy(f, el, l); });
     e.forcing[r] -= strain.first;
     e.forcing_magnitude[r] += strain.second;
-    if (f.stiffening) {
-      const auto g = element_gradient(f, pass.dofs[b], nodes, [&](const BeamElementData& el, const LocalDofs<D1>& l) {
-        return geometric_energy(f, el, l, load[b]);
-      });
-      nonconservative[r] -= g.first;
-      e.forcing_magnitude[r] += g.second;
-    }
     if (f.rayleigh_beta != 0) {
       std::vector<D1> rate(f.count());
       const int first = m.bodies[b].elastic_first;
       for (int k = 0; k < f.count(); ++k) rate[k] = D1(s.u[first + k], first + k == r ? 1.0 : 0.0);
-      const auto k_rate = element_gradient(f, beam_dofs(f, rate.data()), nodes,
-                                           [&](const BeamElementData& el, const LocalDofs<D1>& l) {
-                                             return strain_energy(f, el, l);
-                                           });
+      const auto k_rate = element_gradient(
+          f, beam_dofs(f, rate.data()), nodes,
+          [&](const BeamElementData& el, const LocalDofs<D1>& l) { return strain_energy(f, el, l, false); });
       nonconservative[r] -= f.rayleigh_beta * k_rate.first;
       e.forcing_magnitude[r] += f.rayleigh_beta * k_rate.second;
     }
   }
 
   // Kane's sums over the mass elements; each beam's own elastic mass block on the side.
-  std::vector<Eigen::MatrixXd> own_mass(nb);
-  for (int b = 0; b < nb; ++b)
-    if (m.bodies[b].beam) own_mass[b] = Eigen::MatrixXd::Zero(m.bodies[b].beam->count(), m.bodies[b].beam->count());
-  for (std::size_t i = 0; i < elements.size(); ++i) {
-    const MassElement& el = elements[i];
-    const BodyMotion& k = motion.body[el.body];
-    const ElementMotion& x = motion.element[i];
-    add_element(m, el, k, x, partials[i], e.forcing, &e.mass_matrix, m.bodies[el.body].beam ? &own_mass[el.body] : nullptr,
-                &e.forcing_magnitude);
-    const Mat<double> inertia = mul(k.r, mul(el.inertia, transpose(k.r)));
-    const Vec<double> spin = add(k.omega, mul(k.r, x.theta_rate));
-    e.kinetic_energy += 0.5 * (el.mass * dot(x.v, x.v) + dot(spin, mul(inertia, spin)));
-    e.potential_energy -= el.mass * dot(m.gravity, x.x);
+  const ElementSums sums = element_sums(m, s, elements, rows, nullptr, true);
+  for (int r = 0; r < n; ++r) {
+    e.forcing[r] += sums.forcing[r];
+    e.forcing_magnitude[r] += sums.magnitude[r];
   }
+  e.mass_matrix = sums.mass_matrix;
+  e.kinetic_energy += sums.kinetic;
+  e.potential_energy += sums.potential;
+  const std::vector<Eigen::MatrixXd>& own_mass = sums.own_mass;
 
   // The beams: strain energy, Rayleigh alpha M or modal damping.
   for (int b = 0; b < nb; ++b) {
@@ -600,7 +658,8 @@ Evaluation evaluate(const Instance& m, const State& s) {
     const Vec<double> force = f.body_frame ? mul(motion.body[f.body].r, f.force) : f.force;
     for (int r = 0; r < n; ++r) {
       e.forcing[r] += dot(force, force_partials[i][r]);
-      e.forcing_magnitude[r] += std::sqrt(dot(force, force) * dot(force_partials[i][r], force_partials[i][r]));
+      e.forcing_magnitude[r] +=
+          std::sqrt(dot(force, force) * dot(force_partials[i][r], force_partials[i][r]));
     }
     const Vec<D2> at = force_point(m, f, motion.poses, motion.dofs);
     if (f.body_frame) {
@@ -717,7 +776,8 @@ Evaluation evaluate(const Instance& m, const State& s) {
         break;
       }
       case model::OutputKind::node_displacement: {
-        const Vec<double> t = node_translation(*m.bodies[o.body].beam, dofs[o.body], o.node);
+        const FlexibleData& f = *m.bodies[o.body].beam;
+        const Vec<double> t = sub(displaced_node(f, dofs[o.body], o.node), f.nodes[o.node]);
         e.outputs.insert(e.outputs.end(), t.begin(), t.end());
         break;
       }
@@ -747,20 +807,10 @@ double nonconservative_power(const Instance& m, const State& s, const std::vecto
   double power = joint_power(m, s);
   // The loop forces' power needs lambda, from the whole evaluation (loops are small models).
   if (!m.loops.empty()) power += evaluate(m, s).loop_power;
-  // The motion at the given udot (for the prescribed speeds' constraint
-  // forces), and at u_dot = 0 (the beams' axial loads).
-  const bool pulls = has_node_pulls(m);
-  const std::vector<MassElement> elements =
-      m.has_prescribed() || pulls ? mass_elements(m) : std::vector<MassElement>();
+  // The motion at the given udot (for the prescribed speeds' constraint forces).
   const std::vector<double>* full = m.has_prescribed() ? udot : nullptr;
-  const PathMotion motion = motion_along(m, s, full, elements.size());
-  if (m.has_flexible()) {
-    const bool moving = full && std::any_of(full->begin(), full->end(), [](double a) { return a != 0; });
-    const std::vector<AxialLoad> load =
-        moving ? axial_loads(m, motion_along(m, s, nullptr, pulls ? elements.size() : 0), elements)
-               : axial_loads(m, motion, elements);
-    power += beam_power(m, s, load);
-  }
+  const PathMotion motion = motion_along(m, s, full, 0);
+  if (m.has_flexible()) power += beam_power(m, s);
   for (const ForceData& f : m.forces) {
     if (!f.body_frame) continue;
     const Vec<D2> at = force_point(m, f, motion.poses, motion.dofs);
@@ -773,23 +823,22 @@ double nonconservative_power(const Instance& m, const State& s, const std::vecto
   }
   // A prescribed speed's constraint force: lambda_p = (M udot - f)_p, minus
   // the generalized force with the inertia forces at udot.
-  for (int r = 0; r < m.joint_coordinates(); ++r) {
-    if (!m.joints[m.coordinate_joint[r]].is_prescribed()) continue;
-    std::vector<std::vector<Partial>> partials(elements.size());
+  std::vector<int> prescribed;
+  for (int r = 0; r < m.joint_coordinates(); ++r)
+    if (m.joints[m.coordinate_joint[r]].is_prescribed()) prescribed.push_back(r);
+  if (prescribed.empty()) return power;
+  const ElementSums inertia = element_sums(m, s, mass_elements(m), prescribed, full, false);
+  for (int r : prescribed) {
     std::vector<std::vector<Vec<double>>> force_partials(m.forces.size(), std::vector<Vec<double>>(n));
-    const Pass pass = partial_pass(m, s, r, motion.body, partials, force_partials);
-    std::vector<double> forcing(n, 0.0);
-    for (std::size_t i = 0; i < m.springs.size(); ++i)
-      forcing[r] -= springs[i].tension * pass.spring_slope[i];
-    for (std::size_t i = 0; i < elements.size(); ++i)
-      add_element(m, elements[i], motion.body[elements[i].body], motion.element[i], partials[i], forcing, nullptr,
-                  nullptr);
+    const Pass pass = partial_pass(m, s, r, motion.body, nullptr, force_partials);
+    double forcing = inertia.forcing[r];
+    for (std::size_t i = 0; i < m.springs.size(); ++i) forcing -= springs[i].tension * pass.spring_slope[i];
     for (std::size_t i = 0; i < m.forces.size(); ++i) {
       const ForceData& f = m.forces[i];
-      forcing[r] += dot(f.body_frame ? mul(motion.body[f.body].r, f.force) : f.force, force_partials[i][r]);
+      forcing += dot(f.body_frame ? mul(motion.body[f.body].r, f.force) : f.force, force_partials[i][r]);
     }
-    forcing[r] += joint_forcing(m, s, r);
-    power -= forcing[r] * s.u[r];
+    forcing += joint_forcing(m, s, r);
+    power -= forcing * s.u[r];
   }
   return power;
 }

@@ -78,7 +78,6 @@ std::shared_ptr<const FlexibleData> beam_data(const model::Body& body, const std
     d->rayleigh_beta = f.rayleigh_beta;
   }
   d->stiffening = f.geometric_stiffening;
-  d->chain_length = d->nodes.back()[0];
 
   const Eigen::MatrixXd basis = fem::build_model_beam(body, file).reduced.basis;
   if (basis.rows() != d->num_dofs())
@@ -147,8 +146,8 @@ Instance instantiate(const model::Model& model, const model::ParameterValues& p,
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     const model::Body& b = model.bodies[i];
     body_index[b.name] = static_cast<int>(m.bodies.size());
-    BodyData d{b.name, -1, model::evaluate(b.mass, p), vector_value(b.com, p), inertia_value(b.inertia, p), nullptr,
-               -1};
+    BodyData d{b.name,  -1, model::evaluate(b.mass, p), vector_value(b.com, p), inertia_value(b.inertia, p),
+               nullptr, -1};
     if (b.flexible)
       d.beam = same_model && i < same_model->bodies.size() && same_model->bodies[i].beam
                    ? same_model->bodies[i].beam

@@ -28,7 +28,7 @@ struct JointData {
   std::string name;
   int parent = -1;       ///< body index; -1 for the ground
   int parent_node = -1;  ///< the node of a flexible parent the joint frame sits on (-1: the parent frame)
-  int child = -1;   ///< body index
+  int child = -1;        ///< body index
   Motion motion = Motion::none;
   Mat<double> origin_rotation;  ///< joint frame in parent axes (URDF rpy)
   Vec<double> origin_position;  ///< joint frame origin in the parent frame
@@ -68,10 +68,12 @@ struct FlexibleData {
   Mat<double> tip_inertia{};  ///< about the last node, link axes
   bool modal = false;
   double rayleigh_alpha = 0, rayleigh_beta = 0, modal_ratio = 0;
-  /// Geometric stiffening asked for (the model's flag; the beam is then a
-  /// straight chain on the link's +x axis from the origin, of this length).
+  /// Geometric stiffening asked for (the model's flag). In nodal
+  /// coordinates it is the nonlinear axial strain energy; in modes and
+  /// assumed modes, the foreshortening of the points (beam.hpp).
   bool stiffening = false;
-  double chain_length = 0;
+  bool shortens() const { return stiffening && modal; }
+  bool nonlinear_strain() const { return stiffening && !modal; }
   /// B by columns: (dof, value) pairs of the nonzero entries of column k.
   std::vector<std::vector<std::pair<int, double>>> basis;
   std::vector<std::string> names;  ///< per elastic coordinate: "n3.v", "mode2", ...
@@ -155,9 +157,9 @@ struct LoopData {
 
 struct Instance {
   std::vector<BodyData> bodies;
-  std::vector<JointData> joints;      ///< model order
-  std::vector<int> order;             ///< body indices, every parent before its children
-  std::vector<int> coordinate_joint;  ///< joint index of each joint coordinate (they come first in q)
+  std::vector<JointData> joints;              ///< model order
+  std::vector<int> order;                     ///< body indices, every parent before its children
+  std::vector<int> coordinate_joint;          ///< joint index of each joint coordinate (they come first in q)
   std::vector<std::string> coordinate_names;  ///< every coordinate: joints, then "<body>.<name>" elastic ones
   Vec<double> gravity;
   std::vector<ForceData> forces;

@@ -40,7 +40,7 @@ Vec<S> loop_point(const Instance& m, const std::vector<Pose<S>>& poses,
   if (body < 0) return cast<S>(point);
   if (node < 0) return point_position(poses, body, point);
   const FlexibleData& f = *m.bodies[body].beam;
-  const Vec<S> local = add(f.nodes[node], node_translation(f, dofs[body], node));
+  const Vec<S> local = displaced_node(f, dofs[body], node);
   return add(poses[body].origin, mul(poses[body].rotation, local));
 }
 
@@ -49,7 +49,13 @@ template <class S>
 std::vector<S> loop_residuals(const Instance& m, const S* q) {
   const std::vector<std::vector<S>> dofs = all_beam_dofs(m, q);
   const std::vector<Pose<S>> poses = body_poses(m, q, dofs);
-  const auto rotation = [&](int body) { return body < 0 ? identity<S>() : poses[body].rotation; };
+  // A side's frame: the ground, a body, or a node of a flexible body (turned by its rotation).
+  const auto rotation = [&](int body, int node) {
+    if (body < 0) return identity<S>();
+    if (node < 0) return poses[body].rotation;
+    const FlexibleData& f = *m.bodies[body].beam;
+    return mul(poses[body].rotation, node_turn(node_rotation(f, dofs[body], node)));
+  };
   std::vector<S> phi;
   for (const LoopData& l : m.loops) {
     const Vec<S> gap = sub(loop_point(m, poses, dofs, l.body, l.node, l.point),
@@ -66,9 +72,9 @@ std::vector<S> loop_residuals(const Instance& m, const S* q) {
         } else {
           phi.insert(phi.end(), gap.begin(), gap.end());
           // The hinge axis, in both bodies' frames, kept normal to the second body's e1, e2.
-          const Vec<S> hinge = mul(rotation(l.body), l.axis);
-          phi.push_back(dot(hinge, mul(rotation(l.body2), plane[0])));
-          phi.push_back(dot(hinge, mul(rotation(l.body2), plane[1])));
+          const Vec<S> hinge = mul(rotation(l.body, l.node), l.axis);
+          phi.push_back(dot(hinge, mul(rotation(l.body2, l.node2), plane[0])));
+          phi.push_back(dot(hinge, mul(rotation(l.body2, l.node2), plane[1])));
         }
         break;
       case model::LoopType::slider:
@@ -76,10 +82,10 @@ std::vector<S> loop_residuals(const Instance& m, const S* q) {
           // Across the line in the x-y plane of the first body: z x axis.
           Vec<double> normal{-l.axis[1], l.axis[0], 0.0};
           normal = scale(normal, 1.0 / std::sqrt(dot(normal, normal)));
-          phi.push_back(dot(mul(rotation(l.body), normal), gap));
+          phi.push_back(dot(mul(rotation(l.body, l.node), normal), gap));
         } else {
-          phi.push_back(dot(mul(rotation(l.body), plane[0]), gap));
-          phi.push_back(dot(mul(rotation(l.body), plane[1]), gap));
+          phi.push_back(dot(mul(rotation(l.body, l.node), plane[0]), gap));
+          phi.push_back(dot(mul(rotation(l.body, l.node), plane[1]), gap));
         }
         break;
     }

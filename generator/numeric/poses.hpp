@@ -33,6 +33,16 @@ Mat<S> rotation_about(const Vec<double>& a, const S& angle) {
           k * (a[2] * a[0]) - s * a[1], k * (a[2] * a[1]) + s * a[0], c + k * (a[2] * a[2])};
 }
 
+/// A node's small rotation theta made exact, Rx(theta_x) Ry(theta_y) Rz(theta_z)
+/// (a planar beam's node turns about z only).
+template <class S>
+Mat<S> node_turn(const Vec<S>& theta) {
+  const Vec<double> axes[3] = {{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}};
+  Mat<S> turn = identity<S>();
+  for (int a = 0; a < 3; ++a) turn = mul(turn, rotation_about(axes[a], theta[a]));
+  return turn;
+}
+
 /// The nodal dofs of every flexible body at coordinates q (empty for rigid bodies).
 template <class S>
 std::vector<std::vector<S>> all_beam_dofs(const Instance& m, const S* q) {
@@ -45,9 +55,9 @@ std::vector<std::vector<S>> all_beam_dofs(const Instance& m, const S* q) {
 /// World poses of all bodies (indexed like Instance::bodies) at coordinates q
 /// (`dofs`: all_beam_dofs at q). Child frame = parent frame, moved by the
 /// joint origin (xyz, then rpy), then by the joint motion about or along the
-/// axis in that joint frame. A joint on a node of a (planar) flexible parent
-/// starts from the node's frame instead: the parent frame moved to the
-/// displaced node and turned by the node's rotation about z (exactly).
+/// axis in that joint frame. A joint on a node of a flexible parent starts
+/// from the node's frame instead: the parent frame moved to the displaced
+/// node and turned by the node's rotation (exactly, node_turn).
 template <class S>
 std::vector<Pose<S>> body_poses(const Instance& m, const S* q, const std::vector<std::vector<S>>& dofs) {
   std::vector<Pose<S>> poses(m.bodies.size());
@@ -57,13 +67,9 @@ std::vector<Pose<S>> body_poses(const Instance& m, const S* q, const std::vector
     Pose<S> parent = j.parent < 0 ? ground : poses[j.parent];
     if (j.parent_node >= 0) {
       const FlexibleData& beam = *m.bodies[j.parent].beam;
-      if (!beam.planar)
-        throw std::invalid_argument("joint '" + j.name +
-                                    "': joints on the nodes of spatial beams are not supported by the numeric path");
-      const Vec<S> node = add(beam.nodes[j.parent_node], node_translation(beam, dofs[j.parent], j.parent_node));
-      const S turn = node_rotation(beam, dofs[j.parent], j.parent_node)[2];
-      parent.origin = add(parent.origin, mul(parent.rotation, node));
-      parent.rotation = mul(parent.rotation, rotation_about(Vec<double>{0.0, 0.0, 1.0}, turn));
+      parent.origin =
+          add(parent.origin, mul(parent.rotation, displaced_node(beam, dofs[j.parent], j.parent_node)));
+      parent.rotation = mul(parent.rotation, node_turn(node_rotation(beam, dofs[j.parent], j.parent_node)));
     }
     Pose<S>& pose = poses[b];
     pose.rotation = mul(parent.rotation, j.origin_rotation);

@@ -4,7 +4,6 @@
 // result converges with the mesh (5, 10, 20 elements), and 4 modes follow the
 // full 10-element model.
 #include <catch2/catch.hpp>
-
 #include <cmath>
 
 #include "flexible_helpers.hpp"
@@ -36,7 +35,8 @@ double largest_after(const Series& s, double t0) {
 
 }  // namespace
 
-TEST_CASE("spin-up beam with geometric stiffening stays bounded and settles after Ts", "[flexible][spin-up]") {
+TEST_CASE("spin-up beam with geometric stiffening stays bounded and settles after Ts",
+          "[flexible][spin-up]") {
   for (double ws : {4.0, 6.0, 10.0}) {
     const Series s = tip<kanegen_models::spin_up_beam::System>(ws, 25.0);
     REQUIRE(s.ok);
@@ -54,6 +54,27 @@ TEST_CASE("spin-up beam with geometric stiffening stays bounded and settles afte
   }
 }
 
+TEST_CASE("spin-up beam: the tip minimum and its time within 2 % of the motion-induced stiffness model",
+          "[flexible][spin-up]") {
+  // Before issue 12 the stiffening was a geometric stiffness of the inertia
+  // loads added to the elastic equations: exact for this prescribed hub
+  // motion (Kane, Ryan and Banerjee's own setting), but not conservative in
+  // free motion. Its results (docs/flexible-bodies.md, kanegen 2026-11):
+  struct Reference {
+    double ws, minimum, time;
+  };
+  for (const Reference r :
+       {Reference{4.0, -0.400, 6.95}, Reference{6.0, -0.574, 6.75}, Reference{10.0, -0.860, 6.45}}) {
+    const Series s = tip<kanegen_models::spin_up_beam::System>(r.ws, 9.0);
+    REQUIRE(s.ok);
+    const auto [low, when] = minimum(s);
+    INFO("Ws = " << r.ws << ": minimum " << low << " m at " << when << " s, reference " << r.minimum
+                 << " m at " << r.time << " s");
+    CHECK(std::abs(low - r.minimum) < 0.02 * std::abs(r.minimum));
+    CHECK(std::abs(when - r.time) < 0.02 * r.time);
+  }
+}
+
 TEST_CASE("spin-up beam without geometric stiffening diverges", "[flexible][spin-up]") {
   // Ws = 6 rad/s: the linear model loses bending stiffness to the spin
   // softening and the deflection grows without bound.
@@ -62,8 +83,8 @@ TEST_CASE("spin-up beam without geometric stiffening diverges", "[flexible][spin
   const double reached = std::abs(minimum(linear).first);
   INFO("linear model: |tip| reached " << reached << " m by t = " << linear.t.back() << " s");
   CHECK(reached > 100.0 * std::abs(minimum(stiff).first));
-  WARN("Ws = 6 rad/s without geometric stiffening: |tip deflection| reached " << reached << " m by t = "
-                                                                               << linear.t.back() << " s");
+  WARN("Ws = 6 rad/s without geometric stiffening: |tip deflection| reached "
+       << reached << " m by t = " << linear.t.back() << " s");
 }
 
 TEST_CASE("spin-up beam converges with the mesh", "[flexible][spin-up]") {

@@ -69,8 +69,11 @@ std::string variant(const std::string& model, int elements) {
   return path.string();
 }
 
-/// The modes whose shapes have no axial (".u") component: the bending modes
-/// of a straight planar beam (axial and bending motion are uncoupled there).
+/// The modes whose shapes are bending: less than 1 % of the shape in the
+/// axial (".u") coordinates. Axial and bending motion are uncoupled on a
+/// straight planar beam; about a bent equilibrium (a beam sagging in
+/// gravity, with the nonlinear axial strain of geometric stiffening) they
+/// couple at the order of the slopes.
 std::vector<double> bending_omegas(const json& result) {
   std::vector<double> omegas;
   for (const json& mode : result["modes"]) {
@@ -80,7 +83,7 @@ std::vector<double> bending_omegas(const json& result) {
       total += v * v;
       if (name.size() > 2 && name.compare(name.size() - 2, 2, ".u") == 0) axial += v * v;
     }
-    if (axial < 1e-8 * total) omegas.push_back(mode["omega_rad_s"].get<double>());
+    if (axial < 1e-2 * total) omegas.push_back(mode["omega_rad_s"].get<double>());
   }
   return omegas;
 }
@@ -104,13 +107,6 @@ int index_of(const std::vector<std::string>& names, const std::string& name) {
   return -1;
 }
 
-Eigen::MatrixXd matrix(const json& rows) {
-  Eigen::MatrixXd m(rows.size(), rows.size());
-  for (std::size_t i = 0; i < rows.size(); ++i)
-    for (std::size_t j = 0; j < rows.size(); ++j) m(i, j) = rows[i][j].get<double>();
-  return m;
-}
-
 std::string csv(const Eigen::VectorXd& x) {
   std::ostringstream s;
   s.precision(17);
@@ -120,9 +116,10 @@ std::string csv(const Eigen::VectorXd& x) {
 
 constexpr double kBetaL[] = {1.875104, 4.694091, 7.854757};
 
-/// The cantilever's first three bending frequencies over the Euler-Bernoulli ones, minus 1.
+/// The cantilever's first three bending frequencies over the Euler-Bernoulli
+/// ones, minus 1: unloaded (P = 0), as Euler-Bernoulli's beam is.
 std::vector<double> cantilever_errors(const std::string& model) {
-  const json result = modes(model);
+  const json result = modes(model, "--set P=0");
   CHECK(result["stable"].get<bool>());
   const std::vector<double> omega = bending_omegas(result);
   REQUIRE(omega.size() >= 3);
@@ -157,21 +154,25 @@ TEST_CASE("cantilever: the frequencies converge from above with 5, 10, 20 elemen
   }
 }
 
-TEST_CASE("cantilever: the static tip deflection from K is P L^3 / (3 E I), and eval finds equilibrium there",
+TEST_CASE("cantilever: modes finds the static tip deflection P L^3 / (3 E I), and eval the equilibrium there",
           "[modes]") {
+  // The beam's geometric stiffening is its nonlinear axial strain, so modes
+  // linearises about the loaded equilibrium, which it finds by Newton's
+  // method on the same K and r and reports.
   const std::string model = source("models/cantilever.json");
   const json result = modes(model, "--matrices --count 1");
-  const Eigen::MatrixXd K = matrix(result["matrices"]["stiffness"]);
-  Eigen::VectorXd r(K.rows());
-  for (Eigen::Index i = 0; i < r.size(); ++i) r[i] = result["matrices"]["forcing"][i].get<double>();
-  const Eigen::VectorXd x = K.fullPivLu().solve(r);  // M q'' + K (q - x) = 0: x is the equilibrium
+  REQUIRE(result.contains("equilibrium"));
+  const std::vector<std::string> coordinates = coordinate_names(result);
+  Eigen::VectorXd x(static_cast<Eigen::Index>(coordinates.size()));
+  for (std::size_t i = 0; i < coordinates.size(); ++i)
+    x[static_cast<Eigen::Index>(i)] = result["equilibrium"]["q"][coordinates[i]].get<double>();
 
   const json m = read_json(model);
   const json& f = m["bodies"][0]["flexible"];
   const double P = m["parameters"]["P"].get<double>(), L = f["length"].get<double>();
   const double EI = f["material"]["E"].get<double>() * f["section"]["Iz"].get<double>();
-  const std::vector<std::string> names = coordinate_names(result);
-  const double v = x[index_of(names, "beam.n10.v")], theta = x[index_of(names, "beam.n10.theta_z")];
+  const double v = x[index_of(coordinates, "beam.n10.v")],
+               theta = x[index_of(coordinates, "beam.n10.theta_z")];
   INFO("tip deflection " << v << " m, rotation " << theta);
   CHECK(std::abs(rel_error(v, -P * L * L * L / (3 * EI))) < 1e-6);
   CHECK(std::abs(rel_error(theta, -P * L * L / (2 * EI))) < 1e-6);
@@ -183,8 +184,7 @@ TEST_CASE("cantilever: the static tip deflection from K is P L^3 / (3 E I), and 
   REQUIRE(e.status == 0);
   double largest = 0;
   const json answer = json::parse(e.out);  // kept alive: a range-for over a temporary's member dangles
-  for (const json& fi : answer["forcing"])
-    largest = std::max(largest, std::abs(fi.get<double>()));
+  for (const json& fi : answer["forcing"]) largest = std::max(largest, std::abs(fi.get<double>()));
   CHECK(largest < 1e-8 * P);
 }
 
@@ -218,6 +218,43 @@ TEST_CASE("spinning beam: flapwise frequencies at lambda = 0, 2, 4, 10 within 0.
                      << ", error " << e);
       CHECK(std::abs(e) < 5e-3);
     }
+  }
+}
+
+TEST_CASE("Euler's column: the first frequency goes to zero at the critical load, nodal and modal",
+          "[modes][stiffening]") {
+  // A clamped-free column pushed at its tip: the applied node force enters
+  // the geometric stiffness (the nonlinear axial strain of the nodal beam,
+  // the foreshortening of the modal one). Euler: P_cr = pi^2 EI / (4 L^2).
+  const double pi = 3.14159265358979323846, EI = 2.1e11 * 2.5e-9, p_cr = pi * pi * EI / 4.0;
+  for (const char* name : {"euler_column", "euler_column_modal"}) {
+    const std::string model = source(std::string("tests/data/models/") + name + ".json");
+    const auto omega2 = [&](double fraction) {
+      std::ostringstream set;
+      set.precision(17);
+      set << "--count 1 --set P=" << fraction * p_cr;
+      const json result = modes(model, set.str());
+      return result["modes"][0]["eigenvalue"].get<double>();
+    };
+    const double free = omega2(0.0), half = omega2(0.5), near = omega2(0.99), nearer = omega2(0.999);
+    // omega^2 falls about as 1 - P / P_cr (Galef's approximation for a cantilever) ...
+    INFO(name << ": omega^2 = " << free << ", " << half << ", " << near << ", " << nearer
+              << " 1/s^2 at P / P_cr = 0, 0.5, 0.99, 0.999");
+    CHECK(std::abs(half / free - 0.5) < 0.02);
+    CHECK(near / free < 0.015);
+    // ... and reaches zero at Euler's load: extrapolated from 0.99 and 0.999 P_cr.
+    const double zero = 0.99 + (0.999 - 0.99) * near / (near - nearer);
+    INFO("omega^2 extrapolates to zero at " << zero << " P_cr");
+    CHECK(std::abs(zero - 1.0) < 1e-3);
+    // Past it, the straight column is unstable.
+    std::ostringstream past;
+    past.precision(17);
+    past << "modes '" << model << "' --quiet --set P=" << 1.01 * p_cr;
+    const Result r = kanegen(past.str());
+    CHECK(r.status == 1);
+    CHECK(contains(r.err, "unstable"));
+    WARN(name << ": omega_1^2 / omega_1^2(P = 0) = " << half / free << " at P_cr / 2, " << near / free
+              << " at 0.99 P_cr; zero extrapolated at " << zero << " P_cr");
   }
 }
 

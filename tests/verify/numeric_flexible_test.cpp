@@ -31,9 +31,11 @@ Model load(const std::string& relative) {
 
 constexpr double E = 7e10, A = 1e-4, Iz = 1e-10, rho = 2700, L = 0.6;
 
-/// One clamped planar beam element of length L on a fixed joint (or on a
-/// joint turning about `axis` when `spin`), no gravity.
-Model cantilever(int elements, bool spin = false, std::array<double, 3> axis = {0, 1, 0}) {
+/// One clamped planar beam of length L on a fixed joint (or on a joint
+/// turning about `axis` when `spin`), no gravity; in its first `modes` modes
+/// when `modes` > 0, with geometric stiffening when `stiffening`.
+Model cantilever(int elements, bool spin = false, std::array<double, 3> axis = {0, 1, 0}, int modes = 0,
+                 bool stiffening = true) {
   Model m;
   m.name = "cantilever";
   m.gravity = {Scalar::number(0), Scalar::number(0), Scalar::number(0)};
@@ -48,7 +50,8 @@ Model cantilever(int elements, bool spin = false, std::array<double, 3> axis = {
   b.beam.Iz = Iz;
   b.beam.E = E;
   b.beam.density = rho;
-  b.beam.geometric_stiffening = true;
+  b.beam.geometric_stiffening = stiffening;
+  b.beam.modes = modes;
   m.bodies.push_back(b);
   kanegen::model::Joint j;
   j.name = "hub";
@@ -86,15 +89,18 @@ TEST_CASE("Gauss-Legendre rules on [0, 1] are exact to degree 2n - 1", "[numeric
   }
 }
 
-TEST_CASE("cantilever element: -K eta and the consistent mass are the textbook matrices", "[numeric][flexible]") {
-  const Model model = cantilever(1);
+TEST_CASE("cantilever element: -K eta and the consistent mass are the textbook matrices",
+          "[numeric][flexible]") {
+  const Model model = cantilever(1, false, {0, 1, 0}, 0, false);  // the linear model
   const auto instance = kanegen::numeric::instantiate(model, {});
   REQUIRE(instance.coordinate_names == std::vector<std::string>{"beam.n1.u", "beam.n1.v", "beam.n1.theta_z"});
   // The free end's (u, v, theta_z): K = [EA/L; EI/L^3 (12, -6L... with the clamped end removed)].
   const double ea = E * A / L, ei = E * Iz;
-  const double K[3][3] = {{ea, 0, 0}, {0, 12 * ei / (L * L * L), -6 * ei / (L * L)}, {0, -6 * ei / (L * L), 4 * ei / L}};
+  const double K[3][3] = {
+      {ea, 0, 0}, {0, 12 * ei / (L * L * L), -6 * ei / (L * L)}, {0, -6 * ei / (L * L), 4 * ei / L}};
   const double m = rho * A * L;
-  const double M[3][3] = {{m / 3, 0, 0}, {0, 156 * m / 420, -22 * L * m / 420}, {0, -22 * L * m / 420, 4 * L * L * m / 420}};
+  const double M[3][3] = {
+      {m / 3, 0, 0}, {0, 156 * m / 420, -22 * L * m / 420}, {0, -22 * L * m / 420, 4 * L * L * m / 420}};
   for (int k = 0; k < 3; ++k) {
     std::vector<double> q(3, 0.0);
     q[k] = 1e-3;
@@ -107,16 +113,18 @@ TEST_CASE("cantilever element: -K eta and the consistent mass are the textbook m
   }
 }
 
-TEST_CASE("spinning beam: the geometric stiffness of the centrifugal load equals the FEM layer's",
-          "[numeric][flexible]") {
-  // Spin about y: omega_y^2 = Omega^2 loads the planar beam, a_const = 0 (hub at the axis, no gravity).
-  const Model model = cantilever(3, true);
+TEST_CASE(
+    "spinning modal beam: the foreshortening gives the FEM layer's geometric stiffness of the centrifugal "
+    "load",
+    "[numeric][flexible]") {
+  // Spin about y: omega_y^2 = Omega^2 loads the planar beam (hub at the axis, no gravity).
+  const Model model = cantilever(6, true, {0, 1, 0}, 3);
   const auto instance = kanegen::numeric::instantiate(model, {});
   const int n = instance.coordinates();
-  REQUIRE(n == 10);
+  REQUIRE(n == 4);
   const double omega = 3.0;
   const kanegen::fem::ModelBeam beam = kanegen::fem::build_model_beam(model.bodies[0], "");
-  const Eigen::MatrixXd kl = beam.reduced.geometric->linear;  // K_G for a = x
+  const Eigen::MatrixXd kl = beam.reduced.geometric->linear;  // K_G for a = x, in the modes
   // f(eta) - f(0) at u = (Omega, 0...): -K eta - Omega^2 Kl eta + the centrifugal force on N eta.
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> any(-1e-3, 1e-3);
@@ -136,6 +144,46 @@ TEST_CASE("spinning beam: the geometric stiffness of the centrifugal load equals
   for (int i = 0; i < n - 1; ++i) largest = std::max(largest, std::abs(expected[i]));
   for (int i = 1; i < n; ++i)
     CHECK(deformed.forcing[i] - straight.forcing[i] == Approx(expected[i - 1]).margin(1e-11 * largest));
+}
+
+TEST_CASE("nodal beam under tension: the nonlinear axial strain gives the FEM layer's geometric stiffness",
+          "[numeric][flexible]") {
+  // A uniform stretch u = x N / EA (tension N everywhere), no bending: the
+  // bending rows' forcing is then -(K_e + N K_tip) v for a small bending v,
+  // K_tip the FEM layer's geometric stiffness of a unit axial tip force.
+  const Model model = cantilever(4);
+  const auto instance = kanegen::numeric::instantiate(model, {});
+  const int n = instance.coordinates();
+  REQUIRE(n == 12);
+  const kanegen::fem::ModelBeam beam = kanegen::fem::build_model_beam(model.bodies[0], "");
+  const Eigen::MatrixXd& B = beam.reduced.basis;
+  const int tip = beam.body.num_nodes() - 1;
+  const Eigen::MatrixXd k_tip =
+      B.transpose() * kanegen::fem::node_force_geometric_stiffness(beam.body, tip) * B;
+  const double tension = 250.0;
+  std::vector<double> stretched(n, 0.0);
+  for (int i = 0; i < n; ++i)
+    if (instance.coordinate_names[i].size() > 2 &&
+        instance.coordinate_names[i].compare(instance.coordinate_names[i].size() - 2, 2, ".u") == 0)
+      stretched[i] = (i / 3 + 1) * (L / 4) * tension / (E * A);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> any(-1e-7, 1e-7);
+  std::vector<double> bent = stretched;
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(n);
+  for (int i = 0; i < n; ++i)
+    if (stretched[i] == 0.0) bent[i] += v[i] = any(rng);
+  const std::vector<double> rest(n, 0.0);
+  const Evaluation at_bent = kanegen::numeric::evaluate(instance, at(bent, rest));
+  const Evaluation at_stretched = kanegen::numeric::evaluate(instance, at(stretched, rest));
+  const Eigen::VectorXd expected = -(beam.reduced.stiffness + tension * k_tip) * v;
+  double largest = 0;
+  for (int i = 0; i < n; ++i)
+    if (v[i] != 0.0) largest = std::max(largest, std::abs(expected[i]));
+  for (int i = 0; i < n; ++i) {
+    if (v[i] == 0.0) continue;  // the axial rows: second order in v
+    INFO(instance.coordinate_names[i]);
+    CHECK(at_bent.forcing[i] - at_stretched.forcing[i] == Approx(expected[i]).margin(1e-7 * largest));
+  }
 }
 
 TEST_CASE("prescribed motions: q, q' and q'' exactly, piece by piece", "[numeric][flexible]") {
@@ -172,7 +220,8 @@ TEST_CASE("flexible models: M is the Hessian of T, d(T + V)/dt = P_nc along the 
                            "tests/data/models/flex_prescribed_hub.json"}) {
     INFO(file);
     const Model model = load(file);
-    const auto instance = kanegen::numeric::instantiate(model, kanegen::model::default_parameter_values(model));
+    const auto instance =
+        kanegen::numeric::instantiate(model, kanegen::model::default_parameter_values(model));
     const int n = instance.coordinates(), joints = instance.joint_coordinates();
     std::mt19937 rng(17);
     std::uniform_real_distribution<double> any(-1, 1);
