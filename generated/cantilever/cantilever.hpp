@@ -7,7 +7,7 @@
 //   forward_dynamics: 1293 (560 of them in LDL^T)
 //   kinetic_energy: 279
 //   potential_energy: 599
-//   outputs: 9
+//   outputs: 36
 //
 // Arrays are plain C arrays with their sizes in the comments; no function
 // allocates, throws or keeps state.

@@ -7,7 +7,7 @@
 //   forward_dynamics: 1383 (560 of them in LDL^T)
 //   kinetic_energy: 377
 //   potential_energy: 632
-//   outputs: 4
+//   outputs: 31
 //
 // Arrays are plain C arrays with their sizes in the comments; no function
 // allocates, throws or keeps state.

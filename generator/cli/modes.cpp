@@ -226,27 +226,35 @@ bool stiffens_by_strain(const model::Model& model) {
 }
 
 /// Moves the elastic coordinates of the operating point to the equilibrium
-/// of the elastic equations, r(q) = 0 with the joints as set up, by Newton's
-/// method on the linearisation (dq = K^-1 r). Returns the iterations taken;
-/// throws if it does not converge.
+/// of their own equations, r_e(q) = 0 with every joint held at its initial
+/// state (or prescribed), by Newton's method on the linearisation of those
+/// rows alone (dq_e = K_ee^-1 r_e). Returns the iterations taken; throws if
+/// K_ee is singular or Newton does not converge.
 int find_elastic_equilibrium(RunnerProcess& process, Problem& pb, const std::vector<bool>& elastic,
                              const std::string& file) {
   LinearizeOptions lin = pb.linearize;
   lin.velocity = false;
+  lin.selected.clear();
+  for (std::size_t i = 0; i < elastic.size(); ++i)
+    if (elastic[i]) lin.selected.push_back(pb.linearize.selected[i]);
   for (int iteration = 1; iteration <= 30; ++iteration) {
     const Linearization lz = linearize(process, pb.point, lin);
-    const Eigen::VectorXd dq = lz.stiffness.fullPivLu().solve(lz.forcing);
-    if (!dq.allFinite())
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(lz.stiffness);
+    if (!lu.isInvertible())
       throw std::runtime_error(file +
-                               ": no elastic equilibrium near the initial state (K is singular there)");
-    double largest = 0.0;
+                               ": no elastic equilibrium near the initial state (the elastic stiffness "
+                               "is singular there: a mechanism, or a load at buckling)");
+    const Eigen::VectorXd dq = lu.solve(lz.forcing);
+    double step = 0.0, size = 0.0;
     for (std::size_t i = 0; i < lin.selected.size(); ++i) {
-      if (!elastic[i]) continue;
       double& q = pb.point.q[static_cast<std::size_t>(lin.selected[i])];
       q += dq[static_cast<Eigen::Index>(i)];
-      largest = std::max(largest, std::abs(dq[static_cast<Eigen::Index>(i)]) / std::max(1.0, std::abs(q)));
+      step = std::max(step, std::abs(dq[static_cast<Eigen::Index>(i)]));
+      size = std::max(size, std::abs(q));
     }
-    if (largest < 1e-13) return iteration;
+    // Converged when the step is round-off beside the largest coordinate
+    // (or zero: an unloaded body stays at 0).
+    if (step <= 1e-12 * size || step == 0.0) return iteration;
   }
   throw std::runtime_error(file +
                            ": no elastic equilibrium near the initial state after 30 Newton steps (the "

@@ -69,6 +69,10 @@ Foreshortening foreshortening(const Body& body, const Eigen::MatrixXd& B) {
       add_point(f, p.mass, placement.R * p.r + placement.origin,
                 along(f.node[from], axis, slope_integral(*beam, to_eta, xi)));
     }
+    if (reached[to])
+      throw std::invalid_argument(
+          "foreshortening: node " + std::to_string(to) +
+          " is reached by two elements (a closed frame has no single path from node 0)");
     f.node[to] = along(f.node[from], axis, slope_integral(*beam, to_eta, 1.0));
     reached[to] = 1;
   }

@@ -14,8 +14,8 @@ using GiNaC::ex;
 
 /// Rows of section resultants at `node` as maps of eta: planar (N, M_z),
 /// spatial (N, T, M_y, M_z), from the element that starts there (or ends
-/// there, for the last node).
-Eigen::MatrixXd resultants_at(const fem::ModelBeam& beam, int node) {
+/// there, for the last node), whose index goes to `element_index`.
+Eigen::MatrixXd resultants_at(const fem::ModelBeam& beam, int node, int& element_index) {
   const fem::Body& body = beam.body;
   for (int pass = 0; pass < 2; ++pass)
     for (int e = 0; e < body.num_elements(); ++e) {
@@ -23,6 +23,7 @@ Eigen::MatrixXd resultants_at(const fem::ModelBeam& beam, int node) {
       if (placement.nodes[pass] != node) continue;
       const auto* element = dynamic_cast<const fem::BeamElement*>(placement.element.get());
       if (!element) throw std::logic_error("node outputs: not a beam element");
+      element_index = e;
       Eigen::MatrixXd rows(placement.dofs.size(), beam.reduced.basis.cols());
       for (std::size_t i = 0; i < placement.dofs.size(); ++i)
         rows.row(i) = beam.reduced.basis.row(placement.dofs[i]);
@@ -51,8 +52,23 @@ NodeOutputs node_outputs(const model::Body& body, const fem::ModelBeam& beam, co
     }
     return out;
   }
-  const Eigen::MatrixXd r = resultants_at(beam, output.node);
-  const ex axial = row_times(r, 0, eta);
+  int element = 0;
+  const Eigen::MatrixXd r = resultants_at(beam, output.node, element);
+  ex axial = row_times(r, 0, eta);
+  if (!beam.axial_strain.empty()) {
+    // The nonlinear axial strain: N = EA (u' + phi_e), phi_e = 1/2 sum_p w_p |slopes_p eta|^2.
+    const fem::AxialStrainElement& e = beam.axial_strain[static_cast<std::size_t>(element)];
+    ex phi = 0;
+    for (std::size_t p = 0; p < e.slopes.size(); ++p)
+      for (Eigen::Index j = 0; j < e.slopes[p].rows(); ++j) {
+        const ex slope = row_times(e.slopes[p], static_cast<int>(j), eta);
+        phi += symbolic::number(e.weight[p] / 2) * slope * slope;
+      }
+    const auto* beam_element =
+        dynamic_cast<const fem::BeamElement*>(beam.body.element(element).element.get());
+    const double ea = e.stiffness / beam_element->length();
+    axial = program.define(axial + symbolic::number(ea) * phi);
+  }
   const ex moment_z = row_times(r, spatial ? 3 : 1, eta);
   const ex moment_y = spatial ? row_times(r, 2, eta) : ex(0);
   switch (output.kind) {

@@ -211,7 +211,8 @@ double joint_power(const Instance& m, const State& s) {
 }
 
 /// Section resultants at a node, from the element that starts there (the
-/// last element for the last node): N, T, M_y, M_z.
+/// last element for the last node): N (with the nonlinear strain's
+/// EA phi when the beam has it), T, M_y, M_z.
 std::array<double, 4> resultants(const FlexibleData& f, const std::vector<double>& dofs, int node) {
   const int count = static_cast<int>(f.elements.size());
   const int element = node < count ? node : count - 1;
@@ -220,7 +221,9 @@ std::array<double, 4> resultants(const FlexibleData& f, const std::vector<double
   const LocalDofs<double> l = local_dofs(f, e, dofs);
   const double L = e.length;
   const std::array<double, 4> hxx = hermite_xx(xi, L);
-  return {f.E * f.A * (l.translation[1][0] - l.translation[0][0]) / L,
+  // The nonlinear axial strain of geometric stiffening adds its mean bending part.
+  const double phi = f.nonlinear_strain() ? shortening_integral(f, e, l, 1.0) / L : 0.0;
+  return {f.E * f.A * ((l.translation[1][0] - l.translation[0][0]) / L + phi),
           f.G * f.J * (l.rotation[1][0] - l.rotation[0][0]) / L, -f.E * f.Iy * combine(hxx, w_values(l)),
           f.E * f.Iz * combine(hxx, v_values(l))};
 }

@@ -11,7 +11,7 @@
 //   f_r  = sum v_r.m (g - a) - W_r.I alpha - w_r.(omega x I Omega)
 //          + sum_forces v_r(point).F - k (q_r - rest) - c u_r + tau_r + effort_r(t)
 //          - sum_springs (k (l - l0) + c l_dot) dl/dq_r
-//          - dU/deta_r - (K_G eta)_r - (C eta_dot)_r,
+//          - dU/deta_r - (C eta_dot)_r,
 // with v_r = dx/dq_r, w_r = vee(dR/dq_r R^T) the link's partial angular
 // velocity, W_r = w_r + R dtheta/dq_r, Omega = omega + R theta_dot, I = R J R^T,
 // a, alpha the accelerations at u_dot = 0 (second derivatives along u): for a
@@ -19,11 +19,12 @@
 // Lagrange's equations of T = 1/2 Omega.I Omega with J fixed in the link.
 // A spring enters through the gradient of its length l(q) (its force is
 // -(...) times the unit vector along it, and v_r.unit = dl/dq_r), with l_dot
-// the derivative of l along u. U is the beam's strain energy, K_G eta the
-// gradient of the energy of the axial force of the inertia loads (and of the
-// pulls of the bodies carried on its nodes, springs included), C Rayleigh or
-// modal damping. Independent of the symbolic generator by construction: no
-// GiNaC, no shared code (the basis of the elastic coordinates aside, see
+// the derivative of l along u. U is the beam's strain energy (with the
+// nonlinear axial strain of geometric stiffening in nodal coordinates), C
+// Rayleigh or modal damping. Geometric stiffening in modes moves the beam's
+// points by its foreshortening instead (beam.hpp), and its own mass elements
+// enter the sums to the generator's order (dynamics.cpp, truncation_samples). Independent of the symbolic
+// generator by construction: no GiNaC, no shared code (the basis of the elastic coordinates aside, see
 // instance.hpp).
 #pragma once
 
@@ -51,7 +52,7 @@ struct Evaluation {
   /// n: udot_p = the prescribed acceleration of each prescribed speed p, the
   /// others from M_ff udot_f = f_f - M_fp udot_p (empty if M_ff is not positive definite).
   std::vector<double> udot;
-  std::vector<int> prescribed;                 ///< the prescribed speeds
+  std::vector<int> prescribed;                  ///< the prescribed speeds
   std::vector<double> prescribed_acceleration;  ///< their accelerations at t
   double kinetic_energy = 0;
   /// gravity, springs (of joints and between points), strain energy, -F.p of world-frame forces
@@ -82,6 +83,7 @@ Evaluation evaluate(const Instance& model, const State& state);
 /// u_p); null: the numeric udot. With loops, plus the loop forces' power
 /// (Evaluation::loop_power, with the numeric lambda). Cheaper than evaluate for rigid models
 /// without prescribed speeds (one pass along u).
-double nonconservative_power(const Instance& model, const State& state, const std::vector<double>* udot = nullptr);
+double nonconservative_power(const Instance& model, const State& state,
+                             const std::vector<double>* udot = nullptr);
 
 }  // namespace kanegen::numeric

@@ -137,6 +137,10 @@ TEST_CASE("the free flexible pendulum with geometric stiffening conserves energy
     CHECK(modal.largest_tip < energy_bound(e0));
     // The two forms of the stiffening, independent derivations, agree.
     CHECK(std::abs(nodal.largest_tip - modal.largest_tip) < 0.02 * modal.largest_tip);
+    // At 9 rad/s the linear model loses its in-plane bending stiffness to
+    // the spin (its first frequency near 10 rad/s on a clamped hub) and
+    // deflects over ten times as far.
+    if (speed > 0) CHECK(nodal.largest_tip < 0.1 * linear.largest_tip);
     WARN("free pendulum released at "
          << speed << " rad/s, 5 s: largest |tip deflection| " << nodal.largest_tip << " m (nodal), "
          << modal.largest_tip << " m (modal), " << linear.largest_tip << " m (linear); T + V drift / T_max "

@@ -5,11 +5,14 @@
 // cuts of one linkage to each other.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "loop_helpers.hpp"
 #include "quick_return.hpp"
 #include "ring_slider.hpp"
+#include "ring_slider_flexible.hpp"
 #include "rsur_revolute.hpp"
 #include "rsur_spherical.hpp"
 
@@ -140,4 +143,38 @@ TEST_CASE("the quick-return rocker follows the crank pin exactly and energy is c
   }
   CHECK(worst < 1e-10);
   CHECK(std::abs(run.states.back()[0]) > 2 * M_PI);
+}
+
+TEST_CASE("a slider loop's line on a beam node turns with the node's rotation", "[loops][spatial][node]") {
+  // ring_slider_flexible: at all-zero coordinates the rod runs along world x
+  // from the crank tip (a, 0, 0); its line passes through node 2 at x = a +
+  // 0.3 and the ring sits at (0.3, 0.1, 0.1). The rows are e1 . gap, e2 . gap
+  // with e1 = y, e2 = z of the line's frame, gap = node - ring =
+  // (a, -0.1, -0.1). Turning the node by delta about z turns e1 to
+  // (-sin delta, cos delta, 0): row 1 changes by -a delta, row 2 not; a twist
+  // about the line's own axis (x) turns e1, e2 about it, which leaves the
+  // ring's distance from the line, |phi|, as it was.
+  using System = kanegen_models::ring_slider_flexible::System;
+  const System::Params p;
+  const double a = p.a, delta = 1e-6;
+  const auto index = [](const char* name) {
+    for (int i = 0; i < System::nq; ++i)
+      if (std::string(System::coordinate_names()[i]) == name) return i;
+    FAIL("no coordinate " << name);
+    return -1;
+  };
+  std::vector<double> q(System::nq, 0.0);
+  double phi0[System::nc], phi[System::nc];
+  System::constraints(p, q.data(), phi0);
+  CHECK(phi0[0] == Approx(-0.1).epsilon(1e-12));
+  CHECK(phi0[1] == Approx(-0.1).epsilon(1e-12));
+  q[index("rod.n2.theta_z")] = delta;
+  System::constraints(p, q.data(), phi);
+  CHECK((phi[0] - phi0[0]) / delta == Approx(-a).epsilon(1e-4));
+  CHECK(std::abs(phi[1] - phi0[1]) < 1e-15);
+  q[index("rod.n2.theta_z")] = 0.0;
+  q[index("rod.n2.theta_x")] = delta;
+  System::constraints(p, q.data(), phi);
+  CHECK(std::hypot(phi[0], phi[1]) == Approx(std::hypot(phi0[0], phi0[1])).epsilon(1e-13));
+  CHECK((phi[1] - phi0[1]) / delta == Approx(0.1).epsilon(1e-4));  // the rows turn by delta
 }

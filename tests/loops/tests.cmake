@@ -5,7 +5,7 @@
 kanegen_add_model(kanegen_test_slider_crank_free ${PROJECT_SOURCE_DIR}/tests/data/models/slider_crank_free.json)
 # The other loop types: spherical and spatial revolute (one linkage cut two
 # ways), spatial slider (a rod through a ring), planar slider (quick return).
-foreach(name rsur_spherical rsur_revolute ring_slider quick_return)
+foreach(name rsur_spherical rsur_revolute ring_slider quick_return ring_slider_flexible)
   kanegen_add_model(kanegen_test_${name} ${PROJECT_SOURCE_DIR}/tests/data/models/${name}.json)
 endforeach()
 add_executable(test_loops ${CMAKE_CURRENT_LIST_DIR}/../regression/main.cpp ${CMAKE_CURRENT_LIST_DIR}/test_loops.cpp
@@ -18,6 +18,7 @@ target_link_libraries(test_loops PRIVATE kanegen_model_four_bar kanegen_model_sl
                                          kanegen_model_andrews_squeezer kanegen_model_simeon_crank kanegen_model_simeon_crank_fe
                                          kanegen_test_slider_crank_free kanegen_test_rsur_spherical
                                          kanegen_test_rsur_revolute kanegen_test_ring_slider kanegen_test_quick_return
+                                         kanegen_test_ring_slider_flexible
                                          kanegen_runtime Catch2::Catch2)
 catch_discover_tests(test_loops TEST_PREFIX "loops: ")
 

@@ -35,11 +35,13 @@ catch_discover_tests(test_verify_cli TEST_PREFIX "verify: ")
 # spatial gimbal; the loop types the shipped linkages do not use (spherical,
 # spatial revolute, spatial and planar slider); geometric stiffening in free
 # motion (issue 12): the free pendulum in nodal and modal coordinates, an
-# L-shaped nodal beam, a modal column under an axial node force.
+# L-shaped nodal beam, a modal column under an axial node force; loops on the
+# nodes of spatial beams (a spatial revolute, a slider).
 file(GLOB KANEGEN_VERIFY_MODELS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/models/*.json ${PROJECT_SOURCE_DIR}/models/*.urdf)
 foreach(name forced_cart_pendulum flex_hub_planar flex_hub_modal flex_spatial_hub flex_prescribed_hub flex_tip_body
              force_elements flex_spring assumed_hub assumed_spatial_hub rsur_spherical rsur_revolute ring_slider
-             quick_return free_strip free_strip_modal l_beam_stiffened euler_column_modal)
+             quick_return free_strip free_strip_modal l_beam_stiffened euler_column_modal
+             rsur_revolute_flexible ring_slider_flexible)
   list(APPEND KANEGEN_VERIFY_MODELS ${PROJECT_SOURCE_DIR}/tests/data/models/${name}.json)
 endforeach()
 foreach(model ${KANEGEN_VERIFY_MODELS})
