@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // bench_dynamics: the generated kernels of arm7 and chain20 against MuJoCo,
 // in one run, on the same fixed set of states (cycled, one state per call).
 //

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-2.0-or-later
 # Builds bench_dynamics (Release) and runs it: kanegen's generated kernels
 # against MuJoCo on arm7 and chain20, then prints MuJoCo time / kanegen time
 # per model. See docs/benchmarks.md.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # kanegen_embed_text(<out.cpp> <c++ name> <file>): makes <file>'s text a
 # `extern const char* const <name>` in the generator binary, so an installed
 # kanegen needs no data files beside it. Re-runs when <file> changes.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # kanegen_add_model(<target> <model file> [NAME <model name>] [RUNNER])
 #
 # Generates the model's kernels at build time (again whenever the model file

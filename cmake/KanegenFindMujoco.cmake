@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # kanegen_find_mujoco(): find_package(mujoco) and repair its imported target.
 # Debian's libmujoco-dev 2.2.2 lists /usr/include/libqhull_r/ as an include
 # directory of mujoco::mujoco without depending on libqhull-dev; CMake refuses

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Sanitizers and fuzzing instrumentation for every target defined after this
 # file is included (the top-level CMakeLists.txt includes it before the
 # targets).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Linked into every executable of a KANEGEN_SANITIZE build (see
 // KanegenSanitize.cmake): the sanitizers' options, so that kanegen run by the
 // build itself (kanegen_add_model) and every test stop at the first finding

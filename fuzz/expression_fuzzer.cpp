@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // libFuzzer target: the load-time expression check and GiNaC's parser on what it accepts.
 // Checks: fuzz/harness.hpp; running: fuzz/run.sh.
 #include <cstddef>

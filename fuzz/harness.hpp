@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // What the fuzz targets check, shared with the regression test that replays
 // tests/data/fuzz_regressions/ in the default build (no libFuzzer needed).
 // Each check feeds one input to a loader and accepts exactly two outcomes: a

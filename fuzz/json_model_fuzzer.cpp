@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // libFuzzer target: the kanegen JSON model loader (syntax, schema, format
 // rules, model checks), then GiNaC on every expression of an accepted model.
 // Checks: fuzz/harness.hpp; running: fuzz/run.sh.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-2.0-or-later
 # Runs the libFuzzer targets for a bounded time each, from a corpus of the
 # shipped and test models, with a fixed seed. Exits non-zero on the first
 # target that finds a crash, a hang, a leak, a sanitizer report or a harness

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // libFuzzer target: the URDF loader (tinyxml2, urdfdom, model checks).
 // Checks: fuzz/harness.hpp; running: fuzz/run.sh.
 #include <cstddef>

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-2.0-or-later
 # Installs the Debian packages kanegen needs to build, test and benchmark.
 # Run as root on Debian 12 (bookworm) or later.
 set -euo pipefail

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-2.0-or-later
 """Writes models/chain20.urdf: a 20-link spatial serial chain.
 
 The output is deterministic (no randomness, fixed number formatting), so the

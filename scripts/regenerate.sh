@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-2.0-or-later
 # Regenerates generated/<model>/ for every shipped model in models/, with the
 # kanegen built in BUILD_DIR (default: build). The directory is named after
 # the model file, which must match the model's name.

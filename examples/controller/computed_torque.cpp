@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Computed-torque control of the 7-DOF arm with the generated kernels:
 // tau = M(q) (qdd_ref + Kd (qd_ref - u) + Kp (q_ref - q)) - f(q, u), integrated
 // with the allocation-free RK4 step of the runtime. Prints the final tracking

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Linearisation of the compiled equations M(q) u_dot = f(t, q, u) about one
 // state, by central differences (Richardson-extrapolated from two steps)
 // through the runner's batch mode (one

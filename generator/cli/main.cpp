@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // kanegen: generate, simulate and evaluate Kane's equations of a model.
 #include <CLI/CLI.hpp>
 

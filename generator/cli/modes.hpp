@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // kanegen modes: natural frequencies and mode shapes of a model linearised
 // about its initial state (t = 0), from the compiled kernels (docs/modes.md).
 // The eigen-coordinates are the elastic coordinates (and, on request or in a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Turns a model file into a compiled runner executable (the model's kernels
 // linked with the runtime driver), cached by a digest of everything that
 // goes into it, so repeated `simulate` and `eval` calls skip generation.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // kanegen verify: the compiled generated kernels against the independent
 // numeric derivation (generator/numeric) at random states and parameters,
 // plus the checks that need no reference (M symmetric positive definite, M

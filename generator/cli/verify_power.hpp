@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The power balance d(T + V)/dt = P_nc along a short trajectory of the
 // compiled model: x = [q; u; W] is integrated with DOPRI5 at tight
 // tolerances (for the duration, or 400 steps if that comes first), udot from the generated forward_dynamics

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // kanegen verify's bookkeeping: the largest error of each compared quantity
 // over all samples, where it occurred, and the table / JSON report.
 #pragma once

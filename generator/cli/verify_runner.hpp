@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // kanegen verify's line to the compiled kernels: the model's runner kept
 // open as a coprocess in `batch` mode (one JSON line in, one out), and its
 // `info`. Lockstep request/answer, so neither side can block on a full pipe.

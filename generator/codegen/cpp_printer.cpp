@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 #include "codegen/cpp_printer.hpp"
 
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Prints a kernel (a set of assignments `target = node`) of the expression
 // graph as straight-line C++: nodes used more than once become `const double`
 // temporaries named by their position, the rest are inlined. The text

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Emission: fills the templates with the printed kernels of a model and
 // writes <name>.hpp, <name>.cpp and <name>_runner.cpp atomically.
 #pragma once

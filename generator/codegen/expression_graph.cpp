@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 #include "codegen/expression_graph.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The expression graph: GiNaC expressions (with the Program's intermediates
 // inlined) become one hash-consed DAG whose nodes are canonical, so equal
 // subexpressions anywhere in the model are one node (common subexpression

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Assumed modes (Rayleigh-Ritz shape functions given in the model) as a
 // basis of the finite-element body that carries them: each shape is sampled
 // at the nodes of a fine mesh, its values and slopes becoming the nodal dofs

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The Green-Lagrange axial strain of a beam body's axis, to the order that
 // couples bending with the axial force (formulation.md section 4):
 //   eps = u' + 1/2 (v'^2 + w'^2).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Building bodies out of beams: straight runs of equal elements between
 // nodes, a chain along the link x axis, and the element frame of a beam.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Two-node Euler-Bernoulli beam along the element's x axis, from node 0 at
 // x = 0 to node 1 at x = L; natural coordinate xi = x / L in [0, 1].
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // A flexible body: nodes in the link frame, elements placed by a constant
 // rotation R^e, point masses on nodes, and the assembled matrices.
 //

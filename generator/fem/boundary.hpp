@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Boundary conditions in the link frame: which body dofs are held at zero,
 // and the map between the full dofs u (num_dofs) and the free ones u_r:
 // u = P u_r, P the num_dofs x num_free selection of the free dofs.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The finite-element interface: what the assembly, the inertia invariants and
 // the generator need from an element, without assuming beams. An element lives
 // in its own frame (placed in the link frame by a constant rotation R^e and an

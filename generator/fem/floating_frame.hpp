@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The generalized inertia and gravity forces of a flexible body in the
 // floating frame of reference, built from its inertia invariants only. This is
 // the numeric statement of what the generator forms symbolically, and the

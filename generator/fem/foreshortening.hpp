@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The foreshortening of a beam body: the axial shortening, of second order
 // in the deformation, that bending causes (formulation.md, "Stiffening in
 // free motion"; Kane, Ryan and Banerjee 1987).

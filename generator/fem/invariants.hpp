@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Inertia invariants of the floating frame of reference: the integrals that
 // the generalized inertia forces of a flexible body reduce to (formulation.md
 // section 3), so that the symbolic layer never integrates point by point.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Modal reduction: the generalized eigenproblem K phi = omega^2 M phi of a
 // constrained model, mass-normalised modes with a deterministic orientation,
 // so that generated code is the same from run to run and machine to machine.

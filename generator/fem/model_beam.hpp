@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // A flexible body of the model (model::FlexibleBeam) as the finite-element
 // layer's reduced body: nodes along the segments, beam elements, the tip
 // mass, the support, nodal or modal coordinates or assumed modes, and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Gauss-Legendre quadrature on [0, 1]. The element integrals of the
 // finite-element layer (mass, inertia invariants, geometric stiffness) are
 // polynomials in the natural coordinate, so a rule with n points integrates

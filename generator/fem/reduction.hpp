@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // One flexible body as the generator will take it: elastic coordinates eta
 // (the free nodal dofs, or the amplitudes of the first k modes or of given
 // shapes), u = B eta,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Motion-induced prestress of a beam chain (the geometric stiffening of a
 // rotating beam) and the spin-softening term of a body in a spinning frame.
 //

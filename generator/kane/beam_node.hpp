@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // A node of a flexible body as a moving point of its link: where it is and
 // its partial velocities for the body's elastic speeds, with the beam's
 // foreshortening when it has one (fem/foreshortening.hpp). Node forces, loop

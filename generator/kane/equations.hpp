@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Kane's equations F_r + F*_r = 0 of a rigid tree, written as
 // M(q) u_dot = f(t, q, u, tau), with the energies and named outputs.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 #include "kane/flexible_body.hpp"
 
 #include "fem/invariants.hpp"

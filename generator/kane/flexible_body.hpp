@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The generalized inertia and elastic forces of one flexible body in its
 // link frame (floating frame of reference), built from the inertia
 // invariants of the finite-element layer: constant matrices (numbers in the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The force elements of a model besides constant forces: springs between
 // two points (forces at the points, an energy) and joint efforts (a
 // generalized force on one coordinate).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The loop-closure equations of the model's closed loops: Phi(q) = 0, their
 // Jacobian C = dPhi/dq (q_dot = u for every coordinate) and the bias gamma of
 // the acceleration level, C u_dot = gamma = -(dC/dt) u.

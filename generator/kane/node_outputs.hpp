@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The outputs at a node of a flexible body: its elastic displacement in the
 // link frame, and the section resultants of the adjoining element (axial
 // force, bending moments) with the peak bending stress, all linear maps of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Symbolic kinematics of a rigid tree in body frames (each quantity in the
 // axes of the body it belongs to, as in Featherstone's recursions): joint
 // rotations stay sparse and constant offsets keep their zeros, which keeps the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 #include "model/assumed_modes_check.hpp"
 
 #include <Eigen/Dense>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Load-time checks of a flexible beam's assumed modes (FlexibleBeam::
 // assumed_modes), without GiNaC: every expression reads, is finite on the
 // beam, and the shapes, sampled as the generator samples them (values and

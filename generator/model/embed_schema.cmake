@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
 # Writes the model JSON Schema into a C++ source as a raw string literal, so
 # an installed kanegen needs no data files. Run as
 #   cmake -DINPUT=<schema.json> -DOUTPUT=<schema_text.cpp> -P embed_schema.cmake

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Load-time check of scalar expressions ("m1*l1^2/12") without GiNaC, so a
 // bad model fails before any symbolic work, with a caret under the culprit.
 // The accepted language is a subset of what GiNaC's parser reads with the

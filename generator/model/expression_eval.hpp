@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Numeric value of a model Scalar at given parameter values, without GiNaC:
 // for the independent numeric derivation (kanegen verify), which must not
 // share code with the symbolic path beyond the parsed model. The language is

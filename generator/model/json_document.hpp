@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Reading a model file as JSON: syntax errors with line and column, and
 // duplicate keys (which nlohmann::json would silently collapse) as errors.
 #pragma once

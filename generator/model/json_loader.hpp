@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The kanegen JSON model format (docs/model-format.md) to a Model.
 #pragma once
 

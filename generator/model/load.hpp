@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Entry point of the model stage: a .json or .urdf file becomes a checked Model.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The mechanism as plain data: what the model file says, checked and
 // normalised, with no algorithm attached (as Pinocchio's Model and MuJoCo's
 // mjModel). Loaders fill it; the symbolic stages only read it.

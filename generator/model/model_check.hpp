@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Semantic checks shared by the JSON and URDF loaders: names, numbers,
 // expressions, mass properties, axes and the joint tree. Runs on the filled
 // Model so both formats give the same errors at their own places.

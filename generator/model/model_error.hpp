@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The one error type of model loading: it names the file, the place in it
 // and what to do, so every bad input ends in one clear line.
 #pragma once

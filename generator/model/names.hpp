@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Naming rules shared by the loaders: which names are valid identifiers,
 // which are taken, and the "did you mean" suggestion for misspellings.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The JSON Schema of the model format (models/schema/kanegen-model.schema.json,
 // embedded at build time) and validation against it with valijson.
 #pragma once

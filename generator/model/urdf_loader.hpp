@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // URDF robots (revolute, continuous, prismatic and fixed joints) to a Model.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The finite-element beam of a flexible body, written for the numeric path
 // over any scalar type: its nodal dofs from the elastic coordinates, the
 // position and small rotation of its material points (with the

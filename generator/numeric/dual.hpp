@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Forward-mode automatic differentiation along one direction: a value and
 // its derivative. Nesting (Dual<Dual<double>>) gives second derivatives.
 // Only what the position functions and the prescribed motions need: + - * /

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Kane's equations of a tree of rigid and flexible bodies evaluated
 // numerically at one state, from the position functions (poses.hpp, beam.hpp)
 // differentiated by dual numbers. The bodies are sums of mass elements: a

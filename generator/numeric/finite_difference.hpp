@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Central differences with one Richardson step, for checking emitted
 // Jacobians (constraint Jacobians of closed loops, when the kernels have
 // them) against the function they differentiate. Error O(h^4) plus

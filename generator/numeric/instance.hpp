@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // A model with its parameters given values: every scalar evaluated, names
 // resolved to indices, bodies put in an order where parents come first. The
 // numeric derivation works on this plain-number form only.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The closed loops as the numeric path sees them (docs/closed-loops.md): the
 // closure equations Phi(q) from the world poses of poses.hpp, written once
 // over the scalar type like the poses, so that dual numbers give their

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The position functions: world pose of every body as a function of the
 // coordinates, written once over the scalar type. With S = double they give
 // positions; with S = Dual<double> seeded along e_r, the partial velocities

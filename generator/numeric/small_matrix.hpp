@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // 3-vectors and 3x3 matrices over any scalar type (double or Dual), so that
 // the position functions are written once and differentiated by evaluation.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // A prescribed motion q(t) of the model language ("(Ws/Ts)*(t^2/2 + ...)")
 // parsed once, with the parameters' values folded in, and evaluated over any
 // scalar type: with Dual<Dual<double>> seeded along t it gives q, q' and q''

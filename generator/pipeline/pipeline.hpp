@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The whole generator as one call: model file -> Model -> kinematics ->
 // Kane's equations -> expression graph -> emitted C++ files.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // A straight-line program under construction: every intermediate quantity of
 // the derivation (a rotation entry, an angular velocity component, ...) gets
 // its own symbol, so expressions stay small and the emitted code grows

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The inputs of the generated kernels as GiNaC symbols: time, coordinates,
 // speeds, inputs and model parameters, each with the C++ text that names it
 // in the emitted code.

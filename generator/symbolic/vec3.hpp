@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Small 3-vector and 3x3-matrix algebra over GiNaC expressions, with a
 // `named` step that files every component as an intermediate of the Program.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The runner's `batch` command (private to the runtime): evaluates the
 // model at states read as JSON lines from a stream, one JSON line out per
 // line in, flushed at once, so that a caller can keep the runner open as a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "kanegen/runtime/csv.hpp"
 
 #include <cerrno>

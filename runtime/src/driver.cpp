@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The runner's command line: everything that does not depend on the model's
 // type, so it is compiled once here rather than in every model executable.
 #include "kanegen/runtime/driver.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "kanegen/runtime/integrators.hpp"
 
 #include <algorithm>

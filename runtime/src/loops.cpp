@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "kanegen/runtime/loops.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The kanegen command line as a user runs it: help, generate, eval, simulate,
 // and bad models. Expected values are analytic (simple pendulum).
 #define CATCH_CONFIG_MAIN

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
 # The command line, run as a user would, in a private runner cache.
 find_package(nlohmann_json REQUIRED)
 add_executable(test_cli ${CMAKE_CURRENT_LIST_DIR}/test_cli.cpp)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // MuJoCo as an independent reference for the generated equations of motion.
 //
 // MuJoCo 2.2.2 loads a URDF file directly (mj_loadXML). What its importer

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Consistency of the generated equations of motion with MuJoCo.
 //
 // For the shipped URDF models (arm7, chain20), at random states, the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
 # MuJoCo consistency tests: the generated kernels of the shipped URDF models
 # against MuJoCo (libmujoco-dev), plus checks of the MuJoCo reference itself
 # against closed forms. Included from tests/CMakeLists.txt (Catch2 is found).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Shared fixtures of the finite-element tests: a steel beam with different
 // bending stiffnesses in its two planes, frequencies of constrained models,
 // and the classification of modes by the dofs they move.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Assembly into a body: element frames, boundary conditions, point masses.
 #include <catch2/catch.hpp>
 #include <cmath>

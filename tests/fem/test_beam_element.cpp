@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // One beam element: rigid motions, the closed-form matrices against their
 // quadrature, hand-computed energies, and the dof sign conventions.
 #include <catch2/catch.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Spatial frames against CalculiX 2.20 (B31 beams; results and inputs in
 // data/, written by ccx/make_reference.py, so this suite needs no CalculiX).
 // CalculiX expands B31 into bricks that do not warp, so its square section has

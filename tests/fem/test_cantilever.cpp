@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Cantilevers against Euler-Bernoulli and bar/shaft theory: bending
 // frequencies and their convergence, axial and torsional frequencies (the
 // exact frequencies of the discrete model and the continuum limit), and the

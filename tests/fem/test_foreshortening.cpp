@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The foreshortening of beam bodies (fem/foreshortening.hpp) against two
 // independent statements of the same second-order geometry: a small rigid
 // rotation by theta moves every point by theta x r + 1/2 theta x (theta x r)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Inertia invariants: totals, one element against hand integration, the
 // consistent mass, coordinate changes, and the floating-frame mass matrix and
 // velocity forces built from them against point-by-point sums.

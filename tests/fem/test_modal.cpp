@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Modal reduction: mass normalisation, the reduced model, and a mode
 // orientation that does not depend on what the eigensolver happened to return.
 #include <catch2/catch.hpp>

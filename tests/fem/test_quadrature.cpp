@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Gauss-Legendre rules on [0, 1]: exact up to degree 2n - 1 and not beyond.
 #include <catch2/catch.hpp>
 #include <cmath>

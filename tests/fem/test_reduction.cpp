@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The generator's view of a body: nodal or modal coordinates with names,
 // reduced matrices, invariants and geometric stiffness; section resultants.
 #include <catch2/catch.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Geometric stiffness from axial loads: the rotating cantilever against the
 // published table (formulation.md, Hamza-Cherif & Houmat 2004), the in-plane
 // spin softening, and buckling under a tip force (Euler) and under a uniform

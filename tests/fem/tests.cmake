@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
 # The finite-element layer (generator/fem) on its own: beam elements, assembly,
 # inertia invariants, modal reduction and the rotating beam, against closed
 # forms, a published table and CalculiX results kept in data/. The fem sources

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Integrating a generated flexible model and reading an output column.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // A free, undamped flexible model keeps T + V, with geometric stiffening
 // (its default) or without: both forms of the stiffening are conservative,
 // the nonlinear axial strain of nodal beams and the foreshortening of modal

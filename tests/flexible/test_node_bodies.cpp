@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // A rigid body on a beam's tip node (a fixed joint with parent_node) must
 // give the same equations as the same mass and inertia given to the beam as
 // its tip mass (flexible.tip): two independent routes, one through the

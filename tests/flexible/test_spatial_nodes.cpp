@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Joints on the nodes of spatial beams (issue 12): the child frame turns with
 // the node's three small rotations, made exact (Rx Ry Rz), so the model is
 // conservative; and as the beams stiffen the arm becomes its rigid twin.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Kane, Ryan and Banerjee's spin-up beam (formulation.md, reference values):
 // with geometric stiffening the tip deflection stays bounded and settles near
 // zero after the spin-up time Ts; without it, it diverges. The stiffened

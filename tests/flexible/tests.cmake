@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
 # Flexible links (issue 3) in motion: the spin-up beam with and without
 # geometric stiffening, mesh convergence and modal reduction; energy of free
 # flexible models; bodies carried on beam nodes. Frequencies are in tests/modes.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
 # Regenerates MODEL with KANEGEN into a scratch directory and requires every
 # file to be byte-identical to the checked-in copy under EXPECTED_DIR.
 # Usage: cmake -DKANEGEN=... -DMODEL=... -DEXPECTED_DIR=... -DSCRATCH=... -P check_generated.cmake

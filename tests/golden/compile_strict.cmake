@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
 # Compiles a generated model with CXX under -Wall -Wextra -Wpedantic -Werror.
 execute_process(COMMAND ${CXX} -std=c++17 -O0 -Wall -Wextra -Wpedantic -Werror -fsyntax-only -I${DIR} ${DIR}/${NAME}.cpp
                 RESULT_VARIABLE rc)

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
 # Golden files: generated/<model>/ must be exactly what kanegen generates now
 # from models/, and compile warning-free under g++ and clang++.
 file(GLOB KANEGEN_SHIPPED_MODELS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/models/*.json ${PROJECT_SOURCE_DIR}/models/*.urdf)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // A closed-loop simulation as `simulate` runs it: assembly, the index-1
 // equations with multipliers, and the projection of every accepted step
 // (and of the output rows between steps), with the loop residual and the

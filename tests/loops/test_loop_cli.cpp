@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // kanegen simulate on closed loops as a user runs it: the assembly report,
 // a loop that cannot close, and a singular configuration, each with a
 // clear one-line error that names the loop, the time and the state.

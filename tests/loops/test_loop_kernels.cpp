@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The generated constraint kernels against finite differences of the
 // generated Phi: the Jacobian C = dPhi/dq, and gamma = -(dC/dt) u along u.
 #include <catch2/catch.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The shipped loop models in motion against conservation laws, exact
 // solutions and an independent reference.
 #include <catch2/catch.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Closed-loop models against the published reference solutions of the IVP
 // test set (Mazzia & Magherini, archimede.uniba.it/~testset): Andrews'
 // squeezing mechanism at t = 0.03 s (andrews.f, PSIDE at tolerance 1e-14)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The loop types the shipped (planar) linkages do not use: a spherical joint,
 // a spatial revolute and a spatial slider in spatial linkages, and a planar
 // slider. Each is held to its geometric meaning, computed here from the joint

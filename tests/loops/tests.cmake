@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
 # Closed loops (issue 4): the shipped loop models simulated through the
 # runtime (assembly, projection, energy, exact and reference solutions), the
 # generated constraint kernels against finite differences, and the command

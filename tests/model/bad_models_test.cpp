@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // One test per kind of bad input (tests/data/bad_models): each fails with one
 // ModelError naming the file, the exact place and a fix.
 #include <catch2/catch.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The load-time expression check: what it accepts GiNaC reads, and what it
 // rejects is either invalid or read by GiNaC other than it looks.
 #include "model/expression_check.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Format features the shipped models do not use: defaults, springs, fixed
 // joints, forces, axis normalisation, "$schema".
 #include <catch2/catch.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The shipped JSON models load with the fields their files give.
 #include <catch2/catch.hpp>
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
 # Model-loading tests: the shipped JSON models, URDF import and one test per
 # kind of bad input (tests/data/bad_models). Included from tests/CMakeLists.txt.
 file(GLOB KANEGEN_MODEL_TEST_SOURCES CONFIGURE_DEPENDS ${CMAKE_CURRENT_LIST_DIR}/*.cpp)

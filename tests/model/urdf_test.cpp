@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // URDF import: joint order from the file, inertia rotated from the inertial
 // frame into link axes, the root link as the ground.
 #include <catch2/catch.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Assumed modes (a flexible body's `assumed_modes`) through `kanegen modes`:
 // the Rayleigh-Ritz frequencies of given shapes against their closed forms.
 // Sines on a pinned-pinned beam are its exact modes; (x/L)^2 on a

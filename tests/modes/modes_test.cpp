@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // kanegen modes as a user runs it, on the shipped flexible models: the
 // cantilever against Euler-Bernoulli (and its convergence with the mesh),
 // the static tip deflection from the linearisation (checked by `eval`), the

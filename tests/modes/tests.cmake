@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
 # kanegen modes (issue 3): the shipped flexible models' natural frequencies
 # through the command line, against Euler-Bernoulli, the rotating-beam table,
 # CalculiX and a tip-mass frequency equation; the static tip deflection; the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Helpers over a generated model's System: a right-hand side for the
 // runtime integrators, total energy, and random states.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Conservative models keep T + V: Dormand-Prince at rtol 1e-10 over 10 s.
 // Drift is max |E(t) - E(0)| relative to |E(0)|, where the initial state is
 // chosen so that |E(0)| is of the order of the kinetic energy (no accidental

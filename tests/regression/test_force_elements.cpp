@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The force elements of a model file against closed forms: a spring to the
 // ground makes a slider oscillate at sqrt(k/m) (damped with a damper), a
 // pendulum with springs keeps T + V, and a constant joint effort spins a

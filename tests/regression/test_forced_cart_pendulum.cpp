@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // A prismatic and a revolute joint, a joint spring and damper, inputs, and
 // constant point forces in world and body axes, against the closed form from
 // Lagrange's equations. Cart position x, pendulum angle q about +y (q = 0

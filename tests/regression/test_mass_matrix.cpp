@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // M(q) is symmetric positive definite at random states, for every shipped model.
 #include <catch2/catch.hpp>
 

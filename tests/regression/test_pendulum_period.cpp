@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Simple pendulum against the exact period T = 4 sqrt(l/g) K(sin(theta0/2)),
 // with K the complete elliptic integral of the first kind computed by the
 // arithmetic-geometric mean, K(k) = pi / (2 AGM(1, sqrt(1 - k^2))).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
 # Published and analytic reference problems, run on the shipped models.
 find_package(Eigen3 REQUIRED NO_MODULE)
 kanegen_add_model(kanegen_test_forced_cart_pendulum ${PROJECT_SOURCE_DIR}/tests/data/models/forced_cart_pendulum.json)

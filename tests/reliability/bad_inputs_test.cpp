@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Bad inputs added with the reliability work (tests/data/bad_models and the
 // fuzzers' findings): each fails with one ModelError naming the file, the
 // exact place and a fix.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
 # Generates MODEL with KANEGEN in three separate processes and requires the
 # outputs to be byte-identical:
 #   1. as is (address-space randomization as the system has it, normally on);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The command line on everything that can go wrong, as a user sees it: every
 // bad model in tests/data/bad_models ends in one "error: FILE: PLACE: ...; fix"
 // and no output; run-time failures of `kanegen simulate` (a singular mass

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Inputs the fuzzers found (tests/data/fuzz_regressions/{json,urdf,expression}),
 // replayed through the fuzz targets' own checks: each loads or ends in one
 // ModelError, never a crash, another exception or a broken invariant.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
 # Reliability (issue 6): fuzzing regression inputs replayed without libFuzzer,
 # every bad model and every run-time failure ending in one clear message, and
 # regeneration that is byte-identical across processes. Included from

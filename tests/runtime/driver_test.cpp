@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The runner, in-process, on a hand-written 1-DOF pendulum that satisfies
 // system.hpp: simulate (CSV), eval (JSON), info and the error paths.
 #include "kanegen/runtime/driver.hpp"

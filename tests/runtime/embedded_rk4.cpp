@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Compiled with -fno-exceptions -fno-rtti -nostdinc++ (see tests.cmake): the
 // fixed-size RK4 must work with no C++ standard library at all.
 #include "kanegen/runtime/rk4.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The integrators against analytic solutions: convergence order of RK4,
 // DOPRI5 accuracy and dense output on the harmonic oscillator and a Kepler
 // orbit, the output grid, step statistics and the failure paths.

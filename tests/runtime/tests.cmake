@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
 # Runtime tests: the integrators against analytic solutions, the CSV and
 # text helpers, and the runner (run_model) in-process on a hand-written model.
 find_package(nlohmann_json REQUIRED)

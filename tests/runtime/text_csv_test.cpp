@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Strict number parsing, round-trip formatting and the flushing CSV writer.
 #include <catch2/catch.hpp>
 #include <cfloat>

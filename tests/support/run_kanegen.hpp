@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // Running the kanegen command line from a test as a user would: a shell
 // command with a private runner cache, stdout and stderr captured in files.
 // Shared by the command-line test areas (cli, reliability, verify, modes).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The runner's `batch` command (what kanegen verify talks to), in-process
 // on the generated simple pendulum: answers, selections, parameters per
 // line, the kinetic-energy Hessian, and bad lines.

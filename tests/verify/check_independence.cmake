@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
 # The numeric derivation must share no code with the symbolic one: no GiNaC
 # and no include of the symbolic stages. One exception, a choice of
 # coordinates rather than a derivation (docs/verify.md): numeric/instance.cpp

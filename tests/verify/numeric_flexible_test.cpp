@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The numeric derivation of flexible bodies and prescribed motions on its
 // own: Gauss rules, the textbook element matrices of a cantilever (stiffness,
 // consistent mass), the geometric stiffness of a spinning beam against the

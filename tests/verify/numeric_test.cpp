@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // The numeric derivation (generator/numeric) on its own, against closed
 // forms: the simple pendulum, the forced cart pendulum of
 // tests/regression/test_forced_cart_pendulum.cpp, joint frames turned by rpy,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
 # kanegen verify: the numeric derivation against closed forms, the runner's
 # batch protocol, the command line (JSON report, corruption tests), and
 # verify itself on every shipped model. Runners are cached under the build

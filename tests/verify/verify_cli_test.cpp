@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
 // kanegen verify as a user runs it: the JSON report, --help, kernels of
 // another model, and the corruption tests: a copy of generated kernels with
 // one term altered must fail, naming the quantity.

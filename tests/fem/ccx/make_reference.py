@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-2.0-or-later
 """Writes the CalculiX reference data of the finite-element tests (tests/fem/data).
 
 Two models, both slender steel beams with a square section (L/a >= 160, so the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A CSV writer that puts every row on disk as soon as it is written, so a
 // run that stops with an error keeps all rows up to that point.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The main() of a compiled model ("runner"). A generated model's main is
 //   int main(int c, char** v) { return kanegen::runtime::run_model<kanegen_models::NAME::System>(c, v); }
 // Subcommands: simulate, eval, info, batch (see docs/runtime.md or RUNNER --help).

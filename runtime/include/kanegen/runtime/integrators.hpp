@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // ODE integrators for x' = f(t, x): fixed-step classical RK4 and adaptive
 // Dormand-Prince 5(4) with dense output, behind one driver, integrate().
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Closed loops at run time: assembly of a consistent initial state from a
 // partial one, and the projection that keeps a simulation on Phi(q) = 0 and
 // C(q) u = 0 (Newton steps of least norm, after each accepted step).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A generated System behind a virtual interface, so that everything in the
 // runner that does not depend on the particular model is compiled once in
 // the runtime library instead of in every model's executable.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Classical RK4 steps that allocate nothing, throw nothing and include
 // nothing, so a generated model can be stepped on an embedded target.
 #pragma once

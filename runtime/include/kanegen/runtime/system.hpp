@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What the runtime expects of a generated model. Every generated header
 // defines, in namespace kanegen_models::<model>, a `struct System` of this
 // shape; the integrators and the driver are templates over it, so the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Strict number parsing and round-trip formatting shared by the runner's
 // command line, its JSON output and the CSV writer.
 #pragma once
