@@ -9,6 +9,81 @@
 namespace kanegen_models {
 namespace andrews_squeezer {
 
+namespace {
+
+// M: NS*NS (overwritten by L), b: NS (the right-hand side; udot on return),
+// C: NC*NS (overwritten by Y^T), g: NC. Returns 0, k > 0 for a non-positive
+// k-th pivot of M, -k when the k-th loop equation is (nearly) a combination
+// of the earlier ones.
+template <int NS, int NC>
+int solve_saddle(double* M, double* b, double* C, const double* g, double* lambda) {
+  for (int j = 0; j < NS; ++j) {
+    double s = M[j * NS + j];
+    for (int k = 0; k < j; ++k) s -= M[j * NS + k] * M[j * NS + k];
+    if (!(s > 0.0)) return j + 1;
+    const double l = std::sqrt(s);
+    M[j * NS + j] = l;
+    for (int i = j + 1; i < NS; ++i) {
+      double v = M[i * NS + j];
+      for (int k = 0; k < j; ++k) v -= M[i * NS + k] * M[j * NS + k];
+      M[i * NS + j] = v / l;
+    }
+  }
+  const auto forward = [M](double* x) {
+    for (int i = 0; i < NS; ++i) {
+      for (int k = 0; k < i; ++k) x[i] -= M[i * NS + k] * x[k];
+      x[i] /= M[i * NS + i];
+    }
+  };
+  forward(b);
+  for (int c = 0; c < NC; ++c) forward(C + c * NS);
+  double S[NC * NC];
+  for (int c = 0; c < NC; ++c) {
+    lambda[c] = g[c];
+    for (int i = 0; i < NS; ++i) lambda[c] -= C[c * NS + i] * b[i];
+    for (int d = 0; d <= c; ++d) {
+      double v = 0.0;
+      for (int i = 0; i < NS; ++i) v += C[c * NS + i] * C[d * NS + i];
+      S[c * NC + d] = v;
+    }
+  }
+  // A pivot small against the largest diagonal entry: a row that is
+  // (nearly) a combination of the others, or one whose Jacobian vanishes
+  // (a parallelogram's cranks in line).
+  double largest = 0.0;
+  for (int j = 0; j < NC; ++j)
+    if (S[j * NC + j] > largest) largest = S[j * NC + j];
+  for (int j = 0; j < NC; ++j) {
+    double s = S[j * NC + j];
+    for (int k = 0; k < j; ++k) s -= S[j * NC + k] * S[j * NC + k];
+    if (!(s > 1e-6 * largest)) return -(j + 1);
+    const double l = std::sqrt(s);
+    S[j * NC + j] = l;
+    for (int i = j + 1; i < NC; ++i) {
+      double v = S[i * NC + j];
+      for (int k = 0; k < j; ++k) v -= S[i * NC + k] * S[j * NC + k];
+      S[i * NC + j] = v / l;
+    }
+  }
+  for (int i = 0; i < NC; ++i) {
+    for (int k = 0; k < i; ++k) lambda[i] -= S[i * NC + k] * lambda[k];
+    lambda[i] /= S[i * NC + i];
+  }
+  for (int i = NC - 1; i >= 0; --i) {
+    for (int k = i + 1; k < NC; ++k) lambda[i] -= S[k * NC + i] * lambda[k];
+    lambda[i] /= S[i * NC + i];
+  }
+  for (int i = 0; i < NS; ++i)
+    for (int c = 0; c < NC; ++c) b[i] += C[c * NS + i] * lambda[c];
+  for (int i = NS - 1; i >= 0; --i) {
+    for (int k = i + 1; k < NS; ++k) b[i] -= M[k * NS + i] * b[k];
+    b[i] /= M[i * NS + i];
+  }
+  return 0;
+}
+
+}  // namespace
+
 const char* const coordinate_names[7] = {"beta", "Theta", "gamma", "Phi", "delta", "Omega", "epsilon"};
 const char* const speed_names[7] = {"beta_dot", "Theta_dot", "gamma_dot", "Phi_dot", "delta_dot", "Omega_dot", "epsilon_dot"};
 const char* const input_names[7] = {"beta_tau", "Theta_tau", "gamma_tau", "Phi_tau", "delta_tau", "Omega_tau", "epsilon_tau"};
@@ -17,10 +92,10 @@ const char* const parameter_names[42] = {"m1", "m2", "m3", "m4", "m5", "m6", "m7
 const double q0[7] = {-0.06171389001427645, 0.0, 0.45527981916307037, 0.22266839016588588, 0.48736497954384256, -0.22266839016588588, 1.2305474445498212};
 const double u0[7] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
 
+const char* const constraint_names[NC] = {"E3.x", "E3.y", "E4.x", "E4.y", "E6.x", "E6.y"};
+const int coordinate_roles[7] = {1, 0, 0, 0, 0, 0, 0};
+
 bool set_parameter(Params& p, const char* name, double value) {
-  (void)p;
-  (void)name;
-  (void)value;
   if (std::strcmp(name, "m1") == 0) {
     p.m1 = value;
     return true;
@@ -193,7 +268,6 @@ bool set_parameter(Params& p, const char* name, double value) {
 }
 
 double get_parameter(const Params& p, int i) {
-  (void)p;
   switch (i) {
     case 0: return p.m1;
     case 1: return p.m2;
@@ -241,16 +315,12 @@ double get_parameter(const Params& p, int i) {
   }
 }
 
-void initial_state(const Params& p, double* q, double* u) {
-  (void)p;
+void initial_state([[maybe_unused]] const Params& p, double* q, double* u) {
   for (int i = 0; i < NQ; ++i) q[i] = q0[i];
   for (int i = 0; i < NU; ++i) u[i] = u0[i];
 }
 
 void mass_matrix(const Params& p, const double* q, double* M) {
-  (void)p;
-  (void)q;
-  (void)M;
   const double x0 = p.i2 + p.m2*p.da*p.da;
   const double x1 = p.m2*std::cos(q[1])*p.da*p.rr;
   M[0] = p.i1 + x0 + p.ra*p.ra*p.m1 + p.m2*p.rr*p.rr - 2.0*x1;
@@ -314,13 +384,8 @@ void mass_matrix(const Params& p, const double* q, double* M) {
   M[48] = -(2.0*((x9*x10)*p.uu) - p.i7 - (p.m6*p.uu*p.uu) - (p.m7*(p.ub*p.ub + p.ua*p.ua)) - x8);
 }
 
-void forcing(const Params& p, double t, const double* q, const double* u, const double* tau, double* f) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
-  (void)f;
+void forcing(const Params& p, [[maybe_unused]] double t, const double* q, const double* u, const double* tau,
+             double* f) {
   const double x0 = u[0]*u[0];
   const double x1 = std::sin(q[1]);
   const double x2 = x0*x1*p.rr;
@@ -360,21 +425,98 @@ void forcing(const Params& p, double t, const double* q, const double* u, const 
 
 int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
                      double* udot) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
   double lambda[NC];
   return constrained_dynamics(p, t, q, u, tau, udot, lambda);
 }
 
-const char* const constraint_names[NC] = {"E3.x", "E3.y", "E4.x", "E4.y", "E6.x", "E6.y"};
-const int coordinate_roles[7] = {1, 0, 0, 0, 0, 0, 0};
+void coordinate_rates([[maybe_unused]] const double* q, const double* u, double* qdot) {
+  qdot[0] = u[0];
+  qdot[1] = u[1];
+  qdot[2] = u[2];
+  qdot[3] = u[3];
+  qdot[4] = u[4];
+  qdot[5] = u[5];
+  qdot[6] = u[6];
+}
+
+double kinetic_energy(const Params& p, const double* q, const double* u) {
+  double T;
+  const double x0 = u[1] + u[0];
+  const double x1 = u[5] + u[6];
+  const double x2 = -((p.zf - p.fa)*x1) + p.uu*u[6]*std::sin(q[5]);
+  const double x3 = std::cos(q[5])*p.uu*u[6];
+  const double x4 = p.ub*u[6];
+  const double x5 = p.ua*u[6];
+  const double x6 = u[2]*p.sb;
+  const double x7 = u[2]*p.sa;
+  const double x8 = u[3] + u[4];
+  const double x9 = x0*p.da - (u[0]*std::cos(q[1])*p.rr);
+  const double x10 = u[0]*std::sin(q[1])*p.rr;
+  const double x11 = p.zt*u[4]*std::cos(q[3]);
+  const double x12 = (p.e - p.ea)*x8 + p.zt*u[4]*std::sin(q[3]);
+  const double x13 = u[0]*p.ra;
+  const double x14 = p.tb*u[4];
+  const double x15 = p.ta*u[4];
+  T = 0.5*((p.i2*x0)*x0) + 0.5*(p.m6*(x2*x2 + x3*x3)) + 0.5*(p.m7*(x4*x4 + x5*x5)) + 0.5*((x6*x6 + x7*x7)*p.m3) + 0.5*(u[4]*(p.i5*u[4])) + 0.5*(u[2]*(p.i3*u[2])) + 0.5*(u[0]*(p.i1*u[0])) + 0.5*(x1*(p.i6*x1)) + 0.5*((p.i4*x8)*x8) + 0.5*(p.m2*(x9*x9 + x10*x10)) + 0.5*(p.m4*(x11*x11 + x12*x12)) + 0.5*((p.i7*u[6])*u[6]) + 0.5*(p.m1*x13*x13) + 0.5*(p.m5*(x14*x14 + x15*x15));
+  return T;
+}
+
+double potential_energy(const Params& p, const double* q) {
+  double V;
+  const double x0 = std::cos(q[2]);
+  const double x1 = std::sin(q[2]);
+  const double x2 = p.yc - (p.yb - (p.sc*x0) + x1*p.sd);
+  const double x3 = -(p.sd*x0 + p.xb + x1*p.sc) + p.xc;
+  const double x4 = p.l0 - std::sqrt(x2*x2 + x3*x3);
+  V = 0.5*x4*x4*p.c0;
+  return V;
+}
+
+void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
+  const double x0 = std::cos(q[0]);
+  const double x1 = std::cos(q[1]);
+  const double x2 = std::sin(q[0]);
+  const double x3 = std::sin(q[1]);
+  const double x4 = x0*p.rr;
+  y[0] = -(p.d*(x0*x1 - (x2*x3)) - x4);
+  const double x5 = x2*p.rr;
+  y[1] = x5 - (p.d*(x0*x3 + x2*x1));
+  y[2] = 0.0;
+  y[3] = x4;
+  y[4] = x5;
+  y[5] = 0.0;
+  const double x6 = std::cos(q[2]);
+  const double x7 = std::sin(q[2]);
+  y[6] = p.sd*x6 + p.xb + x7*p.sc;
+  y[7] = p.yb - (p.sc*x6) + x7*p.sd;
+  y[8] = 0.0;
+  y[9] = p.xa + p.zt*std::cos(q[4]);
+  y[10] = p.ya + p.zt*std::sin(q[4]);
+  y[11] = 0.0;
+  y[12] = p.xa + std::sin(q[6])*p.uu;
+  y[13] = p.ya - (p.uu*std::cos(q[6]));
+  y[14] = 0.0;
+  y[15] = q[0];
+  y[16] = u[0];
+  y[17] = 0.0;
+  y[18] = 0.0;
+  y[19] = 0.0;
+  y[20] = 0.0;
+  y[21] = 0.0;
+  y[22] = 0.0;
+  // Loop forces: lambda of the dynamics at these inputs of zero (NaN where it cannot be solved).
+  double reaction_udot[NU], lambda[NC];
+  const double no_inputs[7] = {};
+  const bool solved = constrained_dynamics(p, t, q, u, no_inputs, reaction_udot, lambda) == 0;
+  y[17] = solved ? lambda[0] : std::nan("");
+  y[18] = solved ? lambda[1] : std::nan("");
+  y[19] = solved ? lambda[2] : std::nan("");
+  y[20] = solved ? lambda[3] : std::nan("");
+  y[21] = solved ? lambda[4] : std::nan("");
+  y[22] = solved ? lambda[5] : std::nan("");
+}
 
 void constraints(const Params& p, const double* q, double* phi) {
-  (void)p;
-  (void)q;
   const double x0 = std::cos(q[0]);
   const double x1 = std::cos(q[1]);
   const double x2 = std::sin(q[0]);
@@ -401,8 +543,6 @@ void constraints(const Params& p, const double* q, double* phi) {
 }
 
 void constraint_jacobian(const Params& p, const double* q, double* C) {
-  (void)p;
-  (void)q;
   const double x0 = std::sin(q[0]);
   const double x1 = std::cos(q[0]);
   const double x2 = std::sin(q[1]);
@@ -469,9 +609,6 @@ void constraint_jacobian(const Params& p, const double* q, double* C) {
 }
 
 void constraint_bias(const Params& p, const double* q, const double* u, double* gamma) {
-  (void)p;
-  (void)q;
-  (void)u;
   const double x0 = u[2]*u[2];
   const double x1 = std::cos(q[0]);
   const double x2 = std::cos(q[1]);
@@ -511,89 +648,9 @@ void constraint_bias(const Params& p, const double* q, const double* u, double* 
   gamma[5] = -((x30 + p.zf*u[6]*x29)*u[5]) + ((p.uu*x24 - (p.zf*x29))*u[6] - x30)*u[6] + x21 + x22;
 }
 
-namespace {
-
-constexpr int NS = 7;  // speeds solved for (not prescribed)
-
-// M: NS*NS (overwritten by L), b: NS (the right-hand side; udot on return),
-// C: NC*NS (overwritten by Y^T), g: NC. Returns 0, k > 0 for a non-positive
-// k-th pivot of M, -k when the k-th loop equation is (nearly) a combination
-// of the earlier ones.
-int solve_saddle(double* M, double* b, double* C, const double* g, double* lambda) {
-  for (int j = 0; j < NS; ++j) {
-    double s = M[j * NS + j];
-    for (int k = 0; k < j; ++k) s -= M[j * NS + k] * M[j * NS + k];
-    if (!(s > 0.0)) return j + 1;
-    const double l = std::sqrt(s);
-    M[j * NS + j] = l;
-    for (int i = j + 1; i < NS; ++i) {
-      double v = M[i * NS + j];
-      for (int k = 0; k < j; ++k) v -= M[i * NS + k] * M[j * NS + k];
-      M[i * NS + j] = v / l;
-    }
-  }
-  const auto forward = [M](double* x) {
-    for (int i = 0; i < NS; ++i) {
-      for (int k = 0; k < i; ++k) x[i] -= M[i * NS + k] * x[k];
-      x[i] /= M[i * NS + i];
-    }
-  };
-  forward(b);
-  for (int c = 0; c < NC; ++c) forward(C + c * NS);
-  double S[NC * NC];
-  for (int c = 0; c < NC; ++c) {
-    lambda[c] = g[c];
-    for (int i = 0; i < NS; ++i) lambda[c] -= C[c * NS + i] * b[i];
-    for (int d = 0; d <= c; ++d) {
-      double v = 0.0;
-      for (int i = 0; i < NS; ++i) v += C[c * NS + i] * C[d * NS + i];
-      S[c * NC + d] = v;
-    }
-  }
-  // A pivot small against the largest diagonal entry: a row that is
-  // (nearly) a combination of the others, or one whose Jacobian vanishes
-  // (a parallelogram's cranks in line).
-  double largest = 0.0;
-  for (int j = 0; j < NC; ++j)
-    if (S[j * NC + j] > largest) largest = S[j * NC + j];
-  for (int j = 0; j < NC; ++j) {
-    double s = S[j * NC + j];
-    for (int k = 0; k < j; ++k) s -= S[j * NC + k] * S[j * NC + k];
-    if (!(s > 1e-6 * largest)) return -(j + 1);
-    const double l = std::sqrt(s);
-    S[j * NC + j] = l;
-    for (int i = j + 1; i < NC; ++i) {
-      double v = S[i * NC + j];
-      for (int k = 0; k < j; ++k) v -= S[i * NC + k] * S[j * NC + k];
-      S[i * NC + j] = v / l;
-    }
-  }
-  for (int i = 0; i < NC; ++i) {
-    for (int k = 0; k < i; ++k) lambda[i] -= S[i * NC + k] * lambda[k];
-    lambda[i] /= S[i * NC + i];
-  }
-  for (int i = NC - 1; i >= 0; --i) {
-    for (int k = i + 1; k < NC; ++k) lambda[i] -= S[k * NC + i] * lambda[k];
-    lambda[i] /= S[i * NC + i];
-  }
-  for (int i = 0; i < NS; ++i)
-    for (int c = 0; c < NC; ++c) b[i] += C[c * NS + i] * lambda[c];
-  for (int i = NS - 1; i >= 0; --i) {
-    for (int k = i + 1; k < NS; ++k) b[i] -= M[k * NS + i] * b[k];
-    b[i] /= M[i * NS + i];
-  }
-  return 0;
-}
-
-}  // namespace
-
-int constrained_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
-                         double* udot, double* lambda) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
+int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
+                         const double* tau, double* udot, double* lambda) {
+  constexpr int NS = 7;  // speeds solved for (not prescribed)
   double Ms[NS * NS], b[NS], Cs[NC * NS], g[NC];
   const double x0 = std::sin(q[0]);
   const double x1 = std::cos(q[0]);
@@ -772,7 +829,7 @@ int constrained_dynamics(const Params& p, double t, const double* q, const doubl
   b[5] = -(-tau[5] + x71);
   const double x72 = u[5] + u[6];
   b[6] = -(-(p.uu*(p.m6*x70*x34 - ((-(x72*x72*x52) + p.uu*x69*x34)*x35*p.m6))) + x71 - (-(p.m7*p.ub*(p.ua*x69)) + p.ua*(p.m7*p.ub*x69)) - tau[6]);
-  const int status = solve_saddle(Ms, b, Cs, g, lambda);
+  const int status = solve_saddle<NS, NC>(Ms, b, Cs, g, lambda);
   udot[0] = b[0];
   udot[1] = b[1];
   udot[2] = b[2];
@@ -781,106 +838,6 @@ int constrained_dynamics(const Params& p, double t, const double* q, const doubl
   udot[5] = b[5];
   udot[6] = b[6];
   return status;
-}
-
-void coordinate_rates(const double* q, const double* u, double* qdot) {
-  (void)q;
-  (void)u;
-  (void)qdot;
-  qdot[0] = u[0];
-  qdot[1] = u[1];
-  qdot[2] = u[2];
-  qdot[3] = u[3];
-  qdot[4] = u[4];
-  qdot[5] = u[5];
-  qdot[6] = u[6];
-}
-
-double kinetic_energy(const Params& p, const double* q, const double* u) {
-  (void)p;
-  (void)q;
-  (void)u;
-  double T;
-  const double x0 = u[1] + u[0];
-  const double x1 = u[5] + u[6];
-  const double x2 = -((p.zf - p.fa)*x1) + p.uu*u[6]*std::sin(q[5]);
-  const double x3 = std::cos(q[5])*p.uu*u[6];
-  const double x4 = p.ub*u[6];
-  const double x5 = p.ua*u[6];
-  const double x6 = u[2]*p.sb;
-  const double x7 = u[2]*p.sa;
-  const double x8 = u[3] + u[4];
-  const double x9 = x0*p.da - (u[0]*std::cos(q[1])*p.rr);
-  const double x10 = u[0]*std::sin(q[1])*p.rr;
-  const double x11 = p.zt*u[4]*std::cos(q[3]);
-  const double x12 = (p.e - p.ea)*x8 + p.zt*u[4]*std::sin(q[3]);
-  const double x13 = u[0]*p.ra;
-  const double x14 = p.tb*u[4];
-  const double x15 = p.ta*u[4];
-  T = 0.5*((p.i2*x0)*x0) + 0.5*(p.m6*(x2*x2 + x3*x3)) + 0.5*(p.m7*(x4*x4 + x5*x5)) + 0.5*((x6*x6 + x7*x7)*p.m3) + 0.5*(u[4]*(p.i5*u[4])) + 0.5*(u[2]*(p.i3*u[2])) + 0.5*(u[0]*(p.i1*u[0])) + 0.5*(x1*(p.i6*x1)) + 0.5*((p.i4*x8)*x8) + 0.5*(p.m2*(x9*x9 + x10*x10)) + 0.5*(p.m4*(x11*x11 + x12*x12)) + 0.5*((p.i7*u[6])*u[6]) + 0.5*(p.m1*x13*x13) + 0.5*(p.m5*(x14*x14 + x15*x15));
-  return T;
-}
-
-double potential_energy(const Params& p, const double* q) {
-  (void)p;
-  (void)q;
-  double V;
-  const double x0 = std::cos(q[2]);
-  const double x1 = std::sin(q[2]);
-  const double x2 = p.yc - (p.yb - (p.sc*x0) + x1*p.sd);
-  const double x3 = -(p.sd*x0 + p.xb + x1*p.sc) + p.xc;
-  const double x4 = p.l0 - std::sqrt(x2*x2 + x3*x3);
-  V = 0.5*x4*x4*p.c0;
-  return V;
-}
-
-void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)y;
-  const double x0 = std::cos(q[0]);
-  const double x1 = std::cos(q[1]);
-  const double x2 = std::sin(q[0]);
-  const double x3 = std::sin(q[1]);
-  const double x4 = x0*p.rr;
-  y[0] = -(p.d*(x0*x1 - (x2*x3)) - x4);
-  const double x5 = x2*p.rr;
-  y[1] = x5 - (p.d*(x0*x3 + x2*x1));
-  y[2] = 0.0;
-  y[3] = x4;
-  y[4] = x5;
-  y[5] = 0.0;
-  const double x6 = std::cos(q[2]);
-  const double x7 = std::sin(q[2]);
-  y[6] = p.sd*x6 + p.xb + x7*p.sc;
-  y[7] = p.yb - (p.sc*x6) + x7*p.sd;
-  y[8] = 0.0;
-  y[9] = p.xa + p.zt*std::cos(q[4]);
-  y[10] = p.ya + p.zt*std::sin(q[4]);
-  y[11] = 0.0;
-  y[12] = p.xa + std::sin(q[6])*p.uu;
-  y[13] = p.ya - (p.uu*std::cos(q[6]));
-  y[14] = 0.0;
-  y[15] = q[0];
-  y[16] = u[0];
-  y[17] = 0.0;
-  y[18] = 0.0;
-  y[19] = 0.0;
-  y[20] = 0.0;
-  y[21] = 0.0;
-  y[22] = 0.0;
-  // Loop forces: lambda of the dynamics at these inputs of zero (NaN where it cannot be solved).
-  double reaction_udot[NU], lambda[NC];
-  const double no_inputs[7] = {};
-  const bool solved = constrained_dynamics(p, t, q, u, no_inputs, reaction_udot, lambda) == 0;
-  y[17] = solved ? lambda[0] : std::nan("");
-  y[18] = solved ? lambda[1] : std::nan("");
-  y[19] = solved ? lambda[2] : std::nan("");
-  y[20] = solved ? lambda[3] : std::nan("");
-  y[21] = solved ? lambda[4] : std::nan("");
-  y[22] = solved ? lambda[5] : std::nan("");
 }
 
 }  // namespace andrews_squeezer

@@ -17,10 +17,8 @@ const char* const parameter_names[1] = {"c_hub"};
 const double q0[31] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
 const double u0[31] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
 
+
 bool set_parameter(Params& p, const char* name, double value) {
-  (void)p;
-  (void)name;
-  (void)value;
   if (std::strcmp(name, "c_hub") == 0) {
     p.c_hub = value;
     return true;
@@ -29,23 +27,18 @@ bool set_parameter(Params& p, const char* name, double value) {
 }
 
 double get_parameter(const Params& p, int i) {
-  (void)p;
   switch (i) {
     case 0: return p.c_hub;
     default: return 0.0;
   }
 }
 
-void initial_state(const Params& p, double* q, double* u) {
-  (void)p;
+void initial_state([[maybe_unused]] const Params& p, double* q, double* u) {
   for (int i = 0; i < NQ; ++i) q[i] = q0[i];
   for (int i = 0; i < NU; ++i) u[i] = u0[i];
 }
 
-void mass_matrix(const Params& p, const double* q, double* M) {
-  (void)p;
-  (void)q;
-  (void)M;
+void mass_matrix([[maybe_unused]] const Params& p, const double* q, double* M) {
   const double x0 = 0.010466666666666673*q[10];
   const double x1 = 0.010466666666666673*q[16];
   const double x2 = 0.010466666666666673*q[13];
@@ -1055,13 +1048,8 @@ void mass_matrix(const Params& p, const double* q, double* M) {
   M[960] = 2.382780952380953e-05;
 }
 
-void forcing(const Params& p, double t, const double* q, const double* u, const double* tau, double* f) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
-  (void)f;
+void forcing(const Params& p, [[maybe_unused]] double t, const double* q, const double* u, const double* tau,
+             double* f) {
   const double x0 = u[0]*u[0];
   const double x1 = x0*(0.13140000000000002*q[29] + 0.06280000000000002*q[26] + 0.06280000000000002*q[5] + 0.06280000000000002*q[14] + 0.06280000000000002*q[8] + 0.06280000000000002*q[23] + 0.06280000000000002*q[17] + 0.06280000000000002*q[2] - 0.0004186666666666669*q[30] + 0.06280000000000002*q[11] + 0.06280000000000002*q[20]);
   const double x2 = 0.000155504761904762*q[6] - 0.04665142857142858*q[2] - 0.008074285714285718*q[5];
@@ -1260,13 +1248,8 @@ void forcing(const Params& p, double t, const double* q, const double* u, const 
   f[30] = (-0.16313842628353933*x155 + x164 - 0.05202731517242821*x156)*x161 - (x0*x11 + x153 + 41015.62499999999*q[26] + x163 - 2.0*(u[0]*(0.00025120000000000014*u[28] + 0.0001674666666666668*u[25])) + 2187.4999999999995*q[30]);
 }
 
-int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
-                     double* udot) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
+int forward_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
+                     const double* tau, double* udot) {
   const double x0 = 0.010466666666666673*q[10];
   const double x1 = 0.010466666666666673*q[16];
   const double x2 = 0.04186666666666666*q[13] + 0.025120000000000007 + x0 + x1;
@@ -3558,10 +3541,7 @@ int forward_dynamics(const Params& p, double t, const double* q, const double* u
   return 0;
 }
 
-void coordinate_rates(const double* q, const double* u, double* qdot) {
-  (void)q;
-  (void)u;
-  (void)qdot;
+void coordinate_rates([[maybe_unused]] const double* q, const double* u, double* qdot) {
   qdot[0] = u[0];
   qdot[1] = u[1];
   qdot[2] = u[2];
@@ -3595,10 +3575,7 @@ void coordinate_rates(const double* q, const double* u, double* qdot) {
   qdot[30] = u[30];
 }
 
-double kinetic_energy(const Params& p, const double* q, const double* u) {
-  (void)p;
-  (void)q;
-  (void)u;
+double kinetic_energy([[maybe_unused]] const Params& p, const double* q, const double* u) {
   double T;
   const double x0 = 2.8708571428571436e-06*u[12];
   const double x1 = 2.8708571428571436e-06*u[21];
@@ -3638,9 +3615,7 @@ double kinetic_energy(const Params& p, const double* q, const double* u) {
   return T;
 }
 
-double potential_energy(const Params& p, const double* q) {
-  (void)p;
-  (void)q;
+double potential_energy([[maybe_unused]] const Params& p, const double* q) {
   double V;
   const double x0 = 41015.62499999999*q[27];
   const double x1 = 1093.7499999999998*q[12];
@@ -3728,12 +3703,8 @@ double potential_energy(const Params& p, const double* q) {
   return V;
 }
 
-void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)y;
+void outputs([[maybe_unused]] const Params& p, [[maybe_unused]] double t, const double* q,
+             [[maybe_unused]] const double* u, double* y) {
   y[0] = q[0];
   y[1] = q[28];
   y[2] = q[29];

@@ -17,10 +17,8 @@ const char* const parameter_names[1] = {"P"};
 const double q0[30] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
 const double u0[30] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
 
+
 bool set_parameter(Params& p, const char* name, double value) {
-  (void)p;
-  (void)name;
-  (void)value;
   if (std::strcmp(name, "P") == 0) {
     p.P = value;
     return true;
@@ -29,23 +27,18 @@ bool set_parameter(Params& p, const char* name, double value) {
 }
 
 double get_parameter(const Params& p, int i) {
-  (void)p;
   switch (i) {
     case 0: return p.P;
     default: return 0.0;
   }
 }
 
-void initial_state(const Params& p, double* q, double* u) {
-  (void)p;
+void initial_state([[maybe_unused]] const Params& p, double* q, double* u) {
   for (int i = 0; i < NQ; ++i) q[i] = q0[i];
   for (int i = 0; i < NU; ++i) u[i] = u0[i];
 }
 
-void mass_matrix(const Params& p, const double* q, double* M) {
-  (void)p;
-  (void)q;
-  (void)M;
+void mass_matrix([[maybe_unused]] const Params& p, [[maybe_unused]] const double* q, double* M) {
   M[0] = 0.15700000000000003;
   M[1] = 0.0;
   M[2] = 0.0;
@@ -948,13 +941,8 @@ void mass_matrix(const Params& p, const double* q, double* M) {
   M[899] = 2.242857142857145e-05;
 }
 
-void forcing(const Params& p, double t, const double* q, const double* u, const double* tau, double* f) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
-  (void)f;
+void forcing(const Params& p, [[maybe_unused]] double t, const double* q, [[maybe_unused]] const double* u,
+             [[maybe_unused]] const double* tau, double* f) {
   const double x0 = 15.0*q[1];
   const double x1 = 0.25*q[5];
   const double x2 = x0 + 0.25*q[2] + x1 - 15.0*q[4];
@@ -1113,13 +1101,8 @@ void forcing(const Params& p, double t, const double* q, const double* u, const 
   f[29] = -(2.1e+04*q[29] + x114 + x124 + 1.05e+04*q[26] + (x125 - 0.16313842628353933*x117 + 0.05202731517242821*x118)*x120);
 }
 
-int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
-                     double* udot) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
+int forward_dynamics(const Params& p, [[maybe_unused]] double t, const double* q,
+                     [[maybe_unused]] const double* u, [[maybe_unused]] const double* tau, double* udot) {
   const double m0_0 = 0.15700000000000003;
   const double m1_1 = 0.17494285714285718;
   const double m2_2 = 4.4857142857142885e-05;
@@ -1692,10 +1675,7 @@ int forward_dynamics(const Params& p, double t, const double* q, const double* u
   return 0;
 }
 
-void coordinate_rates(const double* q, const double* u, double* qdot) {
-  (void)q;
-  (void)u;
-  (void)qdot;
+void coordinate_rates([[maybe_unused]] const double* q, const double* u, double* qdot) {
   qdot[0] = u[0];
   qdot[1] = u[1];
   qdot[2] = u[2];
@@ -1728,10 +1708,7 @@ void coordinate_rates(const double* q, const double* u, double* qdot) {
   qdot[29] = u[29];
 }
 
-double kinetic_energy(const Params& p, const double* q, const double* u) {
-  (void)p;
-  (void)q;
-  (void)u;
+double kinetic_energy([[maybe_unused]] const Params& p, [[maybe_unused]] const double* q, const double* u) {
   double T;
   const double x0 = 0.03925000000000003*u[6];
   const double x1 = 0.03925000000000003*u[18];
@@ -1761,9 +1738,7 @@ double kinetic_energy(const Params& p, const double* q, const double* u) {
   return T;
 }
 
-double potential_energy(const Params& p, const double* q) {
-  (void)p;
-  (void)q;
+double potential_energy([[maybe_unused]] const Params& p, const double* q) {
   double V;
   const double x0 = -629999999.9999999*q[3];
   const double x1 = 15.0*q[25];
@@ -1861,12 +1836,8 @@ double potential_energy(const Params& p, const double* q) {
   return V;
 }
 
-void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)y;
+void outputs([[maybe_unused]] const Params& p, [[maybe_unused]] double t, const double* q,
+             [[maybe_unused]] const double* u, double* y) {
   y[0] = q[27];
   y[1] = q[28];
   y[2] = 0.0;

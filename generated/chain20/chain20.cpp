@@ -17,30 +17,24 @@ const char* const parameter_names[1] = {};
 const double q0[20] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
 const double u0[20] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
 
-bool set_parameter(Params& p, const char* name, double value) {
-  (void)p;
-  (void)name;
-  (void)value;
+
+bool set_parameter([[maybe_unused]] Params& p, [[maybe_unused]] const char* name,
+                   [[maybe_unused]] double value) {
   return false;
 }
 
-double get_parameter(const Params& p, int i) {
-  (void)p;
+double get_parameter([[maybe_unused]] const Params& p, int i) {
   switch (i) {
     default: return 0.0;
   }
 }
 
-void initial_state(const Params& p, double* q, double* u) {
-  (void)p;
+void initial_state([[maybe_unused]] const Params& p, double* q, double* u) {
   for (int i = 0; i < NQ; ++i) q[i] = q0[i];
   for (int i = 0; i < NU; ++i) u[i] = u0[i];
 }
 
-void mass_matrix(const Params& p, const double* q, double* M) {
-  (void)p;
-  (void)q;
-  (void)M;
+void mass_matrix([[maybe_unused]] const Params& p, const double* q, double* M) {
   const double x0 = std::sin(q[1]);
   const double x1 = std::cos(q[1]);
   const double x2 = -0.9092254202023818*x0 + 0.03124241925785637*x1;
@@ -1579,13 +1573,8 @@ void mass_matrix(const Params& p, const double* q, double* M) {
   M[399] = x904*x907 + x908*x909 + (x892*x899 - (x908*x905))*x902 + x892*x903 - (x906*(x908*x898 + x904*x899)) - ((x892*x898 + x904*x905)*x897);
 }
 
-void forcing(const Params& p, double t, const double* q, const double* u, const double* tau, double* f) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
-  (void)f;
+void forcing([[maybe_unused]] const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
+             const double* tau, double* f) {
   const double x0 = u[0]*u[0];
   const double x1 = std::cos(q[0]);
   const double x2 = std::sin(q[0]);
@@ -2499,13 +2488,8 @@ void forcing(const Params& p, double t, const double* q, const double* u, const 
   f[19] = x800 + tau[19];
 }
 
-int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
-                     double* udot) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
+int forward_dynamics([[maybe_unused]] const Params& p, [[maybe_unused]] double t, const double* q,
+                     const double* u, const double* tau, double* udot) {
   const double x0 = std::sin(q[1]);
   const double x1 = std::cos(q[1]);
   const double x2 = -0.9092254202023818*x0 + 0.03124241925785637*x1;
@@ -5261,10 +5245,7 @@ int forward_dynamics(const Params& p, double t, const double* q, const double* u
   return 0;
 }
 
-void coordinate_rates(const double* q, const double* u, double* qdot) {
-  (void)q;
-  (void)u;
-  (void)qdot;
+void coordinate_rates([[maybe_unused]] const double* q, const double* u, double* qdot) {
   qdot[0] = u[0];
   qdot[1] = u[1];
   qdot[2] = u[2];
@@ -5287,10 +5268,7 @@ void coordinate_rates(const double* q, const double* u, double* qdot) {
   qdot[19] = u[19];
 }
 
-double kinetic_energy(const Params& p, const double* q, const double* u) {
-  (void)p;
-  (void)q;
-  (void)u;
+double kinetic_energy([[maybe_unused]] const Params& p, const double* q, const double* u) {
   double T;
   const double x0 = std::cos(q[19]);
   const double x1 = std::sin(q[19]);
@@ -5677,9 +5655,7 @@ double kinetic_energy(const Params& p, const double* q, const double* u) {
   return T;
 }
 
-double potential_energy(const Params& p, const double* q) {
-  (void)p;
-  (void)q;
+double potential_energy([[maybe_unused]] const Params& p, const double* q) {
   double V;
   const double x0 = std::cos(q[0]);
   const double x1 = std::sin(q[0]);
@@ -5799,12 +5775,8 @@ double potential_energy(const Params& p, const double* q) {
   return V;
 }
 
-void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)y;
+void outputs([[maybe_unused]] const Params& p, [[maybe_unused]] double t, [[maybe_unused]] const double* q,
+             [[maybe_unused]] const double* u, [[maybe_unused]] double* y) {
 }
 
 }  // namespace chain20

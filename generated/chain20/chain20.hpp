@@ -15,6 +15,8 @@
 // allocates, throws or keeps state.
 #pragma once
 
+#include <new>  // kernel_table(): the Params of a table are placed in the caller's storage
+
 namespace kanegen_models {
 namespace chain20 {
 
@@ -36,29 +38,95 @@ extern const char* const parameter_names[1];
 extern const double q0[20];
 extern const double u0[20];
 
+/// Sets a parameter by name; false if there is none of that name.
+bool set_parameter(Params& p, const char* name, double value);
+
+/// The parameter with index i (0 <= i < NP) in parameter_names order.
+double get_parameter(const Params& p, int i);
+
 /// The initial state for the parameters p: q0 and u0, except that a
 /// prescribed coordinate starts where its motion does at t = 0.
 void initial_state(const Params& p, double* q, double* u);
 
-/// Sets a parameter by name; false if there is none of that name.
-bool set_parameter(Params& p, const char* name, double value);
-/// The parameter with index i (0 <= i < NP) in parameter_names order.
-double get_parameter(const Params& p, int i);
-
 /// M: NU*NU, row-major, symmetric positive definite.
 void mass_matrix(const Params& p, const double* q, double* M);
+
 /// f: NU. q: NQ, u: NU, tau: NTAU.
 void forcing(const Params& p, double t, const double* q, const double* u, const double* tau, double* f);
+
 /// udot: NU, solving M udot = f by a fixed-size LDL^T. Returns 0, or k > 0
 /// when the k-th pivot is not positive (singular M; udot is then invalid).
 int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
                      double* udot);
+
 /// qdot: NQ, the kinematic equations.
 void coordinate_rates(const double* q, const double* u, double* qdot);
+
+/// T, the kinetic energy.
 double kinetic_energy(const Params& p, const double* q, const double* u);
+
+/// V, the potential energy (gravity, springs, strain).
 double potential_energy(const Params& p, const double* q);
+
 /// y: NY, in output_names order.
 void outputs(const Params& p, double t, const double* q, const double* u, double* y);
+
+/// Every kernel as a table of function pointers, for code that picks its
+/// model at run time: kanegen's runtime instantiates it with
+/// kanegen::runtime::ModelTable (kanegen/runtime/model_table.hpp), whose
+/// members these are. The parameters travel as `const void*` to a Params.
+template <class Table>
+Table kernel_table() {
+  Table table{};
+  table.name = "chain20";
+  table.nq = NQ;
+  table.nu = NU;
+  table.ntau = NTAU;
+  table.ny = NY;
+  table.np = NP;
+  table.coordinate_names = coordinate_names;
+  table.speed_names = speed_names;
+  table.input_names = input_names;
+  table.output_names = output_names;
+  table.parameter_names = parameter_names;
+  table.q0 = q0;
+  table.u0 = u0;
+  table.parameters_size = sizeof(Params);
+  table.default_parameters = [](void* p) { new (p) Params(); };
+  table.set_parameter = [](void* p, const char* name, double value) {
+    return set_parameter(*static_cast<Params*>(p), name, value);
+  };
+  table.get_parameter = [](const void* p, int i) {
+    return get_parameter(*static_cast<const Params*>(p), i);
+  };
+  table.initial_state = [](const void* p, double* q, double* u) {
+    initial_state(*static_cast<const Params*>(p), q, u);
+  };
+  table.mass_matrix = [](const void* p, const double* q, double* M) {
+    mass_matrix(*static_cast<const Params*>(p), q, M);
+  };
+  table.forcing = [](const void* p, double t, const double* q, const double* u, const double* tau,
+                     double* f) {
+    forcing(*static_cast<const Params*>(p), t, q, u, tau, f);
+  };
+  table.forward_dynamics = [](const void* p, double t, const double* q, const double* u, const double* tau,
+                              double* udot) {
+    return forward_dynamics(*static_cast<const Params*>(p), t, q, u, tau, udot);
+  };
+  table.coordinate_rates = [](const double* q, const double* u, double* qdot) {
+    coordinate_rates(q, u, qdot);
+  };
+  table.kinetic_energy = [](const void* p, const double* q, const double* u) {
+    return kinetic_energy(*static_cast<const Params*>(p), q, u);
+  };
+  table.potential_energy = [](const void* p, const double* q) {
+    return potential_energy(*static_cast<const Params*>(p), q);
+  };
+  table.outputs = [](const void* p, double t, const double* q, const double* u, double* y) {
+    outputs(*static_cast<const Params*>(p), t, q, u, y);
+  };
+  return table;
+}
 
 /// The uniform face used by kanegen's runtime (see kanegen/runtime/system.hpp).
 struct System {
@@ -72,17 +140,20 @@ struct System {
   static const char* const* parameter_names() { return ::kanegen_models::chain20::parameter_names; }
   static const double* q0() { return ::kanegen_models::chain20::q0; }
   static const double* u0() { return ::kanegen_models::chain20::u0; }
+  static bool set_parameter(Params& p, const char* name, double value) {
+    return ::kanegen_models::chain20::set_parameter(p, name, value);
+  }
+  static double get_parameter(const Params& p, int i) {
+    return ::kanegen_models::chain20::get_parameter(p, i);
+  }
   static void initial_state(const Params& p, double* q, double* u) {
     ::kanegen_models::chain20::initial_state(p, q, u);
   }
-  static bool set_parameter(Params& p, const char* n, double v) {
-    return ::kanegen_models::chain20::set_parameter(p, n, v);
-  }
-  static double get_parameter(const Params& p, int i) { return ::kanegen_models::chain20::get_parameter(p, i); }
   static void mass_matrix(const Params& p, const double* q, double* M) {
     ::kanegen_models::chain20::mass_matrix(p, q, M);
   }
-  static void forcing(const Params& p, double t, const double* q, const double* u, const double* tau, double* f) {
+  static void forcing(const Params& p, double t, const double* q, const double* u, const double* tau,
+                      double* f) {
     ::kanegen_models::chain20::forcing(p, t, q, u, tau, f);
   }
   static int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
@@ -100,6 +171,10 @@ struct System {
   }
   static void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
     ::kanegen_models::chain20::outputs(p, t, q, u, y);
+  }
+  template <class Table>
+  static Table kernel_table() {
+    return ::kanegen_models::chain20::kernel_table<Table>();
   }
 };
 

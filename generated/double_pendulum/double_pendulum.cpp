@@ -17,10 +17,8 @@ const char* const parameter_names[6] = {"m1", "m2", "l1", "l2", "c1", "c2"};
 const double q0[2] = {0.0, 0.0};
 const double u0[2] = {0.0, 0.0};
 
+
 bool set_parameter(Params& p, const char* name, double value) {
-  (void)p;
-  (void)name;
-  (void)value;
   if (std::strcmp(name, "m1") == 0) {
     p.m1 = value;
     return true;
@@ -49,7 +47,6 @@ bool set_parameter(Params& p, const char* name, double value) {
 }
 
 double get_parameter(const Params& p, int i) {
-  (void)p;
   switch (i) {
     case 0: return p.m1;
     case 1: return p.m2;
@@ -61,16 +58,12 @@ double get_parameter(const Params& p, int i) {
   }
 }
 
-void initial_state(const Params& p, double* q, double* u) {
-  (void)p;
+void initial_state([[maybe_unused]] const Params& p, double* q, double* u) {
   for (int i = 0; i < NQ; ++i) q[i] = q0[i];
   for (int i = 0; i < NU; ++i) u[i] = u0[i];
 }
 
 void mass_matrix(const Params& p, const double* q, double* M) {
-  (void)p;
-  (void)q;
-  (void)M;
   const double x0 = p.l1*p.l1;
   const double x1 = p.m2*p.l1*p.l2*std::cos(q[1]);
   const double x2 = p.l2*p.l2;
@@ -82,13 +75,8 @@ void mass_matrix(const Params& p, const double* q, double* M) {
   M[3] = 0.3333333333333333*p.m2*x2;
 }
 
-void forcing(const Params& p, double t, const double* q, const double* u, const double* tau, double* f) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
-  (void)f;
+void forcing(const Params& p, [[maybe_unused]] double t, const double* q, const double* u, const double* tau,
+             double* f) {
   const double x0 = std::cos(q[0]);
   const double x1 = std::cos(q[1]);
   const double x2 = std::sin(q[1]);
@@ -100,13 +88,8 @@ void forcing(const Params& p, double t, const double* q, const double* u, const 
   f[1] = tau[1] - (u[1]*p.c2) + x6;
 }
 
-int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
-                     double* udot) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
+int forward_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
+                     const double* tau, double* udot) {
   const double x0 = p.l1*p.l1;
   const double x1 = std::cos(q[1]);
   const double x2 = p.m2*p.l1*p.l2*x1;
@@ -139,18 +122,12 @@ int forward_dynamics(const Params& p, double t, const double* q, const double* u
   return 0;
 }
 
-void coordinate_rates(const double* q, const double* u, double* qdot) {
-  (void)q;
-  (void)u;
-  (void)qdot;
+void coordinate_rates([[maybe_unused]] const double* q, const double* u, double* qdot) {
   qdot[0] = u[0];
   qdot[1] = u[1];
 }
 
 double kinetic_energy(const Params& p, const double* q, const double* u) {
-  (void)p;
-  (void)q;
-  (void)u;
   double T;
   const double x0 = u[1] + u[0];
   const double x1 = 0.5*(p.l2*x0) + u[0]*p.l1*std::cos(q[1]);
@@ -161,20 +138,14 @@ double kinetic_energy(const Params& p, const double* q, const double* u) {
 }
 
 double potential_energy(const Params& p, const double* q) {
-  (void)p;
-  (void)q;
   double V;
   const double x0 = std::sin(q[0]);
   V = -(4.905*(p.m1*p.l1*x0) + 9.81*(p.m2*(0.5*(p.l2*(std::cos(q[0])*std::sin(q[1]) + x0*std::cos(q[1]))) + p.l1*x0)));
   return V;
 }
 
-void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)y;
+void outputs(const Params& p, [[maybe_unused]] double t, const double* q, [[maybe_unused]] const double* u,
+             double* y) {
   const double x0 = std::cos(q[0]);
   const double x1 = std::cos(q[1]);
   const double x2 = std::sin(q[0]);

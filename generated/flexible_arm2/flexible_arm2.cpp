@@ -17,10 +17,8 @@ const char* const parameter_names[2] = {"m_motor", "m_payload"};
 const double q0[26] = {0.3, 0.5, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
 const double u0[26] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
 
+
 bool set_parameter(Params& p, const char* name, double value) {
-  (void)p;
-  (void)name;
-  (void)value;
   if (std::strcmp(name, "m_motor") == 0) {
     p.m_motor = value;
     return true;
@@ -33,7 +31,6 @@ bool set_parameter(Params& p, const char* name, double value) {
 }
 
 double get_parameter(const Params& p, int i) {
-  (void)p;
   switch (i) {
     case 0: return p.m_motor;
     case 1: return p.m_payload;
@@ -41,16 +38,12 @@ double get_parameter(const Params& p, int i) {
   }
 }
 
-void initial_state(const Params& p, double* q, double* u) {
-  (void)p;
+void initial_state([[maybe_unused]] const Params& p, double* q, double* u) {
   for (int i = 0; i < NQ; ++i) q[i] = q0[i];
   for (int i = 0; i < NU; ++i) u[i] = u0[i];
 }
 
 void mass_matrix(const Params& p, const double* q, double* M) {
-  (void)p;
-  (void)q;
-  (void)M;
   const double x0 = 0.011250000000000007*q[5];
   const double x1 = 0.011250000000000007*q[8];
   const double x2 = 0.008678571428571433*q[9];
@@ -831,13 +824,8 @@ void mass_matrix(const Params& p, const double* q, double* M) {
   M[675] = 4.017857142857146e-05;
 }
 
-void forcing(const Params& p, double t, const double* q, const double* u, const double* tau, double* f) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
-  (void)f;
+void forcing(const Params& p, [[maybe_unused]] double t, const double* q, const double* u, const double* tau,
+             double* f) {
   const double x0 = 0.011250000000000007*q[8];
   const double x1 = 0.022500000000000006*q[11] + x0 + 0.030937500000000007;
   const double x2 = 0.011250000000000007*q[5];
@@ -1010,13 +998,8 @@ void forcing(const Params& p, double t, const double* q, const double* u, const 
   f[25] = (0.05202731517242821*x136 + x143 + 0.16313842628353933*x135)*x141 + x50*x38 + x133 - 5599.776*q[21] + 2.0*((0.0008437500000000004*u[23] + 0.0005625000000000005*u[20])*x46) + 5599.776*q[24] + 0.0014062500000000008*x29 - 933.296*q[25];
 }
 
-int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
-                     double* udot) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
+int forward_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
+                     const double* tau, double* udot) {
   const double x0 = 0.011250000000000007*q[5];
   const double x1 = 0.016875000000000005 + 0.04500000000000001*q[2] + x0;
   const double x2 = 0.04500000000000001*q[8] + 0.05062500000000001 + 0.011250000000000007*q[11] + x0;
@@ -2786,10 +2769,7 @@ int forward_dynamics(const Params& p, double t, const double* q, const double* u
   return 0;
 }
 
-void coordinate_rates(const double* q, const double* u, double* qdot) {
-  (void)q;
-  (void)u;
-  (void)qdot;
+void coordinate_rates([[maybe_unused]] const double* q, const double* u, double* qdot) {
   qdot[0] = u[0];
   qdot[1] = u[1];
   qdot[2] = u[2];
@@ -2819,9 +2799,6 @@ void coordinate_rates(const double* q, const double* u, double* qdot) {
 }
 
 double kinetic_energy(const Params& p, const double* q, const double* u) {
-  (void)p;
-  (void)q;
-  (void)u;
   double T;
   const double x0 = 0.008678571428571433*u[9];
   const double x1 = 0.008678571428571433*u[21];
@@ -2858,8 +2835,6 @@ double kinetic_energy(const Params& p, const double* q, const double* u) {
 }
 
 double potential_energy(const Params& p, const double* q) {
-  (void)p;
-  (void)q;
   double V;
   const double x0 = -q[5];
   const double x1 = -q[11];
@@ -2937,12 +2912,8 @@ double potential_energy(const Params& p, const double* q) {
   return V;
 }
 
-void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)y;
+void outputs([[maybe_unused]] const Params& p, [[maybe_unused]] double t, const double* q,
+             [[maybe_unused]] const double* u, double* y) {
   y[0] = q[11];
   y[1] = q[12];
   y[2] = 0.0;

@@ -9,175 +9,13 @@
 namespace kanegen_models {
 namespace four_bar {
 
-const char* const coordinate_names[3] = {"crank_angle", "coupler_angle", "rocker_angle"};
-const char* const speed_names[3] = {"crank_angle_dot", "coupler_angle_dot", "rocker_angle_dot"};
-const char* const input_names[3] = {"crank_angle_tau", "coupler_angle_tau", "rocker_angle_tau"};
-const char* const output_names[14] = {"crank_tip.x", "crank_tip.y", "crank_tip.z", "coupler_mid.x", "coupler_mid.y", "coupler_mid.z", "rocker_tip.x", "rocker_tip.y", "rocker_tip.z", "crank", "crank_rate", "rocker", "E_reaction.x", "E_reaction.y"};
-const char* const parameter_names[7] = {"a", "b", "c", "d", "m_a", "m_b", "m_c"};
-const double q0[3] = {0.0, 0.9733899101495463, 1.696124157962962};
-const double u0[3] = {1e+01, -15.0, -5.0};
-
-bool set_parameter(Params& p, const char* name, double value) {
-  (void)p;
-  (void)name;
-  (void)value;
-  if (std::strcmp(name, "a") == 0) {
-    p.a = value;
-    return true;
-  }
-  if (std::strcmp(name, "b") == 0) {
-    p.b = value;
-    return true;
-  }
-  if (std::strcmp(name, "c") == 0) {
-    p.c = value;
-    return true;
-  }
-  if (std::strcmp(name, "d") == 0) {
-    p.d = value;
-    return true;
-  }
-  if (std::strcmp(name, "m_a") == 0) {
-    p.m_a = value;
-    return true;
-  }
-  if (std::strcmp(name, "m_b") == 0) {
-    p.m_b = value;
-    return true;
-  }
-  if (std::strcmp(name, "m_c") == 0) {
-    p.m_c = value;
-    return true;
-  }
-  return false;
-}
-
-double get_parameter(const Params& p, int i) {
-  (void)p;
-  switch (i) {
-    case 0: return p.a;
-    case 1: return p.b;
-    case 2: return p.c;
-    case 3: return p.d;
-    case 4: return p.m_a;
-    case 5: return p.m_b;
-    case 6: return p.m_c;
-    default: return 0.0;
-  }
-}
-
-void initial_state(const Params& p, double* q, double* u) {
-  (void)p;
-  for (int i = 0; i < NQ; ++i) q[i] = q0[i];
-  for (int i = 0; i < NU; ++i) u[i] = u0[i];
-}
-
-void mass_matrix(const Params& p, const double* q, double* M) {
-  (void)p;
-  (void)q;
-  (void)M;
-  const double x0 = p.b*p.b;
-  const double x1 = 0.3333333333333333*(p.m_b*x0);
-  const double x2 = p.a*p.a;
-  const double x3 = p.b*p.a*p.m_b*std::cos(q[1]);
-  M[0] = x1 + p.m_b*x2 + x3 + 0.3333333333333333*(p.m_a*x2);
-  const double x4 = x1 + 0.5*x3;
-  M[1] = x4;
-  M[2] = 0.0;
-  M[3] = x4;
-  M[4] = 0.3333333333333333*p.m_b*x0;
-  M[5] = 0.0;
-  M[6] = 0.0;
-  M[7] = 0.0;
-  M[8] = 0.3333333333333333*p.m_c*p.c*p.c;
-}
-
-void forcing(const Params& p, double t, const double* q, const double* u, const double* tau, double* f) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
-  (void)f;
-  const double x0 = std::cos(q[0]);
-  const double x1 = std::cos(q[1]);
-  const double x2 = std::sin(q[1]);
-  const double x3 = -9.81*std::sin(q[0]) + p.a*u[0]*u[0];
-  const double x4 = 9.81*(x0*x1) + x2*x3;
-  const double x5 = p.b*x4*p.m_b;
-  const double x6 = u[1] + u[0];
-  f[0] = -(0.5*x5 + (p.m_b*x2*(9.81*(x0*x2) - (x1*x3) - 0.5*(p.b*x6*x6)) + x4*p.m_b*x1)*p.a + 4.905*(x0*p.a*p.m_a)) + tau[0];
-  f[1] = tau[1] - 0.5*x5;
-  f[2] = tau[2] - 4.905*(p.c*p.m_c*std::cos(q[2]));
-}
-
-int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
-                     double* udot) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
-  double lambda[NC];
-  return constrained_dynamics(p, t, q, u, tau, udot, lambda);
-}
-
-const char* const constraint_names[NC] = {"E.x", "E.y"};
-const int coordinate_roles[3] = {1, 0, 0};
-
-void constraints(const Params& p, const double* q, double* phi) {
-  (void)p;
-  (void)q;
-  const double x0 = std::cos(q[0]);
-  const double x1 = std::cos(q[1]);
-  const double x2 = std::sin(q[0]);
-  const double x3 = std::sin(q[1]);
-  phi[0] = -(p.d + p.c*std::cos(q[2]) - (p.b*(x0*x1 - (x2*x3))) - (x0*p.a));
-  phi[1] = -(-(p.a*x2) - (p.b*(x0*x3 + x2*x1)) + p.c*std::sin(q[2]));
-}
-
-void constraint_jacobian(const Params& p, const double* q, double* C) {
-  (void)p;
-  (void)q;
-  const double x0 = std::cos(q[0]);
-  const double x1 = std::sin(q[1]);
-  const double x2 = std::sin(q[0]);
-  const double x3 = std::cos(q[1]);
-  const double x4 = x0*x1 + x2*x3;
-  C[0] = -(p.b*x4 + p.a*x2);
-  C[1] = -p.b*x4;
-  C[2] = p.c*std::sin(q[2]);
-  const double x5 = p.b*(x0*x3 - (x2*x1));
-  C[3] = x0*p.a + x5;
-  C[4] = x5;
-  C[5] = -p.c*std::cos(q[2]);
-}
-
-void constraint_bias(const Params& p, const double* q, const double* u, double* gamma) {
-  (void)p;
-  (void)q;
-  (void)u;
-  const double x0 = u[2]*u[2];
-  const double x1 = std::cos(q[0]);
-  const double x2 = std::cos(q[1]);
-  const double x3 = std::sin(q[0]);
-  const double x4 = std::sin(q[1]);
-  const double x5 = x1*x2 - (x3*x4);
-  const double x6 = u[1]*p.b*x5;
-  gamma[0] = -(p.c*x0*std::cos(q[2]) - (u[1]*(x6 + u[0]*p.b*x5)) - (u[0]*(u[0]*(x1*p.a + p.b*x5) + x6)));
-  const double x7 = x1*x4 + x3*x2;
-  const double x8 = u[1]*p.b*x7;
-  gamma[1] = u[1]*(x8 + u[0]*p.b*x7) + u[0]*(u[0]*(p.b*x7 + p.a*x3) + x8) - (p.c*x0*std::sin(q[2]));
-}
-
 namespace {
-
-constexpr int NS = 3;  // speeds solved for (not prescribed)
 
 // M: NS*NS (overwritten by L), b: NS (the right-hand side; udot on return),
 // C: NC*NS (overwritten by Y^T), g: NC. Returns 0, k > 0 for a non-positive
 // k-th pivot of M, -k when the k-th loop equation is (nearly) a combination
 // of the earlier ones.
+template <int NS, int NC>
 int solve_saddle(double* M, double* b, double* C, const double* g, double* lambda) {
   for (int j = 0; j < NS; ++j) {
     double s = M[j * NS + j];
@@ -246,13 +84,198 @@ int solve_saddle(double* M, double* b, double* C, const double* g, double* lambd
 
 }  // namespace
 
-int constrained_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
-                         double* udot, double* lambda) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
+const char* const coordinate_names[3] = {"crank_angle", "coupler_angle", "rocker_angle"};
+const char* const speed_names[3] = {"crank_angle_dot", "coupler_angle_dot", "rocker_angle_dot"};
+const char* const input_names[3] = {"crank_angle_tau", "coupler_angle_tau", "rocker_angle_tau"};
+const char* const output_names[14] = {"crank_tip.x", "crank_tip.y", "crank_tip.z", "coupler_mid.x", "coupler_mid.y", "coupler_mid.z", "rocker_tip.x", "rocker_tip.y", "rocker_tip.z", "crank", "crank_rate", "rocker", "E_reaction.x", "E_reaction.y"};
+const char* const parameter_names[7] = {"a", "b", "c", "d", "m_a", "m_b", "m_c"};
+const double q0[3] = {0.0, 0.9733899101495463, 1.696124157962962};
+const double u0[3] = {1e+01, -15.0, -5.0};
+
+const char* const constraint_names[NC] = {"E.x", "E.y"};
+const int coordinate_roles[3] = {1, 0, 0};
+
+bool set_parameter(Params& p, const char* name, double value) {
+  if (std::strcmp(name, "a") == 0) {
+    p.a = value;
+    return true;
+  }
+  if (std::strcmp(name, "b") == 0) {
+    p.b = value;
+    return true;
+  }
+  if (std::strcmp(name, "c") == 0) {
+    p.c = value;
+    return true;
+  }
+  if (std::strcmp(name, "d") == 0) {
+    p.d = value;
+    return true;
+  }
+  if (std::strcmp(name, "m_a") == 0) {
+    p.m_a = value;
+    return true;
+  }
+  if (std::strcmp(name, "m_b") == 0) {
+    p.m_b = value;
+    return true;
+  }
+  if (std::strcmp(name, "m_c") == 0) {
+    p.m_c = value;
+    return true;
+  }
+  return false;
+}
+
+double get_parameter(const Params& p, int i) {
+  switch (i) {
+    case 0: return p.a;
+    case 1: return p.b;
+    case 2: return p.c;
+    case 3: return p.d;
+    case 4: return p.m_a;
+    case 5: return p.m_b;
+    case 6: return p.m_c;
+    default: return 0.0;
+  }
+}
+
+void initial_state([[maybe_unused]] const Params& p, double* q, double* u) {
+  for (int i = 0; i < NQ; ++i) q[i] = q0[i];
+  for (int i = 0; i < NU; ++i) u[i] = u0[i];
+}
+
+void mass_matrix(const Params& p, const double* q, double* M) {
+  const double x0 = p.b*p.b;
+  const double x1 = 0.3333333333333333*(p.m_b*x0);
+  const double x2 = p.a*p.a;
+  const double x3 = p.b*p.a*p.m_b*std::cos(q[1]);
+  M[0] = x1 + p.m_b*x2 + x3 + 0.3333333333333333*(p.m_a*x2);
+  const double x4 = x1 + 0.5*x3;
+  M[1] = x4;
+  M[2] = 0.0;
+  M[3] = x4;
+  M[4] = 0.3333333333333333*p.m_b*x0;
+  M[5] = 0.0;
+  M[6] = 0.0;
+  M[7] = 0.0;
+  M[8] = 0.3333333333333333*p.m_c*p.c*p.c;
+}
+
+void forcing(const Params& p, [[maybe_unused]] double t, const double* q, const double* u, const double* tau,
+             double* f) {
+  const double x0 = std::cos(q[0]);
+  const double x1 = std::cos(q[1]);
+  const double x2 = std::sin(q[1]);
+  const double x3 = -9.81*std::sin(q[0]) + p.a*u[0]*u[0];
+  const double x4 = 9.81*(x0*x1) + x2*x3;
+  const double x5 = p.b*x4*p.m_b;
+  const double x6 = u[1] + u[0];
+  f[0] = -(0.5*x5 + (p.m_b*x2*(9.81*(x0*x2) - (x1*x3) - 0.5*(p.b*x6*x6)) + x4*p.m_b*x1)*p.a + 4.905*(x0*p.a*p.m_a)) + tau[0];
+  f[1] = tau[1] - 0.5*x5;
+  f[2] = tau[2] - 4.905*(p.c*p.m_c*std::cos(q[2]));
+}
+
+int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
+                     double* udot) {
+  double lambda[NC];
+  return constrained_dynamics(p, t, q, u, tau, udot, lambda);
+}
+
+void coordinate_rates([[maybe_unused]] const double* q, const double* u, double* qdot) {
+  qdot[0] = u[0];
+  qdot[1] = u[1];
+  qdot[2] = u[2];
+}
+
+double kinetic_energy(const Params& p, const double* q, const double* u) {
+  double T;
+  const double x0 = u[1] + u[0];
+  const double x1 = 0.5*(p.b*x0) + u[0]*p.a*std::cos(q[1]);
+  const double x2 = u[0]*p.a*std::sin(q[1]);
+  const double x3 = p.c*u[2];
+  const double x4 = u[0]*p.a;
+  T = 0.5*(p.m_b*(x1*x1 + x2*x2)) + 0.041666666666666664*(u[0]*u[0]*p.m_a*p.a*p.a) + 0.041666666666666664*(p.m_b*p.b*p.b*x0*x0) + 0.125*(p.m_c*x3*x3) + 0.125*(p.m_a*x4*x4) + 0.041666666666666664*(u[2]*u[2]*p.m_c*p.c*p.c);
+  return T;
+}
+
+double potential_energy(const Params& p, const double* q) {
+  double V;
+  const double x0 = std::sin(q[0]);
+  V = 4.905*(p.c*p.m_c*std::sin(q[2])) + 4.905*(p.a*p.m_a*x0) + 9.81*((p.a*x0 + 0.5*(p.b*(std::cos(q[0])*std::sin(q[1]) + x0*std::cos(q[1]))))*p.m_b);
+  return V;
+}
+
+void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
+  const double x0 = std::cos(q[0]);
+  const double x1 = x0*p.a;
+  y[0] = x1;
+  const double x2 = std::sin(q[0]);
+  const double x3 = p.a*x2;
+  y[1] = x3;
+  y[2] = 0.0;
+  const double x4 = std::cos(q[1]);
+  const double x5 = std::sin(q[1]);
+  y[3] = 0.5*(p.b*(x0*x4 - (x2*x5))) + x1;
+  y[4] = x3 + 0.5*(p.b*(x0*x5 + x2*x4));
+  y[5] = 0.0;
+  y[6] = p.d + p.c*std::cos(q[2]);
+  y[7] = p.c*std::sin(q[2]);
+  y[8] = 0.0;
+  y[9] = q[0];
+  y[10] = u[0];
+  y[11] = q[2];
+  y[12] = 0.0;
+  y[13] = 0.0;
+  // Loop forces: lambda of the dynamics at these inputs of zero (NaN where it cannot be solved).
+  double reaction_udot[NU], lambda[NC];
+  const double no_inputs[3] = {};
+  const bool solved = constrained_dynamics(p, t, q, u, no_inputs, reaction_udot, lambda) == 0;
+  y[12] = solved ? lambda[0] : std::nan("");
+  y[13] = solved ? lambda[1] : std::nan("");
+}
+
+void constraints(const Params& p, const double* q, double* phi) {
+  const double x0 = std::cos(q[0]);
+  const double x1 = std::cos(q[1]);
+  const double x2 = std::sin(q[0]);
+  const double x3 = std::sin(q[1]);
+  phi[0] = -(p.d + p.c*std::cos(q[2]) - (p.b*(x0*x1 - (x2*x3))) - (x0*p.a));
+  phi[1] = -(-(p.a*x2) - (p.b*(x0*x3 + x2*x1)) + p.c*std::sin(q[2]));
+}
+
+void constraint_jacobian(const Params& p, const double* q, double* C) {
+  const double x0 = std::cos(q[0]);
+  const double x1 = std::sin(q[1]);
+  const double x2 = std::sin(q[0]);
+  const double x3 = std::cos(q[1]);
+  const double x4 = x0*x1 + x2*x3;
+  C[0] = -(p.b*x4 + p.a*x2);
+  C[1] = -p.b*x4;
+  C[2] = p.c*std::sin(q[2]);
+  const double x5 = p.b*(x0*x3 - (x2*x1));
+  C[3] = x0*p.a + x5;
+  C[4] = x5;
+  C[5] = -p.c*std::cos(q[2]);
+}
+
+void constraint_bias(const Params& p, const double* q, const double* u, double* gamma) {
+  const double x0 = u[2]*u[2];
+  const double x1 = std::cos(q[0]);
+  const double x2 = std::cos(q[1]);
+  const double x3 = std::sin(q[0]);
+  const double x4 = std::sin(q[1]);
+  const double x5 = x1*x2 - (x3*x4);
+  const double x6 = u[1]*p.b*x5;
+  gamma[0] = -(p.c*x0*std::cos(q[2]) - (u[1]*(x6 + u[0]*p.b*x5)) - (u[0]*(u[0]*(x1*p.a + p.b*x5) + x6)));
+  const double x7 = x1*x4 + x3*x2;
+  const double x8 = u[1]*p.b*x7;
+  gamma[1] = u[1]*(x8 + u[0]*p.b*x7) + u[0]*(u[0]*(p.b*x7 + p.a*x3) + x8) - (p.c*x0*std::sin(q[2]));
+}
+
+int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
+                         const double* tau, double* udot, double* lambda) {
+  constexpr int NS = 3;  // speeds solved for (not prescribed)
   double Ms[NS * NS], b[NS], Cs[NC * NS], g[NC];
   const double x0 = std::cos(q[0]);
   const double x1 = std::sin(q[1]);
@@ -299,77 +322,11 @@ int constrained_dynamics(const Params& p, double t, const double* q, const doubl
   b[0] = -(0.5*x23 + (p.m_b*x1*(9.81*x2 - (x4*x21) - 0.5*(p.b*x24*x24)) + x22*p.m_b*x4)*p.a + 4.905*(x0*p.a*p.m_a)) + tau[0];
   b[1] = tau[1] - 0.5*x23;
   b[2] = tau[2] - 4.905*(p.c*p.m_c*x9);
-  const int status = solve_saddle(Ms, b, Cs, g, lambda);
+  const int status = solve_saddle<NS, NC>(Ms, b, Cs, g, lambda);
   udot[0] = b[0];
   udot[1] = b[1];
   udot[2] = b[2];
   return status;
-}
-
-void coordinate_rates(const double* q, const double* u, double* qdot) {
-  (void)q;
-  (void)u;
-  (void)qdot;
-  qdot[0] = u[0];
-  qdot[1] = u[1];
-  qdot[2] = u[2];
-}
-
-double kinetic_energy(const Params& p, const double* q, const double* u) {
-  (void)p;
-  (void)q;
-  (void)u;
-  double T;
-  const double x0 = u[1] + u[0];
-  const double x1 = 0.5*(p.b*x0) + u[0]*p.a*std::cos(q[1]);
-  const double x2 = u[0]*p.a*std::sin(q[1]);
-  const double x3 = p.c*u[2];
-  const double x4 = u[0]*p.a;
-  T = 0.5*(p.m_b*(x1*x1 + x2*x2)) + 0.041666666666666664*(u[0]*u[0]*p.m_a*p.a*p.a) + 0.041666666666666664*(p.m_b*p.b*p.b*x0*x0) + 0.125*(p.m_c*x3*x3) + 0.125*(p.m_a*x4*x4) + 0.041666666666666664*(u[2]*u[2]*p.m_c*p.c*p.c);
-  return T;
-}
-
-double potential_energy(const Params& p, const double* q) {
-  (void)p;
-  (void)q;
-  double V;
-  const double x0 = std::sin(q[0]);
-  V = 4.905*(p.c*p.m_c*std::sin(q[2])) + 4.905*(p.a*p.m_a*x0) + 9.81*((p.a*x0 + 0.5*(p.b*(std::cos(q[0])*std::sin(q[1]) + x0*std::cos(q[1]))))*p.m_b);
-  return V;
-}
-
-void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)y;
-  const double x0 = std::cos(q[0]);
-  const double x1 = x0*p.a;
-  y[0] = x1;
-  const double x2 = std::sin(q[0]);
-  const double x3 = p.a*x2;
-  y[1] = x3;
-  y[2] = 0.0;
-  const double x4 = std::cos(q[1]);
-  const double x5 = std::sin(q[1]);
-  y[3] = 0.5*(p.b*(x0*x4 - (x2*x5))) + x1;
-  y[4] = x3 + 0.5*(p.b*(x0*x5 + x2*x4));
-  y[5] = 0.0;
-  y[6] = p.d + p.c*std::cos(q[2]);
-  y[7] = p.c*std::sin(q[2]);
-  y[8] = 0.0;
-  y[9] = q[0];
-  y[10] = u[0];
-  y[11] = q[2];
-  y[12] = 0.0;
-  y[13] = 0.0;
-  // Loop forces: lambda of the dynamics at these inputs of zero (NaN where it cannot be solved).
-  double reaction_udot[NU], lambda[NC];
-  const double no_inputs[3] = {};
-  const bool solved = constrained_dynamics(p, t, q, u, no_inputs, reaction_udot, lambda) == 0;
-  y[12] = solved ? lambda[0] : std::nan("");
-  y[13] = solved ? lambda[1] : std::nan("");
 }
 
 }  // namespace four_bar

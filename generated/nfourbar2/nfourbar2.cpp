@@ -9,219 +9,13 @@
 namespace kanegen_models {
 namespace nfourbar2 {
 
-const char* const coordinate_names[5] = {"crank0_angle", "crank1_angle", "crank2_angle", "coupler1_angle", "coupler2_angle"};
-const char* const speed_names[5] = {"crank0_angle_dot", "crank1_angle_dot", "crank2_angle_dot", "coupler1_angle_dot", "coupler2_angle_dot"};
-const char* const input_names[5] = {"crank0_angle_tau", "crank1_angle_tau", "crank2_angle_tau", "coupler1_angle_tau", "coupler2_angle_tau"};
-const char* const output_names[15] = {"B0.x", "B0.y", "B0.z", "B1.x", "B1.y", "B1.z", "B2.x", "B2.y", "B2.z", "crank0", "crank0_rate", "L1_reaction.x", "L1_reaction.y", "L2_reaction.x", "L2_reaction.y"};
-const char* const parameter_names[2] = {"l", "m"};
-const double q0[5] = {1.5707963267948966, 1.5707963267948966, 1.5707963267948966, -1.5707963267948966, -1.5707963267948966};
-const double u0[5] = {-1.0, -1.0, -1.0, 1.0, 1.0};
-
-bool set_parameter(Params& p, const char* name, double value) {
-  (void)p;
-  (void)name;
-  (void)value;
-  if (std::strcmp(name, "l") == 0) {
-    p.l = value;
-    return true;
-  }
-  if (std::strcmp(name, "m") == 0) {
-    p.m = value;
-    return true;
-  }
-  return false;
-}
-
-double get_parameter(const Params& p, int i) {
-  (void)p;
-  switch (i) {
-    case 0: return p.l;
-    case 1: return p.m;
-    default: return 0.0;
-  }
-}
-
-void initial_state(const Params& p, double* q, double* u) {
-  (void)p;
-  for (int i = 0; i < NQ; ++i) q[i] = q0[i];
-  for (int i = 0; i < NU; ++i) u[i] = u0[i];
-}
-
-void mass_matrix(const Params& p, const double* q, double* M) {
-  (void)p;
-  (void)q;
-  (void)M;
-  const double x0 = p.m*p.l*p.l*std::cos(q[3]);
-  const double x1 = p.l*p.l;
-  const double x2 = p.m*x1;
-  const double x3 = 1.6666666666666665*x2;
-  M[0] = x0 + x3;
-  M[1] = 0.0;
-  M[2] = 0.0;
-  const double x4 = 0.3333333333333333*x2;
-  const double x5 = 0.5*x0 + x4;
-  M[3] = x5;
-  M[4] = 0.0;
-  M[5] = 0.0;
-  const double x6 = p.m*p.l*p.l*std::cos(q[4]);
-  M[6] = x6 + x3;
-  M[7] = 0.0;
-  M[8] = 0.0;
-  const double x7 = 0.5*x6 + x4;
-  M[9] = x7;
-  M[10] = 0.0;
-  M[11] = 0.0;
-  const double x8 = 0.3333333333333333*p.m*x1;
-  M[12] = x8;
-  M[13] = 0.0;
-  M[14] = 0.0;
-  M[15] = x5;
-  M[16] = 0.0;
-  M[17] = 0.0;
-  M[18] = x8;
-  M[19] = 0.0;
-  M[20] = 0.0;
-  M[21] = x7;
-  M[22] = 0.0;
-  M[23] = 0.0;
-  M[24] = x8;
-}
-
-void forcing(const Params& p, double t, const double* q, const double* u, const double* tau, double* f) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
-  (void)f;
-  const double x0 = std::cos(q[0]);
-  const double x1 = std::cos(q[3]);
-  const double x2 = std::sin(q[3]);
-  const double x3 = 9.81*std::sin(q[0]) - (p.l*u[0]*u[0]);
-  const double x4 = (-9.81*(x0*x1) + x2*x3)*p.m;
-  const double x5 = 0.5*(p.l*x4);
-  const double x6 = u[0] + u[3];
-  f[0] = tau[0] - (-(x5 + p.l*(x4*x1 - (p.m*x2*(9.81*(x0*x2) + x1*x3 - 0.5*(p.l*x6*x6))))) + 4.905*(x0*p.m*p.l));
-  const double x7 = -(p.l*u[1]*u[1]) + 9.81*std::sin(q[1]);
-  const double x8 = std::sin(q[4]);
-  const double x9 = std::cos(q[1]);
-  const double x10 = std::cos(q[4]);
-  const double x11 = -(x7*x8) + 9.81*(x9*x10);
-  const double x12 = p.m*p.l*x11;
-  const double x13 = u[1] + u[4];
-  f[1] = tau[1] - (0.5*x12 + (p.m*x11*x10 - ((p.m*(0.5*(p.l*x13*x13) - (x7*x10 + 9.81*(x9*x8))))*x8))*p.l + 4.905*(p.m*p.l*x9));
-  f[2] = tau[2] - 4.905*(p.m*p.l*std::cos(q[2]));
-  f[3] = tau[3] + x5;
-  f[4] = -0.5*x12 + tau[4];
-}
-
-int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
-                     double* udot) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
-  double lambda[NC];
-  return constrained_dynamics(p, t, q, u, tau, udot, lambda);
-}
-
-const char* const constraint_names[NC] = {"L1.x", "L1.y", "L2.x", "L2.y"};
-const int coordinate_roles[5] = {1, 0, 0, 0, 0};
-
-void constraints(const Params& p, const double* q, double* phi) {
-  (void)p;
-  (void)q;
-  const double x0 = std::cos(q[1]);
-  const double x1 = p.l*x0;
-  const double x2 = std::cos(q[0]);
-  const double x3 = std::sin(q[0]);
-  const double x4 = std::sin(q[3]);
-  const double x5 = std::cos(q[3]);
-  phi[0] = -(p.l + x1 - (x2*p.l) + p.l*(x3*x4 - (x2*x5)));
-  const double x6 = std::sin(q[1]);
-  const double x7 = p.l*x6;
-  phi[1] = p.l*x3 + p.l*(x2*x4 + x3*x5) - x7;
-  const double x8 = std::cos(q[4]);
-  const double x9 = std::sin(q[4]);
-  phi[2] = -(p.l*std::cos(q[2]) - (p.l*(x0*x8 - (x6*x9))) + p.l - x1);
-  phi[3] = (x0*x9 + x6*x8)*p.l + x7 - (p.l*std::sin(q[2]));
-}
-
-void constraint_jacobian(const Params& p, const double* q, double* C) {
-  (void)p;
-  (void)q;
-  const double x0 = std::sin(q[0]);
-  const double x1 = std::cos(q[0]);
-  const double x2 = std::sin(q[3]);
-  const double x3 = std::cos(q[3]);
-  const double x4 = x1*x2 + x0*x3;
-  C[0] = -(p.l*x0 + p.l*x4);
-  const double x5 = std::sin(q[1]);
-  const double x6 = p.l*x5;
-  C[1] = x6;
-  C[2] = 0.0;
-  C[3] = -p.l*x4;
-  C[4] = 0.0;
-  const double x7 = x0*x2 - (x1*x3);
-  C[5] = -(p.l*x7) + x1*p.l;
-  const double x8 = std::cos(q[1]);
-  C[6] = -p.l*x8;
-  C[7] = 0.0;
-  C[8] = -p.l*x7;
-  C[9] = 0.0;
-  C[10] = 0.0;
-  const double x9 = std::sin(q[4]);
-  const double x10 = std::cos(q[4]);
-  const double x11 = x8*x9 + x5*x10;
-  C[11] = -(x11*p.l + x6);
-  C[12] = p.l*std::sin(q[2]);
-  C[13] = 0.0;
-  C[14] = -x11*p.l;
-  C[15] = 0.0;
-  const double x12 = p.l*(x8*x10 - (x5*x9));
-  C[16] = p.l*x8 + x12;
-  C[17] = -p.l*std::cos(q[2]);
-  C[18] = 0.0;
-  C[19] = x12;
-}
-
-void constraint_bias(const Params& p, const double* q, const double* u, double* gamma) {
-  (void)p;
-  (void)q;
-  (void)u;
-  const double x0 = std::cos(q[1]);
-  const double x1 = u[1]*u[1];
-  const double x2 = std::sin(q[0]);
-  const double x3 = std::sin(q[3]);
-  const double x4 = std::cos(q[0]);
-  const double x5 = std::cos(q[3]);
-  const double x6 = x2*x3 - (x4*x5);
-  const double x7 = u[3]*p.l*x6;
-  gamma[0] = -(p.l*x0*x1 + u[0]*(x7 - (u[0]*(-(p.l*x6) + x4*p.l))) + u[3]*(x7 + u[0]*p.l*x6));
-  const double x8 = std::sin(q[1]);
-  const double x9 = x4*x3 + x2*x5;
-  const double x10 = u[3]*p.l*x9;
-  gamma[1] = -(p.l*x1*x8 - (u[3]*(u[0]*p.l*x9 + x10)) - (u[0]*(u[0]*(p.l*x2 + p.l*x9) + x10)));
-  const double x11 = std::cos(q[4]);
-  const double x12 = std::sin(q[4]);
-  const double x13 = x0*x11 - (x8*x12);
-  const double x14 = p.l*u[4]*x13;
-  const double x15 = u[2]*u[2];
-  gamma[2] = u[1]*(x14 + u[1]*(p.l*x0 + p.l*x13)) + u[4]*(x14 + u[1]*p.l*x13) - (p.l*x15*std::cos(q[2]));
-  const double x16 = x0*x12 + x8*x11;
-  const double x17 = x16*p.l*u[4];
-  gamma[3] = -(p.l*x15*std::sin(q[2])) + u[1]*(x17 + u[1]*(x16*p.l + p.l*x8)) + (u[1]*x16*p.l + x17)*u[4];
-}
-
 namespace {
-
-constexpr int NS = 5;  // speeds solved for (not prescribed)
 
 // M: NS*NS (overwritten by L), b: NS (the right-hand side; udot on return),
 // C: NC*NS (overwritten by Y^T), g: NC. Returns 0, k > 0 for a non-positive
 // k-th pivot of M, -k when the k-th loop equation is (nearly) a combination
 // of the earlier ones.
+template <int NS, int NC>
 int solve_saddle(double* M, double* b, double* C, const double* g, double* lambda) {
   for (int j = 0; j < NS; ++j) {
     double s = M[j * NS + j];
@@ -290,13 +84,247 @@ int solve_saddle(double* M, double* b, double* C, const double* g, double* lambd
 
 }  // namespace
 
-int constrained_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
-                         double* udot, double* lambda) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
+const char* const coordinate_names[5] = {"crank0_angle", "crank1_angle", "crank2_angle", "coupler1_angle", "coupler2_angle"};
+const char* const speed_names[5] = {"crank0_angle_dot", "crank1_angle_dot", "crank2_angle_dot", "coupler1_angle_dot", "coupler2_angle_dot"};
+const char* const input_names[5] = {"crank0_angle_tau", "crank1_angle_tau", "crank2_angle_tau", "coupler1_angle_tau", "coupler2_angle_tau"};
+const char* const output_names[15] = {"B0.x", "B0.y", "B0.z", "B1.x", "B1.y", "B1.z", "B2.x", "B2.y", "B2.z", "crank0", "crank0_rate", "L1_reaction.x", "L1_reaction.y", "L2_reaction.x", "L2_reaction.y"};
+const char* const parameter_names[2] = {"l", "m"};
+const double q0[5] = {1.5707963267948966, 1.5707963267948966, 1.5707963267948966, -1.5707963267948966, -1.5707963267948966};
+const double u0[5] = {-1.0, -1.0, -1.0, 1.0, 1.0};
+
+const char* const constraint_names[NC] = {"L1.x", "L1.y", "L2.x", "L2.y"};
+const int coordinate_roles[5] = {1, 0, 0, 0, 0};
+
+bool set_parameter(Params& p, const char* name, double value) {
+  if (std::strcmp(name, "l") == 0) {
+    p.l = value;
+    return true;
+  }
+  if (std::strcmp(name, "m") == 0) {
+    p.m = value;
+    return true;
+  }
+  return false;
+}
+
+double get_parameter(const Params& p, int i) {
+  switch (i) {
+    case 0: return p.l;
+    case 1: return p.m;
+    default: return 0.0;
+  }
+}
+
+void initial_state([[maybe_unused]] const Params& p, double* q, double* u) {
+  for (int i = 0; i < NQ; ++i) q[i] = q0[i];
+  for (int i = 0; i < NU; ++i) u[i] = u0[i];
+}
+
+void mass_matrix(const Params& p, const double* q, double* M) {
+  const double x0 = p.m*p.l*p.l*std::cos(q[3]);
+  const double x1 = p.l*p.l;
+  const double x2 = p.m*x1;
+  const double x3 = 1.6666666666666665*x2;
+  M[0] = x0 + x3;
+  M[1] = 0.0;
+  M[2] = 0.0;
+  const double x4 = 0.3333333333333333*x2;
+  const double x5 = 0.5*x0 + x4;
+  M[3] = x5;
+  M[4] = 0.0;
+  M[5] = 0.0;
+  const double x6 = p.m*p.l*p.l*std::cos(q[4]);
+  M[6] = x6 + x3;
+  M[7] = 0.0;
+  M[8] = 0.0;
+  const double x7 = 0.5*x6 + x4;
+  M[9] = x7;
+  M[10] = 0.0;
+  M[11] = 0.0;
+  const double x8 = 0.3333333333333333*p.m*x1;
+  M[12] = x8;
+  M[13] = 0.0;
+  M[14] = 0.0;
+  M[15] = x5;
+  M[16] = 0.0;
+  M[17] = 0.0;
+  M[18] = x8;
+  M[19] = 0.0;
+  M[20] = 0.0;
+  M[21] = x7;
+  M[22] = 0.0;
+  M[23] = 0.0;
+  M[24] = x8;
+}
+
+void forcing(const Params& p, [[maybe_unused]] double t, const double* q, const double* u, const double* tau,
+             double* f) {
+  const double x0 = std::cos(q[0]);
+  const double x1 = std::cos(q[3]);
+  const double x2 = std::sin(q[3]);
+  const double x3 = 9.81*std::sin(q[0]) - (p.l*u[0]*u[0]);
+  const double x4 = (-9.81*(x0*x1) + x2*x3)*p.m;
+  const double x5 = 0.5*(p.l*x4);
+  const double x6 = u[0] + u[3];
+  f[0] = tau[0] - (-(x5 + p.l*(x4*x1 - (p.m*x2*(9.81*(x0*x2) + x1*x3 - 0.5*(p.l*x6*x6))))) + 4.905*(x0*p.m*p.l));
+  const double x7 = -(p.l*u[1]*u[1]) + 9.81*std::sin(q[1]);
+  const double x8 = std::sin(q[4]);
+  const double x9 = std::cos(q[1]);
+  const double x10 = std::cos(q[4]);
+  const double x11 = -(x7*x8) + 9.81*(x9*x10);
+  const double x12 = p.m*p.l*x11;
+  const double x13 = u[1] + u[4];
+  f[1] = tau[1] - (0.5*x12 + (p.m*x11*x10 - ((p.m*(0.5*(p.l*x13*x13) - (x7*x10 + 9.81*(x9*x8))))*x8))*p.l + 4.905*(p.m*p.l*x9));
+  f[2] = tau[2] - 4.905*(p.m*p.l*std::cos(q[2]));
+  f[3] = tau[3] + x5;
+  f[4] = -0.5*x12 + tau[4];
+}
+
+int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
+                     double* udot) {
+  double lambda[NC];
+  return constrained_dynamics(p, t, q, u, tau, udot, lambda);
+}
+
+void coordinate_rates([[maybe_unused]] const double* q, const double* u, double* qdot) {
+  qdot[0] = u[0];
+  qdot[1] = u[1];
+  qdot[2] = u[2];
+  qdot[3] = u[3];
+  qdot[4] = u[4];
+}
+
+double kinetic_energy(const Params& p, const double* q, const double* u) {
+  double T;
+  const double x0 = p.l*p.l;
+  const double x1 = u[0] + u[3];
+  const double x2 = u[1] + u[4];
+  const double x3 = u[1]*p.l;
+  const double x4 = p.l*u[2];
+  const double x5 = u[0]*p.l;
+  const double x6 = u[1]*p.l*std::sin(q[4]);
+  const double x7 = u[1]*p.l*std::cos(q[4]) + 0.5*(p.l*x2);
+  const double x8 = u[0]*p.l*std::sin(q[3]);
+  const double x9 = 0.5*(p.l*x1) + u[0]*p.l*std::cos(q[3]);
+  T = 0.041666666666666664*(p.m*x0*x1*x1) + 0.041666666666666664*(p.m*x0*x2*x2) + 0.125*(p.m*x3*x3) + 0.041666666666666664*(p.m*u[2]*u[2]*x0) + 0.125*(p.m*x4*x4) + 0.125*(x5*x5*p.m) + 0.041666666666666664*(u[0]*u[0]*p.m*x0) + 0.041666666666666664*(u[1]*u[1]*p.m*x0) + 0.5*(p.m*(x6*x6 + x7*x7)) + 0.5*(p.m*(x8*x8 + x9*x9));
+  return T;
+}
+
+double potential_energy(const Params& p, const double* q) {
+  double V;
+  const double x0 = std::sin(q[1]);
+  const double x1 = std::sin(q[0]);
+  V = 4.905*(p.m*p.l*x0) + 9.81*((p.l*x1 + 0.5*(p.l*(std::cos(q[0])*std::sin(q[3]) + x1*std::cos(q[3]))))*p.m) + 9.81*(p.m*(0.5*((std::cos(q[1])*std::sin(q[4]) + x0*std::cos(q[4]))*p.l) + p.l*x0)) + 4.905*(p.m*p.l*x1) + 4.905*(p.m*p.l*std::sin(q[2]));
+  return V;
+}
+
+void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
+  y[0] = std::cos(q[0])*p.l;
+  y[1] = p.l*std::sin(q[0]);
+  y[2] = 0.0;
+  y[3] = p.l + p.l*std::cos(q[1]);
+  y[4] = p.l*std::sin(q[1]);
+  y[5] = 0.0;
+  y[6] = p.l*std::cos(q[2]) + 2.0*p.l;
+  y[7] = p.l*std::sin(q[2]);
+  y[8] = 0.0;
+  y[9] = q[0];
+  y[10] = u[0];
+  y[11] = 0.0;
+  y[12] = 0.0;
+  y[13] = 0.0;
+  y[14] = 0.0;
+  // Loop forces: lambda of the dynamics at these inputs of zero (NaN where it cannot be solved).
+  double reaction_udot[NU], lambda[NC];
+  const double no_inputs[5] = {};
+  const bool solved = constrained_dynamics(p, t, q, u, no_inputs, reaction_udot, lambda) == 0;
+  y[11] = solved ? lambda[0] : std::nan("");
+  y[12] = solved ? lambda[1] : std::nan("");
+  y[13] = solved ? lambda[2] : std::nan("");
+  y[14] = solved ? lambda[3] : std::nan("");
+}
+
+void constraints(const Params& p, const double* q, double* phi) {
+  const double x0 = std::cos(q[1]);
+  const double x1 = p.l*x0;
+  const double x2 = std::cos(q[0]);
+  const double x3 = std::sin(q[0]);
+  const double x4 = std::sin(q[3]);
+  const double x5 = std::cos(q[3]);
+  phi[0] = -(p.l + x1 - (x2*p.l) + p.l*(x3*x4 - (x2*x5)));
+  const double x6 = std::sin(q[1]);
+  const double x7 = p.l*x6;
+  phi[1] = p.l*x3 + p.l*(x2*x4 + x3*x5) - x7;
+  const double x8 = std::cos(q[4]);
+  const double x9 = std::sin(q[4]);
+  phi[2] = -(p.l*std::cos(q[2]) - (p.l*(x0*x8 - (x6*x9))) + p.l - x1);
+  phi[3] = (x0*x9 + x6*x8)*p.l + x7 - (p.l*std::sin(q[2]));
+}
+
+void constraint_jacobian(const Params& p, const double* q, double* C) {
+  const double x0 = std::sin(q[0]);
+  const double x1 = std::cos(q[0]);
+  const double x2 = std::sin(q[3]);
+  const double x3 = std::cos(q[3]);
+  const double x4 = x1*x2 + x0*x3;
+  C[0] = -(p.l*x0 + p.l*x4);
+  const double x5 = std::sin(q[1]);
+  const double x6 = p.l*x5;
+  C[1] = x6;
+  C[2] = 0.0;
+  C[3] = -p.l*x4;
+  C[4] = 0.0;
+  const double x7 = x0*x2 - (x1*x3);
+  C[5] = -(p.l*x7) + x1*p.l;
+  const double x8 = std::cos(q[1]);
+  C[6] = -p.l*x8;
+  C[7] = 0.0;
+  C[8] = -p.l*x7;
+  C[9] = 0.0;
+  C[10] = 0.0;
+  const double x9 = std::sin(q[4]);
+  const double x10 = std::cos(q[4]);
+  const double x11 = x8*x9 + x5*x10;
+  C[11] = -(x11*p.l + x6);
+  C[12] = p.l*std::sin(q[2]);
+  C[13] = 0.0;
+  C[14] = -x11*p.l;
+  C[15] = 0.0;
+  const double x12 = p.l*(x8*x10 - (x5*x9));
+  C[16] = p.l*x8 + x12;
+  C[17] = -p.l*std::cos(q[2]);
+  C[18] = 0.0;
+  C[19] = x12;
+}
+
+void constraint_bias(const Params& p, const double* q, const double* u, double* gamma) {
+  const double x0 = std::cos(q[1]);
+  const double x1 = u[1]*u[1];
+  const double x2 = std::sin(q[0]);
+  const double x3 = std::sin(q[3]);
+  const double x4 = std::cos(q[0]);
+  const double x5 = std::cos(q[3]);
+  const double x6 = x2*x3 - (x4*x5);
+  const double x7 = u[3]*p.l*x6;
+  gamma[0] = -(p.l*x0*x1 + u[0]*(x7 - (u[0]*(-(p.l*x6) + x4*p.l))) + u[3]*(x7 + u[0]*p.l*x6));
+  const double x8 = std::sin(q[1]);
+  const double x9 = x4*x3 + x2*x5;
+  const double x10 = u[3]*p.l*x9;
+  gamma[1] = -(p.l*x1*x8 - (u[3]*(u[0]*p.l*x9 + x10)) - (u[0]*(u[0]*(p.l*x2 + p.l*x9) + x10)));
+  const double x11 = std::cos(q[4]);
+  const double x12 = std::sin(q[4]);
+  const double x13 = x0*x11 - (x8*x12);
+  const double x14 = p.l*u[4]*x13;
+  const double x15 = u[2]*u[2];
+  gamma[2] = u[1]*(x14 + u[1]*(p.l*x0 + p.l*x13)) + u[4]*(x14 + u[1]*p.l*x13) - (p.l*x15*std::cos(q[2]));
+  const double x16 = x0*x12 + x8*x11;
+  const double x17 = x16*p.l*u[4];
+  gamma[3] = -(p.l*x15*std::sin(q[2])) + u[1]*(x17 + u[1]*(x16*p.l + p.l*x8)) + (u[1]*x16*p.l + x17)*u[4];
+}
+
+int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
+                         const double* tau, double* udot, double* lambda) {
+  constexpr int NS = 5;  // speeds solved for (not prescribed)
   double Ms[NS * NS], b[NS], Cs[NC * NS], g[NC];
   const double x0 = std::sin(q[0]);
   const double x1 = std::cos(q[0]);
@@ -399,84 +427,13 @@ int constrained_dynamics(const Params& p, double t, const double* q, const doubl
   b[2] = tau[2] - 4.905*(p.m*p.l*x28);
   b[3] = tau[3] + x41;
   b[4] = -0.5*x45 + tau[4];
-  const int status = solve_saddle(Ms, b, Cs, g, lambda);
+  const int status = solve_saddle<NS, NC>(Ms, b, Cs, g, lambda);
   udot[0] = b[0];
   udot[1] = b[1];
   udot[2] = b[2];
   udot[3] = b[3];
   udot[4] = b[4];
   return status;
-}
-
-void coordinate_rates(const double* q, const double* u, double* qdot) {
-  (void)q;
-  (void)u;
-  (void)qdot;
-  qdot[0] = u[0];
-  qdot[1] = u[1];
-  qdot[2] = u[2];
-  qdot[3] = u[3];
-  qdot[4] = u[4];
-}
-
-double kinetic_energy(const Params& p, const double* q, const double* u) {
-  (void)p;
-  (void)q;
-  (void)u;
-  double T;
-  const double x0 = p.l*p.l;
-  const double x1 = u[0] + u[3];
-  const double x2 = u[1] + u[4];
-  const double x3 = u[1]*p.l;
-  const double x4 = p.l*u[2];
-  const double x5 = u[0]*p.l;
-  const double x6 = u[1]*p.l*std::sin(q[4]);
-  const double x7 = u[1]*p.l*std::cos(q[4]) + 0.5*(p.l*x2);
-  const double x8 = u[0]*p.l*std::sin(q[3]);
-  const double x9 = 0.5*(p.l*x1) + u[0]*p.l*std::cos(q[3]);
-  T = 0.041666666666666664*(p.m*x0*x1*x1) + 0.041666666666666664*(p.m*x0*x2*x2) + 0.125*(p.m*x3*x3) + 0.041666666666666664*(p.m*u[2]*u[2]*x0) + 0.125*(p.m*x4*x4) + 0.125*(x5*x5*p.m) + 0.041666666666666664*(u[0]*u[0]*p.m*x0) + 0.041666666666666664*(u[1]*u[1]*p.m*x0) + 0.5*(p.m*(x6*x6 + x7*x7)) + 0.5*(p.m*(x8*x8 + x9*x9));
-  return T;
-}
-
-double potential_energy(const Params& p, const double* q) {
-  (void)p;
-  (void)q;
-  double V;
-  const double x0 = std::sin(q[1]);
-  const double x1 = std::sin(q[0]);
-  V = 4.905*(p.m*p.l*x0) + 9.81*((p.l*x1 + 0.5*(p.l*(std::cos(q[0])*std::sin(q[3]) + x1*std::cos(q[3]))))*p.m) + 9.81*(p.m*(0.5*((std::cos(q[1])*std::sin(q[4]) + x0*std::cos(q[4]))*p.l) + p.l*x0)) + 4.905*(p.m*p.l*x1) + 4.905*(p.m*p.l*std::sin(q[2]));
-  return V;
-}
-
-void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)y;
-  y[0] = std::cos(q[0])*p.l;
-  y[1] = p.l*std::sin(q[0]);
-  y[2] = 0.0;
-  y[3] = p.l + p.l*std::cos(q[1]);
-  y[4] = p.l*std::sin(q[1]);
-  y[5] = 0.0;
-  y[6] = p.l*std::cos(q[2]) + 2.0*p.l;
-  y[7] = p.l*std::sin(q[2]);
-  y[8] = 0.0;
-  y[9] = q[0];
-  y[10] = u[0];
-  y[11] = 0.0;
-  y[12] = 0.0;
-  y[13] = 0.0;
-  y[14] = 0.0;
-  // Loop forces: lambda of the dynamics at these inputs of zero (NaN where it cannot be solved).
-  double reaction_udot[NU], lambda[NC];
-  const double no_inputs[5] = {};
-  const bool solved = constrained_dynamics(p, t, q, u, no_inputs, reaction_udot, lambda) == 0;
-  y[11] = solved ? lambda[0] : std::nan("");
-  y[12] = solved ? lambda[1] : std::nan("");
-  y[13] = solved ? lambda[2] : std::nan("");
-  y[14] = solved ? lambda[3] : std::nan("");
 }
 
 }  // namespace nfourbar2

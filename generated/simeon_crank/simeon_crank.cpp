@@ -9,261 +9,13 @@
 namespace kanegen_models {
 namespace simeon_crank {
 
-const char* const coordinate_names[7] = {"crank_angle", "rod_angle", "slider_x", "rod.mode1", "rod.mode2", "rod.mode3", "rod.mode4"};
-const char* const speed_names[7] = {"crank_angle_dot", "rod_angle_dot", "slider_x_dot", "rod.mode1_dot", "rod.mode2_dot", "rod.mode3_dot", "rod.mode4_dot"};
-const char* const input_names[3] = {"crank_angle_tau", "rod_angle_tau", "slider_x_tau"};
-const char* const output_names[9] = {"slider_position", "midspan.x", "midspan.y", "midspan.z", "rod_tip.x", "rod_tip.y", "rod_tip.z", "E_reaction.x", "E_reaction.y"};
-const char* const parameter_names[5] = {"omega", "L1", "m1", "J1", "m3"};
-const double q0[7] = {0.0, 0.0, 0.450016933, 0.0, 0.0, 0.0, 0.0};
-const double u0[7] = {1.5e+02, -224.99576703969453, 0.0, 0.0, 0.0, 0.0, 0.0};
-
-bool set_parameter(Params& p, const char* name, double value) {
-  (void)p;
-  (void)name;
-  (void)value;
-  if (std::strcmp(name, "omega") == 0) {
-    p.omega = value;
-    return true;
-  }
-  if (std::strcmp(name, "L1") == 0) {
-    p.L1 = value;
-    return true;
-  }
-  if (std::strcmp(name, "m1") == 0) {
-    p.m1 = value;
-    return true;
-  }
-  if (std::strcmp(name, "J1") == 0) {
-    p.J1 = value;
-    return true;
-  }
-  if (std::strcmp(name, "m3") == 0) {
-    p.m3 = value;
-    return true;
-  }
-  return false;
-}
-
-double get_parameter(const Params& p, int i) {
-  (void)p;
-  switch (i) {
-    case 0: return p.omega;
-    case 1: return p.L1;
-    case 2: return p.m1;
-    case 3: return p.J1;
-    case 4: return p.m3;
-    default: return 0.0;
-  }
-}
-
-void initial_state(const Params& p, double* q, double* u) {
-  (void)p;
-  for (int i = 0; i < NQ; ++i) q[i] = q0[i];
-  for (int i = 0; i < NU; ++i) u[i] = u0[i];
-  q[0] = 0.0;
-  u[0] = p.omega;
-}
-
-void mass_matrix(const Params& p, const double* q, double* M) {
-  (void)p;
-  (void)q;
-  (void)M;
-  const double x0 = 0.004533120000000002 + 0.007555955520000005*q[6] + q[6]*(0.010075278664704*q[5] + 0.020148879067648014*q[6] + 0.007555955520000005) + 0.015108888960000004*q[5] + q[5]*(0.08057536907059201*q[5] + 0.010075278664704*q[6] + 0.015108888960000004) + 8.058879999999997e-07 + 0.07555199979557659*(q[3]*q[3]) + 0.07555199672950157*(q[4]*q[4]);
-  const double x1 = std::cos(q[1]);
-  const double x2 = std::sin(q[1]);
-  const double x3 = ((0.10072592640000004*q[5] + 0.025189036800000012*q[6] + 0.022665600000000008)*x1 - 0.09619579395368429*(q[3]*x2))*p.L1;
-  M[0] = x0 + p.J1 + 2.0*x3 + 0.15110400000000004*p.L1*p.L1;
-  const double x4 = x0 + x3;
-  M[1] = x4;
-  M[2] = 0.0;
-  const double x5 = 0.009114416736842861*q[6] + 0.0779669604799985*q[5] + 0.014429369093052645;
-  const double x6 = 0.09619579395368429*(x1*p.L1) + x5;
-  M[3] = x6;
-  const double x7 = -(0.007214684400100231 + 0.02404894800033411*q[6]);
-  M[4] = x7;
-  const double x8 = x2*p.L1;
-  const double x9 = -(-0.10072592640000004*x8 + 0.07796696047999854*q[3]);
-  M[5] = x9;
-  const double x10 = -(0.009114416736842861*q[3] - 0.0240489480003341*q[4]);
-  const double x11 = 0.025189036800000012*x8 + x10;
-  M[6] = x11;
-  M[7] = x4;
-  M[8] = x0;
-  M[9] = 0.0;
-  M[10] = x5;
-  M[11] = x7;
-  const double x12 = -0.07796696047999854*q[3];
-  M[12] = x12;
-  M[13] = x10;
-  M[14] = 0.0;
-  M[15] = 0.0;
-  M[16] = p.m3;
-  M[17] = 0.0;
-  M[18] = 0.0;
-  M[19] = 0.0;
-  M[20] = 0.0;
-  M[21] = x6;
-  M[22] = x5;
-  M[23] = 0.0;
-  M[24] = 0.07555199979557659;
-  M[25] = 0.0;
-  M[26] = 0.0;
-  M[27] = 0.0;
-  M[28] = x7;
-  M[29] = x7;
-  M[30] = 0.0;
-  M[31] = 0.0;
-  M[32] = 0.07555199672950157;
-  M[33] = 0.0;
-  M[34] = 0.0;
-  M[35] = x9;
-  M[36] = x12;
-  M[37] = 0.0;
-  M[38] = 0.0;
-  M[39] = 0.0;
-  M[40] = 0.08057536907059201;
-  M[41] = 0.010075278664704;
-  M[42] = x11;
-  M[43] = x10;
-  M[44] = 0.0;
-  M[45] = 0.0;
-  M[46] = 0.0;
-  M[47] = 0.010075278664704;
-  M[48] = 0.020148879067648014;
-}
-
-void forcing(const Params& p, double t, const double* q, const double* u, const double* tau, double* f) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
-  (void)f;
-  const double x0 = std::sin(q[1]);
-  const double x1 = u[1] + u[0];
-  const double x2 = u[3]*x1;
-  const double x3 = std::cos(q[1]);
-  const double x4 = u[0]*u[0];
-  const double x5 = x3*x4*p.L1;
-  const double x6 = 0.10072592640000004*q[5] + 0.025189036800000012*q[6] + 0.022665600000000008;
-  const double x7 = x1*x1;
-  const double x8 = x4*x0*p.L1;
-  const double x9 = q[3]*x7;
-  const double x10 = 0.010075278664704*q[5] + 0.020148879067648014*q[6] + 0.007555955520000005;
-  const double x11 = 0.08057536907059201*q[5] + 0.010075278664704*q[6] + 0.015108888960000004;
-  const double x12 = -(2.0*((x10*u[6] + u[5]*x11 + 0.07555199672950157*(u[4]*q[4]) + 0.07555199979557659*(u[3]*q[3]))*x1) + 0.09619579395368429*(q[3]*x3*x4*p.L1) + x6*x8);
-  f[0] = (x0*(0.19239158790736857*x2 + 0.15110400000000004*x5 + x6*x7) - (x3*(0.15110400000000004*x8 - 0.09619579395368429*x9 + 2.0*((0.025189036800000012*u[6] + 0.10072592640000004*u[5])*x1))))*p.L1 + x12;
-  f[1] = tau[1] + x12;
-  f[2] = tau[2];
-  f[3] = -(2.0*((0.009114416736842861*u[6] + 0.07796696047999854*u[5])*x1) + 0.09619579395368429*x8 - 0.07555199979557659*x9 + 123144.33220014957*q[3]);
-  f[4] = -1970309.2752483957*q[4] + 0.0480978960006682*(u[6]*x1) + 0.07555199672950157*(x7*q[4]);
-  f[5] = -227532799.9999999*q[5] + 0.155933920959997*x2 + x7*x11 + 113766399.99999994*q[6] + 0.10072592640000004*x5;
-  f[6] = -(-0.025189036800000012*x5 - 2.0*(x1*(-0.02404894800033411*u[4] + 0.009114416736842861*u[3])) - 113766399.99999988*q[5] - (x7*x10) + 99549866.66666667*q[6]);
-}
-
-int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
-                     double* udot) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
-  double lambda[NC];
-  return constrained_dynamics(p, t, q, u, tau, udot, lambda);
-}
-
-const char* const constraint_names[NC] = {"E.x", "E.y"};
-const int coordinate_roles[7] = {2, 0, 0, 0, 0, 0, 0};
-
-void constraints(const Params& p, const double* q, double* phi) {
-  (void)p;
-  (void)q;
-  const double x0 = std::cos(q[0]);
-  const double x1 = std::cos(q[1]);
-  const double x2 = std::sin(q[0]);
-  const double x3 = std::sin(q[1]);
-  const double x4 = x0*x1 - (x2*x3);
-  const double x5 = q[6] + 0.3;
-  const double x6 = x0*x3 + x2*x1;
-  phi[0] = -(-(x4*x5) + q[2] - (x0*p.L1) + 1.0033115225336665e-19*(q[4]*x6));
-  phi[1] = x5*x6 + x2*p.L1 + 1.0033115225336665e-19*(x4*q[4]);
-}
-
-void constraint_jacobian(const Params& p, const double* q, double* C) {
-  (void)p;
-  (void)q;
-  const double x0 = q[6] + 0.3;
-  const double x1 = std::cos(q[0]);
-  const double x2 = std::sin(q[1]);
-  const double x3 = x1*x2;
-  const double x4 = std::sin(q[0]);
-  const double x5 = std::cos(q[1]);
-  const double x6 = x4*x5;
-  const double x7 = x3 + x6;
-  const double x8 = x0*x7;
-  const double x9 = x1*x5;
-  const double x10 = x4*x2;
-  const double x11 = x9 - x10;
-  const double x12 = 1.0033115225336665e-19*(x11*q[4]);
-  C[0] = -(x8 + x4*p.L1 + x12);
-  C[1] = -(x8 + x12);
-  C[2] = -1.0;
-  C[3] = 0.0;
-  C[4] = -(1.0033115225336665e-19*x3 + 1.0033115225336665e-19*x6);
-  C[5] = 0.0;
-  C[6] = x11;
-  const double x13 = x11*x0;
-  const double x14 = q[4]*x7;
-  C[7] = x1*p.L1 + x13 - 1.0033115225336665e-19*x14;
-  C[8] = -(-x13 + 1.0033115225336665e-19*x14);
-  C[9] = 0.0;
-  C[10] = 0.0;
-  C[11] = -1.0033115225336665e-19*x10 + 1.0033115225336665e-19*x9;
-  C[12] = 0.0;
-  C[13] = x7;
-}
-
-void constraint_bias(const Params& p, const double* q, const double* u, double* gamma) {
-  (void)p;
-  (void)q;
-  (void)u;
-  const double x0 = std::sin(q[0]);
-  const double x1 = std::sin(q[1]);
-  const double x2 = x0*x1;
-  const double x3 = std::cos(q[0]);
-  const double x4 = std::cos(q[1]);
-  const double x5 = x3*x4;
-  const double x6 = -1.0033115225336665e-19*x2 + 1.0033115225336665e-19*x5;
-  const double x7 = x6*u[4];
-  const double x8 = x5 - x2;
-  const double x9 = q[6] + 0.3;
-  const double x10 = x8*x9;
-  const double x11 = x3*x1;
-  const double x12 = x0*x4;
-  const double x13 = x11 + x12;
-  const double x14 = q[4]*x13;
-  const double x15 = -x10 + 1.0033115225336665e-19*x14;
-  const double x16 = u[6]*x13;
-  const double x17 = -(u[1]*x15);
-  gamma[0] = u[1]*(x7 - (u[0]*x15) + x16 + x17) + u[6]*(u[1]*x13 + u[0]*x13) + u[4]*(u[1]*x6 + u[0]*x6) + u[0]*(x7 + x16 + u[0]*(x3*p.L1 + x10 - 1.0033115225336665e-19*x14) + x17);
-  const double x18 = x9*x13;
-  const double x19 = 1.0033115225336665e-19*(x8*q[4]);
-  const double x20 = x8*u[6];
-  const double x21 = 1.0033115225336665e-19*x11 + 1.0033115225336665e-19*x12;
-  const double x22 = -(u[4]*x21);
-  const double x23 = x18 + x19;
-  const double x24 = -(u[1]*x23);
-  gamma[1] = -((u[1]*x8 + u[0]*x8)*u[6] + u[0]*(-(u[0]*(x18 + x0*p.L1 + x19)) + x20 + x22 + x24) - ((u[1]*x21 + u[0]*x21)*u[4]) + u[1]*(-(u[0]*x23) + x20 + x22 + x24));
-}
-
 namespace {
-
-constexpr int NS = 6;  // speeds solved for (not prescribed)
 
 // M: NS*NS (overwritten by L), b: NS (the right-hand side; udot on return),
 // C: NC*NS (overwritten by Y^T), g: NC. Returns 0, k > 0 for a non-positive
 // k-th pivot of M, -k when the k-th loop equation is (nearly) a combination
 // of the earlier ones.
+template <int NS, int NC>
 int solve_saddle(double* M, double* b, double* C, const double* g, double* lambda) {
   for (int j = 0; j < NS; ++j) {
     double s = M[j * NS + j];
@@ -332,13 +84,275 @@ int solve_saddle(double* M, double* b, double* C, const double* g, double* lambd
 
 }  // namespace
 
-int constrained_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
-                         double* udot, double* lambda) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
+const char* const coordinate_names[7] = {"crank_angle", "rod_angle", "slider_x", "rod.mode1", "rod.mode2", "rod.mode3", "rod.mode4"};
+const char* const speed_names[7] = {"crank_angle_dot", "rod_angle_dot", "slider_x_dot", "rod.mode1_dot", "rod.mode2_dot", "rod.mode3_dot", "rod.mode4_dot"};
+const char* const input_names[3] = {"crank_angle_tau", "rod_angle_tau", "slider_x_tau"};
+const char* const output_names[9] = {"slider_position", "midspan.x", "midspan.y", "midspan.z", "rod_tip.x", "rod_tip.y", "rod_tip.z", "E_reaction.x", "E_reaction.y"};
+const char* const parameter_names[5] = {"omega", "L1", "m1", "J1", "m3"};
+const double q0[7] = {0.0, 0.0, 0.450016933, 0.0, 0.0, 0.0, 0.0};
+const double u0[7] = {1.5e+02, -224.99576703969453, 0.0, 0.0, 0.0, 0.0, 0.0};
+
+const char* const constraint_names[NC] = {"E.x", "E.y"};
+const int coordinate_roles[7] = {2, 0, 0, 0, 0, 0, 0};
+
+bool set_parameter(Params& p, const char* name, double value) {
+  if (std::strcmp(name, "omega") == 0) {
+    p.omega = value;
+    return true;
+  }
+  if (std::strcmp(name, "L1") == 0) {
+    p.L1 = value;
+    return true;
+  }
+  if (std::strcmp(name, "m1") == 0) {
+    p.m1 = value;
+    return true;
+  }
+  if (std::strcmp(name, "J1") == 0) {
+    p.J1 = value;
+    return true;
+  }
+  if (std::strcmp(name, "m3") == 0) {
+    p.m3 = value;
+    return true;
+  }
+  return false;
+}
+
+double get_parameter(const Params& p, int i) {
+  switch (i) {
+    case 0: return p.omega;
+    case 1: return p.L1;
+    case 2: return p.m1;
+    case 3: return p.J1;
+    case 4: return p.m3;
+    default: return 0.0;
+  }
+}
+
+void initial_state(const Params& p, double* q, double* u) {
+  for (int i = 0; i < NQ; ++i) q[i] = q0[i];
+  for (int i = 0; i < NU; ++i) u[i] = u0[i];
+  q[0] = 0.0;
+  u[0] = p.omega;
+}
+
+void mass_matrix(const Params& p, const double* q, double* M) {
+  const double x0 = 0.004533120000000002 + 0.007555955520000005*q[6] + q[6]*(0.010075278664704*q[5] + 0.020148879067648014*q[6] + 0.007555955520000005) + 0.015108888960000004*q[5] + q[5]*(0.08057536907059201*q[5] + 0.010075278664704*q[6] + 0.015108888960000004) + 8.058879999999997e-07 + 0.07555199979557659*(q[3]*q[3]) + 0.07555199672950157*(q[4]*q[4]);
+  const double x1 = std::cos(q[1]);
+  const double x2 = std::sin(q[1]);
+  const double x3 = ((0.10072592640000004*q[5] + 0.025189036800000012*q[6] + 0.022665600000000008)*x1 - 0.09619579395368429*(q[3]*x2))*p.L1;
+  M[0] = x0 + p.J1 + 2.0*x3 + 0.15110400000000004*p.L1*p.L1;
+  const double x4 = x0 + x3;
+  M[1] = x4;
+  M[2] = 0.0;
+  const double x5 = 0.009114416736842861*q[6] + 0.0779669604799985*q[5] + 0.014429369093052645;
+  const double x6 = 0.09619579395368429*(x1*p.L1) + x5;
+  M[3] = x6;
+  const double x7 = -(0.007214684400100231 + 0.02404894800033411*q[6]);
+  M[4] = x7;
+  const double x8 = x2*p.L1;
+  const double x9 = -(-0.10072592640000004*x8 + 0.07796696047999854*q[3]);
+  M[5] = x9;
+  const double x10 = -(0.009114416736842861*q[3] - 0.0240489480003341*q[4]);
+  const double x11 = 0.025189036800000012*x8 + x10;
+  M[6] = x11;
+  M[7] = x4;
+  M[8] = x0;
+  M[9] = 0.0;
+  M[10] = x5;
+  M[11] = x7;
+  const double x12 = -0.07796696047999854*q[3];
+  M[12] = x12;
+  M[13] = x10;
+  M[14] = 0.0;
+  M[15] = 0.0;
+  M[16] = p.m3;
+  M[17] = 0.0;
+  M[18] = 0.0;
+  M[19] = 0.0;
+  M[20] = 0.0;
+  M[21] = x6;
+  M[22] = x5;
+  M[23] = 0.0;
+  M[24] = 0.07555199979557659;
+  M[25] = 0.0;
+  M[26] = 0.0;
+  M[27] = 0.0;
+  M[28] = x7;
+  M[29] = x7;
+  M[30] = 0.0;
+  M[31] = 0.0;
+  M[32] = 0.07555199672950157;
+  M[33] = 0.0;
+  M[34] = 0.0;
+  M[35] = x9;
+  M[36] = x12;
+  M[37] = 0.0;
+  M[38] = 0.0;
+  M[39] = 0.0;
+  M[40] = 0.08057536907059201;
+  M[41] = 0.010075278664704;
+  M[42] = x11;
+  M[43] = x10;
+  M[44] = 0.0;
+  M[45] = 0.0;
+  M[46] = 0.0;
+  M[47] = 0.010075278664704;
+  M[48] = 0.020148879067648014;
+}
+
+void forcing(const Params& p, [[maybe_unused]] double t, const double* q, const double* u, const double* tau,
+             double* f) {
+  const double x0 = std::sin(q[1]);
+  const double x1 = u[1] + u[0];
+  const double x2 = u[3]*x1;
+  const double x3 = std::cos(q[1]);
+  const double x4 = u[0]*u[0];
+  const double x5 = x3*x4*p.L1;
+  const double x6 = 0.10072592640000004*q[5] + 0.025189036800000012*q[6] + 0.022665600000000008;
+  const double x7 = x1*x1;
+  const double x8 = x4*x0*p.L1;
+  const double x9 = q[3]*x7;
+  const double x10 = 0.010075278664704*q[5] + 0.020148879067648014*q[6] + 0.007555955520000005;
+  const double x11 = 0.08057536907059201*q[5] + 0.010075278664704*q[6] + 0.015108888960000004;
+  const double x12 = -(2.0*((x10*u[6] + u[5]*x11 + 0.07555199672950157*(u[4]*q[4]) + 0.07555199979557659*(u[3]*q[3]))*x1) + 0.09619579395368429*(q[3]*x3*x4*p.L1) + x6*x8);
+  f[0] = (x0*(0.19239158790736857*x2 + 0.15110400000000004*x5 + x6*x7) - (x3*(0.15110400000000004*x8 - 0.09619579395368429*x9 + 2.0*((0.025189036800000012*u[6] + 0.10072592640000004*u[5])*x1))))*p.L1 + x12;
+  f[1] = tau[1] + x12;
+  f[2] = tau[2];
+  f[3] = -(2.0*((0.009114416736842861*u[6] + 0.07796696047999854*u[5])*x1) + 0.09619579395368429*x8 - 0.07555199979557659*x9 + 123144.33220014957*q[3]);
+  f[4] = -1970309.2752483957*q[4] + 0.0480978960006682*(u[6]*x1) + 0.07555199672950157*(x7*q[4]);
+  f[5] = -227532799.9999999*q[5] + 0.155933920959997*x2 + x7*x11 + 113766399.99999994*q[6] + 0.10072592640000004*x5;
+  f[6] = -(-0.025189036800000012*x5 - 2.0*(x1*(-0.02404894800033411*u[4] + 0.009114416736842861*u[3])) - 113766399.99999988*q[5] - (x7*x10) + 99549866.66666667*q[6]);
+}
+
+int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
+                     double* udot) {
+  double lambda[NC];
+  return constrained_dynamics(p, t, q, u, tau, udot, lambda);
+}
+
+void coordinate_rates([[maybe_unused]] const double* q, const double* u, double* qdot) {
+  qdot[0] = u[0];
+  qdot[1] = u[1];
+  qdot[2] = u[2];
+  qdot[3] = u[3];
+  qdot[4] = u[4];
+  qdot[5] = u[5];
+  qdot[6] = u[6];
+}
+
+double kinetic_energy(const Params& p, const double* q, const double* u) {
+  double T;
+  const double x0 = u[0]*std::sin(q[1])*p.L1;
+  const double x1 = u[0]*std::cos(q[1])*p.L1;
+  const double x2 = u[1] + u[0];
+  const double x3 = u[0]*p.L1;
+  T = 0.5*((0.010075278664704*u[5] + 0.020148879067648014*u[6])*u[6]) + x0*(0.025189036800000012*u[6] + 0.10072592640000004*u[5]) + 0.07555200000000002*x1*x1 + 0.5*(p.m3*u[2]*u[2]) + 0.09619579395368429*(u[3]*x1) + 0.125*(u[0]*u[0]*(4.0*p.J1 - (p.m1*p.L1*p.L1))) + 0.07555200000000002*x0*x0 + 0.5*(u[5]*(0.08057536907059201*u[5] + 0.010075278664704*u[6])) + (0.10072592640000004*q[5] + 0.025189036800000012*q[6] + 0.022665600000000008)*x1*x2 - ((0.07796696047999854*(q[3]*u[5]) - (u[3]*(0.009114416736842861*q[6] + 0.0779669604799985*q[5] + 0.014429369093052645)) + u[6]*(0.009114416736842861*q[3] - 0.0240489480003341*q[4]) + (0.007214684400100231 + 0.02404894800033411*q[6])*u[4])*x2) + 0.03777599836475078*u[4]*u[4] + 0.03777599989778829*u[3]*u[3] + 0.125*(p.m1*x3*x3) - 0.09619579395368429*(q[3]*x0*x2) + 0.5*(((0.004533120000000002 + 0.007555955520000005*q[6] + q[6]*(0.010075278664704*q[5] + 0.020148879067648014*q[6] + 0.007555955520000005) + 0.015108888960000004*q[5] + q[5]*(0.08057536907059201*q[5] + 0.010075278664704*q[6] + 0.015108888960000004) + 8.058879999999997e-07 + 0.07555199979557659*(q[3]*q[3]) + 0.07555199672950157*(q[4]*q[4]))*x2)*x2);
+  return T;
+}
+
+double potential_energy([[maybe_unused]] const Params& p, const double* q) {
+  double V;
+  V = 0.5*(q[6]*(-113766399.99999988*q[5] + 99549866.66666667*q[6])) - 0.5*(q[5]*(-227532799.9999999*q[5] + 113766399.99999994*q[6])) + 985154.6376241979*q[4]*q[4] + 61572.166100074784*q[3]*q[3];
+  return V;
+}
+
+void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
+  y[0] = q[2];
+  y[1] = q[5];
+  y[2] = q[3];
+  y[3] = 0.0;
+  y[4] = q[6];
+  y[5] = 1.0033115225336665e-19*q[4];
+  y[6] = 0.0;
+  y[7] = 0.0;
+  y[8] = 0.0;
+  // Loop forces: lambda of the dynamics at these inputs of zero (NaN where it cannot be solved).
+  double reaction_udot[NU], lambda[NC];
+  const double no_inputs[3] = {};
+  const bool solved = constrained_dynamics(p, t, q, u, no_inputs, reaction_udot, lambda) == 0;
+  y[7] = solved ? lambda[0] : std::nan("");
+  y[8] = solved ? lambda[1] : std::nan("");
+}
+
+void constraints(const Params& p, const double* q, double* phi) {
+  const double x0 = std::cos(q[0]);
+  const double x1 = std::cos(q[1]);
+  const double x2 = std::sin(q[0]);
+  const double x3 = std::sin(q[1]);
+  const double x4 = x0*x1 - (x2*x3);
+  const double x5 = q[6] + 0.3;
+  const double x6 = x0*x3 + x2*x1;
+  phi[0] = -(-(x4*x5) + q[2] - (x0*p.L1) + 1.0033115225336665e-19*(q[4]*x6));
+  phi[1] = x5*x6 + x2*p.L1 + 1.0033115225336665e-19*(x4*q[4]);
+}
+
+void constraint_jacobian(const Params& p, const double* q, double* C) {
+  const double x0 = q[6] + 0.3;
+  const double x1 = std::cos(q[0]);
+  const double x2 = std::sin(q[1]);
+  const double x3 = x1*x2;
+  const double x4 = std::sin(q[0]);
+  const double x5 = std::cos(q[1]);
+  const double x6 = x4*x5;
+  const double x7 = x3 + x6;
+  const double x8 = x0*x7;
+  const double x9 = x1*x5;
+  const double x10 = x4*x2;
+  const double x11 = x9 - x10;
+  const double x12 = 1.0033115225336665e-19*(x11*q[4]);
+  C[0] = -(x8 + x4*p.L1 + x12);
+  C[1] = -(x8 + x12);
+  C[2] = -1.0;
+  C[3] = 0.0;
+  C[4] = -(1.0033115225336665e-19*x3 + 1.0033115225336665e-19*x6);
+  C[5] = 0.0;
+  C[6] = x11;
+  const double x13 = x11*x0;
+  const double x14 = q[4]*x7;
+  C[7] = x1*p.L1 + x13 - 1.0033115225336665e-19*x14;
+  C[8] = -(-x13 + 1.0033115225336665e-19*x14);
+  C[9] = 0.0;
+  C[10] = 0.0;
+  C[11] = -1.0033115225336665e-19*x10 + 1.0033115225336665e-19*x9;
+  C[12] = 0.0;
+  C[13] = x7;
+}
+
+void constraint_bias(const Params& p, const double* q, const double* u, double* gamma) {
+  const double x0 = std::sin(q[0]);
+  const double x1 = std::sin(q[1]);
+  const double x2 = x0*x1;
+  const double x3 = std::cos(q[0]);
+  const double x4 = std::cos(q[1]);
+  const double x5 = x3*x4;
+  const double x6 = -1.0033115225336665e-19*x2 + 1.0033115225336665e-19*x5;
+  const double x7 = x6*u[4];
+  const double x8 = x5 - x2;
+  const double x9 = q[6] + 0.3;
+  const double x10 = x8*x9;
+  const double x11 = x3*x1;
+  const double x12 = x0*x4;
+  const double x13 = x11 + x12;
+  const double x14 = q[4]*x13;
+  const double x15 = -x10 + 1.0033115225336665e-19*x14;
+  const double x16 = u[6]*x13;
+  const double x17 = -(u[1]*x15);
+  gamma[0] = u[1]*(x7 - (u[0]*x15) + x16 + x17) + u[6]*(u[1]*x13 + u[0]*x13) + u[4]*(u[1]*x6 + u[0]*x6) + u[0]*(x7 + x16 + u[0]*(x3*p.L1 + x10 - 1.0033115225336665e-19*x14) + x17);
+  const double x18 = x9*x13;
+  const double x19 = 1.0033115225336665e-19*(x8*q[4]);
+  const double x20 = x8*u[6];
+  const double x21 = 1.0033115225336665e-19*x11 + 1.0033115225336665e-19*x12;
+  const double x22 = -(u[4]*x21);
+  const double x23 = x18 + x19;
+  const double x24 = -(u[1]*x23);
+  gamma[1] = -((u[1]*x8 + u[0]*x8)*u[6] + u[0]*(-(u[0]*(x18 + x0*p.L1 + x19)) + x20 + x22 + x24) - ((u[1]*x21 + u[0]*x21)*u[4]) + u[1]*(-(u[0]*x23) + x20 + x22 + x24));
+}
+
+int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
+                         const double* tau, double* udot, double* lambda) {
+  constexpr int NS = 6;  // speeds solved for (not prescribed)
   double ap0 = 0.0;  // prescribed acceleration of crank_angle_dot
   {
     ap0 = 0.0;
@@ -442,7 +456,7 @@ int constrained_dynamics(const Params& p, double t, const double* q, const doubl
   const double x41 = x5*x37*p.L1;
   b[4] = ap0*(-0.10072592640000004*x40 + 0.07796696047999854*q[3]) + -227532799.9999999*q[5] + 0.155933920959997*(u[3]*x36) + x39*x28 + 113766399.99999994*q[6] + 0.10072592640000004*x41;
   b[5] = -(-0.025189036800000012*x41 - 2.0*(x36*(-0.02404894800033411*u[4] + 0.009114416736842861*u[3])) - 113766399.99999988*q[5] - (x39*x27) + 99549866.66666667*q[6] + ap0*(0.025189036800000012*x40 + x34));
-  const int status = solve_saddle(Ms, b, Cs, g, lambda);
+  const int status = solve_saddle<NS, NC>(Ms, b, Cs, g, lambda);
   udot[1] = b[0];
   udot[2] = b[1];
   udot[3] = b[2];
@@ -451,63 +465,6 @@ int constrained_dynamics(const Params& p, double t, const double* q, const doubl
   udot[6] = b[5];
   udot[0] = ap0;
   return status;
-}
-
-void coordinate_rates(const double* q, const double* u, double* qdot) {
-  (void)q;
-  (void)u;
-  (void)qdot;
-  qdot[0] = u[0];
-  qdot[1] = u[1];
-  qdot[2] = u[2];
-  qdot[3] = u[3];
-  qdot[4] = u[4];
-  qdot[5] = u[5];
-  qdot[6] = u[6];
-}
-
-double kinetic_energy(const Params& p, const double* q, const double* u) {
-  (void)p;
-  (void)q;
-  (void)u;
-  double T;
-  const double x0 = u[0]*std::sin(q[1])*p.L1;
-  const double x1 = u[0]*std::cos(q[1])*p.L1;
-  const double x2 = u[1] + u[0];
-  const double x3 = u[0]*p.L1;
-  T = 0.5*((0.010075278664704*u[5] + 0.020148879067648014*u[6])*u[6]) + x0*(0.025189036800000012*u[6] + 0.10072592640000004*u[5]) + 0.07555200000000002*x1*x1 + 0.5*(p.m3*u[2]*u[2]) + 0.09619579395368429*(u[3]*x1) + 0.125*(u[0]*u[0]*(4.0*p.J1 - (p.m1*p.L1*p.L1))) + 0.07555200000000002*x0*x0 + 0.5*(u[5]*(0.08057536907059201*u[5] + 0.010075278664704*u[6])) + (0.10072592640000004*q[5] + 0.025189036800000012*q[6] + 0.022665600000000008)*x1*x2 - ((0.07796696047999854*(q[3]*u[5]) - (u[3]*(0.009114416736842861*q[6] + 0.0779669604799985*q[5] + 0.014429369093052645)) + u[6]*(0.009114416736842861*q[3] - 0.0240489480003341*q[4]) + (0.007214684400100231 + 0.02404894800033411*q[6])*u[4])*x2) + 0.03777599836475078*u[4]*u[4] + 0.03777599989778829*u[3]*u[3] + 0.125*(p.m1*x3*x3) - 0.09619579395368429*(q[3]*x0*x2) + 0.5*(((0.004533120000000002 + 0.007555955520000005*q[6] + q[6]*(0.010075278664704*q[5] + 0.020148879067648014*q[6] + 0.007555955520000005) + 0.015108888960000004*q[5] + q[5]*(0.08057536907059201*q[5] + 0.010075278664704*q[6] + 0.015108888960000004) + 8.058879999999997e-07 + 0.07555199979557659*(q[3]*q[3]) + 0.07555199672950157*(q[4]*q[4]))*x2)*x2);
-  return T;
-}
-
-double potential_energy(const Params& p, const double* q) {
-  (void)p;
-  (void)q;
-  double V;
-  V = 0.5*(q[6]*(-113766399.99999988*q[5] + 99549866.66666667*q[6])) - 0.5*(q[5]*(-227532799.9999999*q[5] + 113766399.99999994*q[6])) + 985154.6376241979*q[4]*q[4] + 61572.166100074784*q[3]*q[3];
-  return V;
-}
-
-void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)y;
-  y[0] = q[2];
-  y[1] = q[5];
-  y[2] = q[3];
-  y[3] = 0.0;
-  y[4] = q[6];
-  y[5] = 1.0033115225336665e-19*q[4];
-  y[6] = 0.0;
-  y[7] = 0.0;
-  y[8] = 0.0;
-  // Loop forces: lambda of the dynamics at these inputs of zero (NaN where it cannot be solved).
-  double reaction_udot[NU], lambda[NC];
-  const double no_inputs[3] = {};
-  const bool solved = constrained_dynamics(p, t, q, u, no_inputs, reaction_udot, lambda) == 0;
-  y[7] = solved ? lambda[0] : std::nan("");
-  y[8] = solved ? lambda[1] : std::nan("");
 }
 
 }  // namespace simeon_crank

@@ -18,6 +18,8 @@
 // allocates, throws or keeps state.
 #pragma once
 
+#include <new>  // kernel_table(): the Params of a table are placed in the caller's storage
+
 namespace kanegen_models {
 namespace simeon_crank_fe {
 
@@ -44,30 +46,6 @@ extern const char* const parameter_names[5];
 extern const double q0[27];
 extern const double u0[27];
 
-/// The initial state for the parameters p: q0 and u0, except that a
-/// prescribed coordinate starts where its motion does at t = 0.
-void initial_state(const Params& p, double* q, double* u);
-
-/// Sets a parameter by name; false if there is none of that name.
-bool set_parameter(Params& p, const char* name, double value);
-/// The parameter with index i (0 <= i < NP) in parameter_names order.
-double get_parameter(const Params& p, int i);
-
-/// M: NU*NU, row-major, symmetric positive definite.
-void mass_matrix(const Params& p, const double* q, double* M);
-/// f: NU. q: NQ, u: NU, tau: NTAU.
-void forcing(const Params& p, double t, const double* q, const double* u, const double* tau, double* f);
-/// udot: NU, solving M udot = f by a fixed-size LDL^T. Returns 0, or k > 0
-/// when the k-th pivot is not positive (singular M; udot is then invalid).
-int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
-                     double* udot);
-/// qdot: NQ, the kinematic equations.
-void coordinate_rates(const double* q, const double* u, double* qdot);
-double kinetic_energy(const Params& p, const double* q, const double* u);
-double potential_energy(const Params& p, const double* q);
-/// y: NY, in output_names order.
-void outputs(const Params& p, double t, const double* q, const double* u, double* y);
-
 constexpr int NC = 2;  ///< loop-closure equations
 
 extern const char* const constraint_names[NC];
@@ -75,13 +53,49 @@ extern const char* const constraint_names[NC];
 /// (assembly keeps it), 2 prescribed.
 extern const int coordinate_roles[27];
 
+/// Sets a parameter by name; false if there is none of that name.
+bool set_parameter(Params& p, const char* name, double value);
+
+/// The parameter with index i (0 <= i < NP) in parameter_names order.
+double get_parameter(const Params& p, int i);
+
+/// The initial state for the parameters p: q0 and u0, except that a
+/// prescribed coordinate starts where its motion does at t = 0.
+void initial_state(const Params& p, double* q, double* u);
+
+/// M: NU*NU, row-major, symmetric positive definite.
+void mass_matrix(const Params& p, const double* q, double* M);
+
+/// f: NU. q: NQ, u: NU, tau: NTAU.
+void forcing(const Params& p, double t, const double* q, const double* u, const double* tau, double* f);
+
+/// udot: NU, solving M udot = f by a fixed-size LDL^T. Returns 0, or k > 0
+/// when the k-th pivot is not positive (singular M; udot is then invalid).
+int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
+                     double* udot);
+
+/// qdot: NQ, the kinematic equations.
+void coordinate_rates(const double* q, const double* u, double* qdot);
+
+/// T, the kinetic energy.
+double kinetic_energy(const Params& p, const double* q, const double* u);
+
+/// V, the potential energy (gravity, springs, strain).
+double potential_energy(const Params& p, const double* q);
+
+/// y: NY, in output_names order.
+void outputs(const Params& p, double t, const double* q, const double* u, double* y);
+
 /// phi: NC, the loop-closure residuals Phi(q) (position rows in m; the hinge
 /// alignment rows of a spatial revolute are cosines).
 void constraints(const Params& p, const double* q, double* phi);
+
 /// C: NC*NU, row-major, the Jacobian dPhi/dq (q_dot = u).
 void constraint_jacobian(const Params& p, const double* q, double* C);
+
 /// gamma: NC, the acceleration level C udot = gamma = -(dC/dt) u.
 void constraint_bias(const Params& p, const double* q, const double* u, double* gamma);
+
 /// udot: NU and lambda: NC from M udot = f + C^T lambda, C udot = gamma, the
 /// prescribed speeds taking their given acceleration. lambda are the loop
 /// forces (see constraint_names). Returns 0; k > 0 when the k-th pivot of M
@@ -90,11 +104,87 @@ void constraint_bias(const Params& p, const double* q, const double* u, double* 
 int constrained_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
                          double* udot, double* lambda);
 
+/// Every kernel as a table of function pointers, for code that picks its
+/// model at run time: kanegen's runtime instantiates it with
+/// kanegen::runtime::ModelTable (kanegen/runtime/model_table.hpp), whose
+/// members these are. The parameters travel as `const void*` to a Params.
+template <class Table>
+Table kernel_table() {
+  Table table{};
+  table.name = "simeon_crank_fe";
+  table.nq = NQ;
+  table.nu = NU;
+  table.ntau = NTAU;
+  table.ny = NY;
+  table.np = NP;
+  table.coordinate_names = coordinate_names;
+  table.speed_names = speed_names;
+  table.input_names = input_names;
+  table.output_names = output_names;
+  table.parameter_names = parameter_names;
+  table.q0 = q0;
+  table.u0 = u0;
+  table.nc = NC;
+  table.constraint_names = constraint_names;
+  table.coordinate_roles = coordinate_roles;
+  table.parameters_size = sizeof(Params);
+  table.default_parameters = [](void* p) { new (p) Params(); };
+  table.set_parameter = [](void* p, const char* name, double value) {
+    return set_parameter(*static_cast<Params*>(p), name, value);
+  };
+  table.get_parameter = [](const void* p, int i) {
+    return get_parameter(*static_cast<const Params*>(p), i);
+  };
+  table.initial_state = [](const void* p, double* q, double* u) {
+    initial_state(*static_cast<const Params*>(p), q, u);
+  };
+  table.mass_matrix = [](const void* p, const double* q, double* M) {
+    mass_matrix(*static_cast<const Params*>(p), q, M);
+  };
+  table.forcing = [](const void* p, double t, const double* q, const double* u, const double* tau,
+                     double* f) {
+    forcing(*static_cast<const Params*>(p), t, q, u, tau, f);
+  };
+  table.forward_dynamics = [](const void* p, double t, const double* q, const double* u, const double* tau,
+                              double* udot) {
+    return forward_dynamics(*static_cast<const Params*>(p), t, q, u, tau, udot);
+  };
+  table.coordinate_rates = [](const double* q, const double* u, double* qdot) {
+    coordinate_rates(q, u, qdot);
+  };
+  table.kinetic_energy = [](const void* p, const double* q, const double* u) {
+    return kinetic_energy(*static_cast<const Params*>(p), q, u);
+  };
+  table.potential_energy = [](const void* p, const double* q) {
+    return potential_energy(*static_cast<const Params*>(p), q);
+  };
+  table.outputs = [](const void* p, double t, const double* q, const double* u, double* y) {
+    outputs(*static_cast<const Params*>(p), t, q, u, y);
+  };
+  table.constraints = [](const void* p, const double* q, double* phi) {
+    constraints(*static_cast<const Params*>(p), q, phi);
+  };
+  table.constraint_jacobian = [](const void* p, const double* q, double* C) {
+    constraint_jacobian(*static_cast<const Params*>(p), q, C);
+  };
+  table.constraint_bias = [](const void* p, const double* q, const double* u, double* gamma) {
+    constraint_bias(*static_cast<const Params*>(p), q, u, gamma);
+  };
+  table.constrained_dynamics = [](const void* p, double t, const double* q, const double* u,
+                                  const double* tau, double* udot, double* lambda) {
+    return constrained_dynamics(*static_cast<const Params*>(p), t, q, u, tau, udot, lambda);
+  };
+  return table;
+}
+
 /// The uniform face used by kanegen's runtime (see kanegen/runtime/system.hpp).
 struct System {
   using Params = ::kanegen_models::simeon_crank_fe::Params;
   static constexpr int nq = NQ, nu = NU, ntau = NTAU, ny = NY, np = NP;
   static constexpr const char* name = "simeon_crank_fe";
+  static constexpr int nc = NC;
+  static const char* const* constraint_names() { return ::kanegen_models::simeon_crank_fe::constraint_names; }
+  static const int* coordinate_roles() { return ::kanegen_models::simeon_crank_fe::coordinate_roles; }
   static const char* const* coordinate_names() { return ::kanegen_models::simeon_crank_fe::coordinate_names; }
   static const char* const* speed_names() { return ::kanegen_models::simeon_crank_fe::speed_names; }
   static const char* const* input_names() { return ::kanegen_models::simeon_crank_fe::input_names; }
@@ -102,17 +192,20 @@ struct System {
   static const char* const* parameter_names() { return ::kanegen_models::simeon_crank_fe::parameter_names; }
   static const double* q0() { return ::kanegen_models::simeon_crank_fe::q0; }
   static const double* u0() { return ::kanegen_models::simeon_crank_fe::u0; }
+  static bool set_parameter(Params& p, const char* name, double value) {
+    return ::kanegen_models::simeon_crank_fe::set_parameter(p, name, value);
+  }
+  static double get_parameter(const Params& p, int i) {
+    return ::kanegen_models::simeon_crank_fe::get_parameter(p, i);
+  }
   static void initial_state(const Params& p, double* q, double* u) {
     ::kanegen_models::simeon_crank_fe::initial_state(p, q, u);
   }
-  static bool set_parameter(Params& p, const char* n, double v) {
-    return ::kanegen_models::simeon_crank_fe::set_parameter(p, n, v);
-  }
-  static double get_parameter(const Params& p, int i) { return ::kanegen_models::simeon_crank_fe::get_parameter(p, i); }
   static void mass_matrix(const Params& p, const double* q, double* M) {
     ::kanegen_models::simeon_crank_fe::mass_matrix(p, q, M);
   }
-  static void forcing(const Params& p, double t, const double* q, const double* u, const double* tau, double* f) {
+  static void forcing(const Params& p, double t, const double* q, const double* u, const double* tau,
+                      double* f) {
     ::kanegen_models::simeon_crank_fe::forcing(p, t, q, u, tau, f);
   }
   static int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
@@ -131,9 +224,6 @@ struct System {
   static void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
     ::kanegen_models::simeon_crank_fe::outputs(p, t, q, u, y);
   }
-  static constexpr int nc = NC;
-  static const char* const* constraint_names() { return ::kanegen_models::simeon_crank_fe::constraint_names; }
-  static const int* coordinate_roles() { return ::kanegen_models::simeon_crank_fe::coordinate_roles; }
   static void constraints(const Params& p, const double* q, double* phi) {
     ::kanegen_models::simeon_crank_fe::constraints(p, q, phi);
   }
@@ -143,9 +233,13 @@ struct System {
   static void constraint_bias(const Params& p, const double* q, const double* u, double* gamma) {
     ::kanegen_models::simeon_crank_fe::constraint_bias(p, q, u, gamma);
   }
-  static int constrained_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
-                                  double* udot, double* lambda) {
+  static int constrained_dynamics(const Params& p, double t, const double* q, const double* u,
+                                  const double* tau, double* udot, double* lambda) {
     return ::kanegen_models::simeon_crank_fe::constrained_dynamics(p, t, q, u, tau, udot, lambda);
+  }
+  template <class Table>
+  static Table kernel_table() {
+    return ::kanegen_models::simeon_crank_fe::kernel_table<Table>();
   }
 };
 

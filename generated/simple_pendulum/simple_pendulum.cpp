@@ -17,10 +17,8 @@ const char* const parameter_names[3] = {"m", "l", "g"};
 const double q0[1] = {0.5};
 const double u0[1] = {0.0};
 
+
 bool set_parameter(Params& p, const char* name, double value) {
-  (void)p;
-  (void)name;
-  (void)value;
   if (std::strcmp(name, "m") == 0) {
     p.m = value;
     return true;
@@ -37,7 +35,6 @@ bool set_parameter(Params& p, const char* name, double value) {
 }
 
 double get_parameter(const Params& p, int i) {
-  (void)p;
   switch (i) {
     case 0: return p.m;
     case 1: return p.l;
@@ -46,36 +43,22 @@ double get_parameter(const Params& p, int i) {
   }
 }
 
-void initial_state(const Params& p, double* q, double* u) {
-  (void)p;
+void initial_state([[maybe_unused]] const Params& p, double* q, double* u) {
   for (int i = 0; i < NQ; ++i) q[i] = q0[i];
   for (int i = 0; i < NU; ++i) u[i] = u0[i];
 }
 
-void mass_matrix(const Params& p, const double* q, double* M) {
-  (void)p;
-  (void)q;
-  (void)M;
+void mass_matrix(const Params& p, [[maybe_unused]] const double* q, double* M) {
   M[0] = p.m*p.l*p.l;
 }
 
-void forcing(const Params& p, double t, const double* q, const double* u, const double* tau, double* f) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
-  (void)f;
+void forcing(const Params& p, [[maybe_unused]] double t, const double* q, [[maybe_unused]] const double* u,
+             const double* tau, double* f) {
   f[0] = -(p.l*(p.m*p.g*std::sin(q[0]))) + tau[0];
 }
 
-int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
-                     double* udot) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
+int forward_dynamics(const Params& p, [[maybe_unused]] double t, const double* q,
+                     [[maybe_unused]] const double* u, const double* tau, double* udot) {
   const double m0_0 = p.m*p.l*p.l;
   udot[0] = -(p.l*(p.m*p.g*std::sin(q[0]))) + tau[0];
   // LDL^T of M, unrolled; d<j> are the pivots.
@@ -86,17 +69,11 @@ int forward_dynamics(const Params& p, double t, const double* q, const double* u
   return 0;
 }
 
-void coordinate_rates(const double* q, const double* u, double* qdot) {
-  (void)q;
-  (void)u;
-  (void)qdot;
+void coordinate_rates([[maybe_unused]] const double* q, const double* u, double* qdot) {
   qdot[0] = u[0];
 }
 
-double kinetic_energy(const Params& p, const double* q, const double* u) {
-  (void)p;
-  (void)q;
-  (void)u;
+double kinetic_energy(const Params& p, [[maybe_unused]] const double* q, const double* u) {
   double T;
   const double x0 = u[0]*p.l;
   T = 0.5*x0*x0*p.m;
@@ -104,19 +81,13 @@ double kinetic_energy(const Params& p, const double* q, const double* u) {
 }
 
 double potential_energy(const Params& p, const double* q) {
-  (void)p;
-  (void)q;
   double V;
   V = -std::cos(q[0])*p.m*p.l*p.g;
   return V;
 }
 
-void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)y;
+void outputs(const Params& p, [[maybe_unused]] double t, const double* q, [[maybe_unused]] const double* u,
+             double* y) {
   y[0] = -p.l*std::sin(q[0]);
   y[1] = 0.0;
   y[2] = -std::cos(q[0])*p.l;

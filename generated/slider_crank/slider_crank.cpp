@@ -9,177 +9,13 @@
 namespace kanegen_models {
 namespace slider_crank {
 
-const char* const coordinate_names[3] = {"crank_angle", "rod_angle", "slider_x"};
-const char* const speed_names[3] = {"crank_angle_dot", "rod_angle_dot", "slider_x_dot"};
-const char* const input_names[3] = {"crank_angle_tau", "rod_angle_tau", "slider_x_tau"};
-const char* const output_names[11] = {"slider_position", "slider_speed", "rod_relative", "crank_tip.x", "crank_tip.y", "crank_tip.z", "rod_mid.x", "rod_mid.y", "rod_mid.z", "E_reaction.x", "E_reaction.y"};
-const char* const parameter_names[8] = {"omega", "L1", "L2", "m1", "m2", "m3", "J1", "J2"};
-const double q0[3] = {0.0, 0.0, 0.45};
-const double u0[3] = {1.5e+02, -225.0, 0.0};
-
-bool set_parameter(Params& p, const char* name, double value) {
-  (void)p;
-  (void)name;
-  (void)value;
-  if (std::strcmp(name, "omega") == 0) {
-    p.omega = value;
-    return true;
-  }
-  if (std::strcmp(name, "L1") == 0) {
-    p.L1 = value;
-    return true;
-  }
-  if (std::strcmp(name, "L2") == 0) {
-    p.L2 = value;
-    return true;
-  }
-  if (std::strcmp(name, "m1") == 0) {
-    p.m1 = value;
-    return true;
-  }
-  if (std::strcmp(name, "m2") == 0) {
-    p.m2 = value;
-    return true;
-  }
-  if (std::strcmp(name, "m3") == 0) {
-    p.m3 = value;
-    return true;
-  }
-  if (std::strcmp(name, "J1") == 0) {
-    p.J1 = value;
-    return true;
-  }
-  if (std::strcmp(name, "J2") == 0) {
-    p.J2 = value;
-    return true;
-  }
-  return false;
-}
-
-double get_parameter(const Params& p, int i) {
-  (void)p;
-  switch (i) {
-    case 0: return p.omega;
-    case 1: return p.L1;
-    case 2: return p.L2;
-    case 3: return p.m1;
-    case 4: return p.m2;
-    case 5: return p.m3;
-    case 6: return p.J1;
-    case 7: return p.J2;
-    default: return 0.0;
-  }
-}
-
-void initial_state(const Params& p, double* q, double* u) {
-  (void)p;
-  for (int i = 0; i < NQ; ++i) q[i] = q0[i];
-  for (int i = 0; i < NU; ++i) u[i] = u0[i];
-  q[0] = 0.0;
-  u[0] = p.omega;
-}
-
-void mass_matrix(const Params& p, const double* q, double* M) {
-  (void)p;
-  (void)q;
-  (void)M;
-  const double x0 = p.m2*std::cos(q[1])*p.L1*p.L2;
-  M[0] = p.J1 + p.J2 + x0 + p.m2*p.L1*p.L1;
-  const double x1 = p.J2 + 0.5*x0;
-  M[1] = x1;
-  M[2] = 0.0;
-  M[3] = x1;
-  M[4] = p.J2;
-  M[5] = 0.0;
-  M[6] = 0.0;
-  M[7] = 0.0;
-  M[8] = p.m3;
-}
-
-void forcing(const Params& p, double t, const double* q, const double* u, const double* tau, double* f) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
-  (void)f;
-  const double x0 = std::cos(q[1]);
-  const double x1 = u[0]*u[0];
-  const double x2 = std::sin(q[1]);
-  const double x3 = x1*x2*p.L1;
-  const double x4 = u[1] + u[0];
-  const double x5 = p.m2*x3*p.L2;
-  f[0] = -(-((-(p.m2*x0*x3) + x2*(p.m2*(0.5*(x4*x4*p.L2) + x0*x1*p.L1)))*p.L1) + 0.5*x5);
-  f[1] = tau[1] - 0.5*x5;
-  f[2] = tau[2];
-}
-
-int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
-                     double* udot) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
-  double lambda[NC];
-  return constrained_dynamics(p, t, q, u, tau, udot, lambda);
-}
-
-const char* const constraint_names[NC] = {"E.x", "E.y"};
-const int coordinate_roles[3] = {2, 0, 0};
-
-void constraints(const Params& p, const double* q, double* phi) {
-  (void)p;
-  (void)q;
-  const double x0 = std::cos(q[0]);
-  const double x1 = std::cos(q[1]);
-  const double x2 = std::sin(q[0]);
-  const double x3 = std::sin(q[1]);
-  phi[0] = -(q[2] - ((x0*x1 - (x2*x3))*p.L2) - (x0*p.L1));
-  phi[1] = p.L2*(x0*x3 + x2*x1) + x2*p.L1;
-}
-
-void constraint_jacobian(const Params& p, const double* q, double* C) {
-  (void)p;
-  (void)q;
-  const double x0 = std::cos(q[0]);
-  const double x1 = std::sin(q[1]);
-  const double x2 = std::sin(q[0]);
-  const double x3 = std::cos(q[1]);
-  const double x4 = x0*x1 + x2*x3;
-  C[0] = -(p.L2*x4 + x2*p.L1);
-  C[1] = -p.L2*x4;
-  C[2] = -1.0;
-  const double x5 = (x0*x3 - (x2*x1))*p.L2;
-  C[3] = x0*p.L1 + x5;
-  C[4] = x5;
-  C[5] = 0.0;
-}
-
-void constraint_bias(const Params& p, const double* q, const double* u, double* gamma) {
-  (void)p;
-  (void)q;
-  (void)u;
-  const double x0 = std::cos(q[0]);
-  const double x1 = std::cos(q[1]);
-  const double x2 = std::sin(q[0]);
-  const double x3 = std::sin(q[1]);
-  const double x4 = x0*x1 - (x2*x3);
-  const double x5 = u[1]*x4*p.L2;
-  gamma[0] = u[1]*(x5 + u[0]*x4*p.L2) + u[0]*(u[0]*(x0*p.L1 + x4*p.L2) + x5);
-  const double x6 = x0*x3 + x2*x1;
-  const double x7 = u[1]*p.L2*x6;
-  gamma[1] = u[0]*(u[0]*(p.L2*x6 + x2*p.L1) + x7) + u[1]*(x7 + u[0]*p.L2*x6);
-}
-
 namespace {
-
-constexpr int NS = 2;  // speeds solved for (not prescribed)
 
 // M: NS*NS (overwritten by L), b: NS (the right-hand side; udot on return),
 // C: NC*NS (overwritten by Y^T), g: NC. Returns 0, k > 0 for a non-positive
 // k-th pivot of M, -k when the k-th loop equation is (nearly) a combination
 // of the earlier ones.
+template <int NS, int NC>
 int solve_saddle(double* M, double* b, double* C, const double* g, double* lambda) {
   for (int j = 0; j < NS; ++j) {
     double s = M[j * NS + j];
@@ -248,13 +84,195 @@ int solve_saddle(double* M, double* b, double* C, const double* g, double* lambd
 
 }  // namespace
 
-int constrained_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
-                         double* udot, double* lambda) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
+const char* const coordinate_names[3] = {"crank_angle", "rod_angle", "slider_x"};
+const char* const speed_names[3] = {"crank_angle_dot", "rod_angle_dot", "slider_x_dot"};
+const char* const input_names[3] = {"crank_angle_tau", "rod_angle_tau", "slider_x_tau"};
+const char* const output_names[11] = {"slider_position", "slider_speed", "rod_relative", "crank_tip.x", "crank_tip.y", "crank_tip.z", "rod_mid.x", "rod_mid.y", "rod_mid.z", "E_reaction.x", "E_reaction.y"};
+const char* const parameter_names[8] = {"omega", "L1", "L2", "m1", "m2", "m3", "J1", "J2"};
+const double q0[3] = {0.0, 0.0, 0.45};
+const double u0[3] = {1.5e+02, -225.0, 0.0};
+
+const char* const constraint_names[NC] = {"E.x", "E.y"};
+const int coordinate_roles[3] = {2, 0, 0};
+
+bool set_parameter(Params& p, const char* name, double value) {
+  if (std::strcmp(name, "omega") == 0) {
+    p.omega = value;
+    return true;
+  }
+  if (std::strcmp(name, "L1") == 0) {
+    p.L1 = value;
+    return true;
+  }
+  if (std::strcmp(name, "L2") == 0) {
+    p.L2 = value;
+    return true;
+  }
+  if (std::strcmp(name, "m1") == 0) {
+    p.m1 = value;
+    return true;
+  }
+  if (std::strcmp(name, "m2") == 0) {
+    p.m2 = value;
+    return true;
+  }
+  if (std::strcmp(name, "m3") == 0) {
+    p.m3 = value;
+    return true;
+  }
+  if (std::strcmp(name, "J1") == 0) {
+    p.J1 = value;
+    return true;
+  }
+  if (std::strcmp(name, "J2") == 0) {
+    p.J2 = value;
+    return true;
+  }
+  return false;
+}
+
+double get_parameter(const Params& p, int i) {
+  switch (i) {
+    case 0: return p.omega;
+    case 1: return p.L1;
+    case 2: return p.L2;
+    case 3: return p.m1;
+    case 4: return p.m2;
+    case 5: return p.m3;
+    case 6: return p.J1;
+    case 7: return p.J2;
+    default: return 0.0;
+  }
+}
+
+void initial_state(const Params& p, double* q, double* u) {
+  for (int i = 0; i < NQ; ++i) q[i] = q0[i];
+  for (int i = 0; i < NU; ++i) u[i] = u0[i];
+  q[0] = 0.0;
+  u[0] = p.omega;
+}
+
+void mass_matrix(const Params& p, const double* q, double* M) {
+  const double x0 = p.m2*std::cos(q[1])*p.L1*p.L2;
+  M[0] = p.J1 + p.J2 + x0 + p.m2*p.L1*p.L1;
+  const double x1 = p.J2 + 0.5*x0;
+  M[1] = x1;
+  M[2] = 0.0;
+  M[3] = x1;
+  M[4] = p.J2;
+  M[5] = 0.0;
+  M[6] = 0.0;
+  M[7] = 0.0;
+  M[8] = p.m3;
+}
+
+void forcing(const Params& p, [[maybe_unused]] double t, const double* q, const double* u, const double* tau,
+             double* f) {
+  const double x0 = std::cos(q[1]);
+  const double x1 = u[0]*u[0];
+  const double x2 = std::sin(q[1]);
+  const double x3 = x1*x2*p.L1;
+  const double x4 = u[1] + u[0];
+  const double x5 = p.m2*x3*p.L2;
+  f[0] = -(-((-(p.m2*x0*x3) + x2*(p.m2*(0.5*(x4*x4*p.L2) + x0*x1*p.L1)))*p.L1) + 0.5*x5);
+  f[1] = tau[1] - 0.5*x5;
+  f[2] = tau[2];
+}
+
+int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
+                     double* udot) {
+  double lambda[NC];
+  return constrained_dynamics(p, t, q, u, tau, udot, lambda);
+}
+
+void coordinate_rates([[maybe_unused]] const double* q, const double* u, double* qdot) {
+  qdot[0] = u[0];
+  qdot[1] = u[1];
+  qdot[2] = u[2];
+}
+
+double kinetic_energy(const Params& p, const double* q, const double* u) {
+  double T;
+  const double x0 = u[1] + u[0];
+  const double x1 = u[0]*std::cos(q[1])*p.L1 + 0.5*(x0*p.L2);
+  const double x2 = u[0]*std::sin(q[1])*p.L1;
+  const double x3 = u[0]*p.L1;
+  T = 0.5*(p.m3*u[2]*u[2]) + 0.125*(u[0]*u[0]*(4.0*p.J1 - (p.m1*p.L1*p.L1))) + 0.5*(p.m2*(x1*x1 + x2*x2)) + 0.125*((-(p.m2*p.L2*p.L2) + 4.0*p.J2)*x0*x0) + 0.125*(p.m1*x3*x3);
+  return T;
+}
+
+double potential_energy([[maybe_unused]] const Params& p, [[maybe_unused]] const double* q) {
+  double V;
+  V = 0.0;
+  return V;
+}
+
+void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
+  y[0] = q[2];
+  y[1] = u[2];
+  y[2] = q[1];
+  const double x0 = std::cos(q[0]);
+  const double x1 = x0*p.L1;
+  y[3] = x1;
+  const double x2 = std::sin(q[0]);
+  const double x3 = x2*p.L1;
+  y[4] = x3;
+  y[5] = 0.0;
+  const double x4 = std::cos(q[1]);
+  const double x5 = std::sin(q[1]);
+  y[6] = 0.5*((x0*x4 - (x2*x5))*p.L2) + x1;
+  y[7] = x3 + 0.5*(p.L2*(x0*x5 + x2*x4));
+  y[8] = 0.0;
+  y[9] = 0.0;
+  y[10] = 0.0;
+  // Loop forces: lambda of the dynamics at these inputs of zero (NaN where it cannot be solved).
+  double reaction_udot[NU], lambda[NC];
+  const double no_inputs[3] = {};
+  const bool solved = constrained_dynamics(p, t, q, u, no_inputs, reaction_udot, lambda) == 0;
+  y[9] = solved ? lambda[0] : std::nan("");
+  y[10] = solved ? lambda[1] : std::nan("");
+}
+
+void constraints(const Params& p, const double* q, double* phi) {
+  const double x0 = std::cos(q[0]);
+  const double x1 = std::cos(q[1]);
+  const double x2 = std::sin(q[0]);
+  const double x3 = std::sin(q[1]);
+  phi[0] = -(q[2] - ((x0*x1 - (x2*x3))*p.L2) - (x0*p.L1));
+  phi[1] = p.L2*(x0*x3 + x2*x1) + x2*p.L1;
+}
+
+void constraint_jacobian(const Params& p, const double* q, double* C) {
+  const double x0 = std::cos(q[0]);
+  const double x1 = std::sin(q[1]);
+  const double x2 = std::sin(q[0]);
+  const double x3 = std::cos(q[1]);
+  const double x4 = x0*x1 + x2*x3;
+  C[0] = -(p.L2*x4 + x2*p.L1);
+  C[1] = -p.L2*x4;
+  C[2] = -1.0;
+  const double x5 = (x0*x3 - (x2*x1))*p.L2;
+  C[3] = x0*p.L1 + x5;
+  C[4] = x5;
+  C[5] = 0.0;
+}
+
+void constraint_bias(const Params& p, const double* q, const double* u, double* gamma) {
+  const double x0 = std::cos(q[0]);
+  const double x1 = std::cos(q[1]);
+  const double x2 = std::sin(q[0]);
+  const double x3 = std::sin(q[1]);
+  const double x4 = x0*x1 - (x2*x3);
+  const double x5 = u[1]*x4*p.L2;
+  gamma[0] = u[1]*(x5 + u[0]*x4*p.L2) + u[0]*(u[0]*(x0*p.L1 + x4*p.L2) + x5);
+  const double x6 = x0*x3 + x2*x1;
+  const double x7 = u[1]*p.L2*x6;
+  gamma[1] = u[0]*(u[0]*(p.L2*x6 + x2*p.L1) + x7) + u[1]*(x7 + u[0]*p.L2*x6);
+}
+
+int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
+                         const double* tau, double* udot, double* lambda) {
+  constexpr int NS = 2;  // speeds solved for (not prescribed)
   double ap0 = 0.0;  // prescribed acceleration of crank_angle_dot
   {
     ap0 = 0.0;
@@ -283,72 +301,11 @@ int constrained_dynamics(const Params& p, double t, const double* q, const doubl
   Ms[3] = p.m3;
   b[0] = tau[1] - 0.5*(p.m2*(u[0]*u[0]*x1*p.L1)*p.L2) - (ap0*(p.J2 + 0.5*(p.m2*x3*p.L1*p.L2)));
   b[1] = tau[2];
-  const int status = solve_saddle(Ms, b, Cs, g, lambda);
+  const int status = solve_saddle<NS, NC>(Ms, b, Cs, g, lambda);
   udot[1] = b[0];
   udot[2] = b[1];
   udot[0] = ap0;
   return status;
-}
-
-void coordinate_rates(const double* q, const double* u, double* qdot) {
-  (void)q;
-  (void)u;
-  (void)qdot;
-  qdot[0] = u[0];
-  qdot[1] = u[1];
-  qdot[2] = u[2];
-}
-
-double kinetic_energy(const Params& p, const double* q, const double* u) {
-  (void)p;
-  (void)q;
-  (void)u;
-  double T;
-  const double x0 = u[1] + u[0];
-  const double x1 = u[0]*std::cos(q[1])*p.L1 + 0.5*(x0*p.L2);
-  const double x2 = u[0]*std::sin(q[1])*p.L1;
-  const double x3 = u[0]*p.L1;
-  T = 0.5*(p.m3*u[2]*u[2]) + 0.125*(u[0]*u[0]*(4.0*p.J1 - (p.m1*p.L1*p.L1))) + 0.5*(p.m2*(x1*x1 + x2*x2)) + 0.125*((-(p.m2*p.L2*p.L2) + 4.0*p.J2)*x0*x0) + 0.125*(p.m1*x3*x3);
-  return T;
-}
-
-double potential_energy(const Params& p, const double* q) {
-  (void)p;
-  (void)q;
-  double V;
-  V = 0.0;
-  return V;
-}
-
-void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)y;
-  y[0] = q[2];
-  y[1] = u[2];
-  y[2] = q[1];
-  const double x0 = std::cos(q[0]);
-  const double x1 = x0*p.L1;
-  y[3] = x1;
-  const double x2 = std::sin(q[0]);
-  const double x3 = x2*p.L1;
-  y[4] = x3;
-  y[5] = 0.0;
-  const double x4 = std::cos(q[1]);
-  const double x5 = std::sin(q[1]);
-  y[6] = 0.5*((x0*x4 - (x2*x5))*p.L2) + x1;
-  y[7] = x3 + 0.5*(p.L2*(x0*x5 + x2*x4));
-  y[8] = 0.0;
-  y[9] = 0.0;
-  y[10] = 0.0;
-  // Loop forces: lambda of the dynamics at these inputs of zero (NaN where it cannot be solved).
-  double reaction_udot[NU], lambda[NC];
-  const double no_inputs[3] = {};
-  const bool solved = constrained_dynamics(p, t, q, u, no_inputs, reaction_udot, lambda) == 0;
-  y[9] = solved ? lambda[0] : std::nan("");
-  y[10] = solved ? lambda[1] : std::nan("");
 }
 
 }  // namespace slider_crank

@@ -17,10 +17,8 @@ const char* const parameter_names[1] = {"m_payload"};
 const double q0[38] = {0.0, -0.6, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
 const double u0[38] = {1.5, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
 
+
 bool set_parameter(Params& p, const char* name, double value) {
-  (void)p;
-  (void)name;
-  (void)value;
   if (std::strcmp(name, "m_payload") == 0) {
     p.m_payload = value;
     return true;
@@ -29,23 +27,18 @@ bool set_parameter(Params& p, const char* name, double value) {
 }
 
 double get_parameter(const Params& p, int i) {
-  (void)p;
   switch (i) {
     case 0: return p.m_payload;
     default: return 0.0;
   }
 }
 
-void initial_state(const Params& p, double* q, double* u) {
-  (void)p;
+void initial_state([[maybe_unused]] const Params& p, double* q, double* u) {
   for (int i = 0; i < NQ; ++i) q[i] = q0[i];
   for (int i = 0; i < NU; ++i) u[i] = u0[i];
 }
 
 void mass_matrix(const Params& p, const double* q, double* M) {
-  (void)p;
-  (void)q;
-  (void)M;
   const double x0 = std::cos(q[1]);
   const double x1 = std::sin(q[17]);
   const double x2 = std::cos(q[18]);
@@ -1957,13 +1950,8 @@ void mass_matrix(const Params& p, const double* q, double* M) {
   M[1443] = x238*x242 + x239*x109 - (x248*x236) + x12*x250 + 4.1142857142857166e-05 + x24*x237*x14 - (x235*x247);
 }
 
-void forcing(const Params& p, double t, const double* q, const double* u, const double* tau, double* f) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
-  (void)f;
+void forcing(const Params& p, [[maybe_unused]] double t, const double* q, const double* u, const double* tau,
+             double* f) {
   const double x0 = std::cos(q[18]);
   const double x1 = std::cos(q[35]);
   const double x2 = std::cos(q[36]);
@@ -2329,13 +2317,8 @@ void forcing(const Params& p, double t, const double* q, const double* u, const 
   f[37] = x189*x2*x6 - ((x2*q[34]*x6 + x1*q[33]*x2)*x94) - (x178*x5) - (x3*x113) - ((x2*x60*x6 + q[33]*x5)*x98) - ((x322 + 0.05202731517242821*x305 - 0.16313842628353933*x308)*x314 + -2.0*((-3.085714285714285e-05*u[30] + 4.1142857142857166e-05*u[36] + 0.0006685714285714287*u[28] + 0.0011314285714285719*u[34])*x58) + x288*x165 - 2.0*(x44*x324) - (x165*x95) + x303 - 0.0018000000000000004*x75 + x129*x71 + x129*x54*x58 + x193*x293 + 9333.38*q[37] + x193*x51 + 4666.69*q[31] + x321) - ((x5*q[34] - (x1*x2*x60))*x82);
 }
 
-int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
-                     double* udot) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
+int forward_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
+                     const double* tau, double* udot) {
   const double x0 = std::cos(q[1]);
   const double x1 = std::sin(q[17]);
   const double x2 = std::cos(q[18]);
@@ -5400,10 +5383,7 @@ int forward_dynamics(const Params& p, double t, const double* q, const double* u
   return 0;
 }
 
-void coordinate_rates(const double* q, const double* u, double* qdot) {
-  (void)q;
-  (void)u;
-  (void)qdot;
+void coordinate_rates([[maybe_unused]] const double* q, const double* u, double* qdot) {
   qdot[0] = u[0];
   qdot[1] = u[1];
   qdot[2] = u[2];
@@ -5445,9 +5425,6 @@ void coordinate_rates(const double* q, const double* u, double* qdot) {
 }
 
 double kinetic_energy(const Params& p, const double* q, const double* u) {
-  (void)p;
-  (void)q;
-  (void)u;
   double T;
   const double x0 = 7.500060000000001e-07*u[29];
   const double x1 = std::cos(q[19]);
@@ -5573,8 +5550,6 @@ double kinetic_energy(const Params& p, const double* q, const double* u) {
 }
 
 double potential_energy(const Params& p, const double* q) {
-  (void)p;
-  (void)q;
   double V;
   const double x0 = -175003.50000000003*q[28];
   const double x1 = -q[8];
@@ -5676,12 +5651,8 @@ double potential_energy(const Params& p, const double* q) {
   return V;
 }
 
-void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)y;
+void outputs([[maybe_unused]] const Params& p, [[maybe_unused]] double t, const double* q,
+             [[maybe_unused]] const double* u, double* y) {
   y[0] = q[14];
   y[1] = q[15];
   y[2] = q[16];

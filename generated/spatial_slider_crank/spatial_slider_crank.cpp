@@ -9,6 +9,81 @@
 namespace kanegen_models {
 namespace spatial_slider_crank {
 
+namespace {
+
+// M: NS*NS (overwritten by L), b: NS (the right-hand side; udot on return),
+// C: NC*NS (overwritten by Y^T), g: NC. Returns 0, k > 0 for a non-positive
+// k-th pivot of M, -k when the k-th loop equation is (nearly) a combination
+// of the earlier ones.
+template <int NS, int NC>
+int solve_saddle(double* M, double* b, double* C, const double* g, double* lambda) {
+  for (int j = 0; j < NS; ++j) {
+    double s = M[j * NS + j];
+    for (int k = 0; k < j; ++k) s -= M[j * NS + k] * M[j * NS + k];
+    if (!(s > 0.0)) return j + 1;
+    const double l = std::sqrt(s);
+    M[j * NS + j] = l;
+    for (int i = j + 1; i < NS; ++i) {
+      double v = M[i * NS + j];
+      for (int k = 0; k < j; ++k) v -= M[i * NS + k] * M[j * NS + k];
+      M[i * NS + j] = v / l;
+    }
+  }
+  const auto forward = [M](double* x) {
+    for (int i = 0; i < NS; ++i) {
+      for (int k = 0; k < i; ++k) x[i] -= M[i * NS + k] * x[k];
+      x[i] /= M[i * NS + i];
+    }
+  };
+  forward(b);
+  for (int c = 0; c < NC; ++c) forward(C + c * NS);
+  double S[NC * NC];
+  for (int c = 0; c < NC; ++c) {
+    lambda[c] = g[c];
+    for (int i = 0; i < NS; ++i) lambda[c] -= C[c * NS + i] * b[i];
+    for (int d = 0; d <= c; ++d) {
+      double v = 0.0;
+      for (int i = 0; i < NS; ++i) v += C[c * NS + i] * C[d * NS + i];
+      S[c * NC + d] = v;
+    }
+  }
+  // A pivot small against the largest diagonal entry: a row that is
+  // (nearly) a combination of the others, or one whose Jacobian vanishes
+  // (a parallelogram's cranks in line).
+  double largest = 0.0;
+  for (int j = 0; j < NC; ++j)
+    if (S[j * NC + j] > largest) largest = S[j * NC + j];
+  for (int j = 0; j < NC; ++j) {
+    double s = S[j * NC + j];
+    for (int k = 0; k < j; ++k) s -= S[j * NC + k] * S[j * NC + k];
+    if (!(s > 1e-6 * largest)) return -(j + 1);
+    const double l = std::sqrt(s);
+    S[j * NC + j] = l;
+    for (int i = j + 1; i < NC; ++i) {
+      double v = S[i * NC + j];
+      for (int k = 0; k < j; ++k) v -= S[i * NC + k] * S[j * NC + k];
+      S[i * NC + j] = v / l;
+    }
+  }
+  for (int i = 0; i < NC; ++i) {
+    for (int k = 0; k < i; ++k) lambda[i] -= S[i * NC + k] * lambda[k];
+    lambda[i] /= S[i * NC + i];
+  }
+  for (int i = NC - 1; i >= 0; --i) {
+    for (int k = i + 1; k < NC; ++k) lambda[i] -= S[k * NC + i] * lambda[k];
+    lambda[i] /= S[i * NC + i];
+  }
+  for (int i = 0; i < NS; ++i)
+    for (int c = 0; c < NC; ++c) b[i] += C[c * NS + i] * lambda[c];
+  for (int i = NS - 1; i >= 0; --i) {
+    for (int k = i + 1; k < NS; ++k) b[i] -= M[k * NS + i] * b[k];
+    b[i] /= M[i * NS + i];
+  }
+  return 0;
+}
+
+}  // namespace
+
 const char* const coordinate_names[28] = {"crank_angle", "rod_yaw", "rod_pitch", "slider_x", "rod.n1.u", "rod.n1.v", "rod.n1.w", "rod.n1.theta_x", "rod.n1.theta_y", "rod.n1.theta_z", "rod.n2.u", "rod.n2.v", "rod.n2.w", "rod.n2.theta_x", "rod.n2.theta_y", "rod.n2.theta_z", "rod.n3.u", "rod.n3.v", "rod.n3.w", "rod.n3.theta_x", "rod.n3.theta_y", "rod.n3.theta_z", "rod.n4.u", "rod.n4.v", "rod.n4.w", "rod.n4.theta_x", "rod.n4.theta_y", "rod.n4.theta_z"};
 const char* const speed_names[28] = {"crank_angle_dot", "rod_yaw_dot", "rod_pitch_dot", "slider_x_dot", "rod.n1.u_dot", "rod.n1.v_dot", "rod.n1.w_dot", "rod.n1.theta_x_dot", "rod.n1.theta_y_dot", "rod.n1.theta_z_dot", "rod.n2.u_dot", "rod.n2.v_dot", "rod.n2.w_dot", "rod.n2.theta_x_dot", "rod.n2.theta_y_dot", "rod.n2.theta_z_dot", "rod.n3.u_dot", "rod.n3.v_dot", "rod.n3.w_dot", "rod.n3.theta_x_dot", "rod.n3.theta_y_dot", "rod.n3.theta_z_dot", "rod.n4.u_dot", "rod.n4.v_dot", "rod.n4.w_dot", "rod.n4.theta_x_dot", "rod.n4.theta_y_dot", "rod.n4.theta_z_dot"};
 const char* const input_names[4] = {"crank_angle_tau", "rod_yaw_tau", "rod_pitch_tau", "slider_x_tau"};
@@ -17,10 +92,10 @@ const char* const parameter_names[2] = {"omega", "h"};
 const double q0[28] = {0.0, 0.0, -0.2013, 0.4919, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
 const double u0[28] = {3e+01, -7.5, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
 
+const char* const constraint_names[NC] = {"S.x", "S.y", "S.z"};
+const int coordinate_roles[28] = {2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+
 bool set_parameter(Params& p, const char* name, double value) {
-  (void)p;
-  (void)name;
-  (void)value;
   if (std::strcmp(name, "omega") == 0) {
     p.omega = value;
     return true;
@@ -33,7 +108,6 @@ bool set_parameter(Params& p, const char* name, double value) {
 }
 
 double get_parameter(const Params& p, int i) {
-  (void)p;
   switch (i) {
     case 0: return p.omega;
     case 1: return p.h;
@@ -42,17 +116,13 @@ double get_parameter(const Params& p, int i) {
 }
 
 void initial_state(const Params& p, double* q, double* u) {
-  (void)p;
   for (int i = 0; i < NQ; ++i) q[i] = q0[i];
   for (int i = 0; i < NU; ++i) u[i] = u0[i];
   q[0] = 0.0;
   u[0] = p.omega;
 }
 
-void mass_matrix(const Params& p, const double* q, double* M) {
-  (void)p;
-  (void)q;
-  (void)M;
+void mass_matrix([[maybe_unused]] const Params& p, const double* q, double* M) {
   const double x0 = 0.007555200000000005*q[10] + 0.035257600000000014*q[16] + 0.007555200000000003*q[22] + 0.015110400000000006;
   const double x1 = 0.00016789333333333336*q[22] + 3.357866666666668e-05 - 0.00016789333333333342*q[10];
   const double x2 = 0.0001511040000000001 + 0.00016789333333333342*q[16] + 0.00025184000000000014*q[22];
@@ -955,13 +1025,8 @@ void mass_matrix(const Params& p, const double* q, double* M) {
   M[783] = 4.796952380952386e-06;
 }
 
-void forcing(const Params& p, double t, const double* q, const double* u, const double* tau, double* f) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
-  (void)f;
+void forcing([[maybe_unused]] const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
+             const double* tau, double* f) {
   const double x0 = 0.00015590095238095247*q[27];
   const double x1 = -0.037416228571428574*q[17];
   const double x2 = -0.00015590095238095242*q[15];
@@ -1187,21 +1252,209 @@ void forcing(const Params& p, double t, const double* q, const double* u, const 
 
 int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
                      double* udot) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
   double lambda[NC];
   return constrained_dynamics(p, t, q, u, tau, udot, lambda);
 }
 
-const char* const constraint_names[NC] = {"S.x", "S.y", "S.z"};
-const int coordinate_roles[28] = {2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+void coordinate_rates([[maybe_unused]] const double* q, const double* u, double* qdot) {
+  qdot[0] = u[0];
+  qdot[1] = u[1];
+  qdot[2] = u[2];
+  qdot[3] = u[3];
+  qdot[4] = u[4];
+  qdot[5] = u[5];
+  qdot[6] = u[6];
+  qdot[7] = u[7];
+  qdot[8] = u[8];
+  qdot[9] = u[9];
+  qdot[10] = u[10];
+  qdot[11] = u[11];
+  qdot[12] = u[12];
+  qdot[13] = u[13];
+  qdot[14] = u[14];
+  qdot[15] = u[15];
+  qdot[16] = u[16];
+  qdot[17] = u[17];
+  qdot[18] = u[18];
+  qdot[19] = u[19];
+  qdot[20] = u[20];
+  qdot[21] = u[21];
+  qdot[22] = u[22];
+  qdot[23] = u[23];
+  qdot[24] = u[24];
+  qdot[25] = u[25];
+  qdot[26] = u[26];
+  qdot[27] = u[27];
+}
+
+double kinetic_energy([[maybe_unused]] const Params& p, const double* q, const double* u) {
+  double T;
+  const double x0 = 0.006475885714285718*u[18];
+  const double x1 = 0.006475885714285718*u[11];
+  const double x2 = -3.597714285714287e-06*q[20];
+  const double x3 = 0.00026383238095238116*q[24] + 0.00015590095238095247*q[18] + x2 + 4.796952380952386e-06*q[26];
+  const double x4 = 0.037416228571428574*q[11];
+  const double x5 = -0.00015590095238095247*q[21];
+  const double x6 = 0.00015590095238095242*q[9];
+  const double x7 = 0.006475885714285718*q[5];
+  const double x8 = 0.006475885714285717*q[17] + x4 + x5 + x6 + x7;
+  const double x9 = 3.597714285714287e-06*q[14];
+  const double x10 = x9 + 0.00015590095238095242*q[12] - 9.593904761904768e-06*q[8];
+  const double x11 = 9.593904761904768e-06*q[14] + 0.00015590095238095247*q[6] - 3.597714285714287e-06*q[8] - 0.00015590095238095242*q[18] + x2;
+  const double x12 = 4.796952380952386e-06*q[27];
+  const double x13 = -3.597714285714287e-06*q[21];
+  const double x14 = -0.00015590095238095247*q[17];
+  const double x15 = x12 + x13 + x14 - 0.0002638323809523811*q[23];
+  const double x16 = 0.00015590095238095247*q[11] + 3.597714285714287e-06*q[15] - 0.00015590095238095242*q[23] - 9.593904761904768e-06*q[21] + 3.597714285714287e-06*q[27];
+  const double x17 = -0.00015590095238095242*q[21] - 0.006475885714285718*q[17] + 0.00026383238095238116*q[27] - 0.018708114285714287*q[23];
+  const double x18 = -0.00015590095238095242*q[20];
+  const double x19 = 0.018708114285714287*q[24];
+  const double x20 = 0.006475885714285718*q[12];
+  const double x21 = 0.037416228571428574*q[6] + x20 + 0.00015590095238095247*q[14];
+  const double x22 = 0.037416228571428574*q[12];
+  const double x23 = -0.00015590095238095242*q[8];
+  const double x24 = 0.006475885714285718*q[18];
+  const double x25 = 0.00015590095238095247*q[20];
+  const double x26 = 0.00015590095238095247*q[27];
+  const double x27 = -0.037416228571428574*q[17];
+  const double x28 = -0.00015590095238095242*q[15];
+  const double x29 = -0.006475885714285718*q[11];
+  const double x30 = x26 + x27 + x28 + x29 - 0.006475885714285717*q[23];
+  const double x31 = -0.00015590095238095242*q[14];
+  const double x32 = 0.037416228571428574*q[18];
+  const double x33 = 0.00015590095238095247*q[26];
+  const double x34 = 0.006475885714285718*q[24];
+  const double x35 = 0.00015590095238095242*q[24] - 0.00015590095238095247*q[12] - 9.593904761904768e-06*q[20] + 3.597714285714287e-06*q[26] + x9;
+  const double x36 = 3.597714285714287e-06*q[21] + 3.597714285714287e-06*q[9] - 9.593904761904768e-06*q[15] + 0.00015590095238095247*q[5] - 0.00015590095238095242*q[17];
+  const double x37 = -0.037416228571428574*q[5];
+  const double x38 = 0.00015590095238095247*q[15];
+  const double x39 = -0.006475885714285717*q[11] + x37 + x38;
+  const double x40 = -3.597714285714287e-06*q[15] + 0.00015590095238095242*q[11] + 9.593904761904768e-06*q[9];
+  const double x41 = u[1] + u[0];
+  const double x42 = std::sin(q[2]);
+  const double x43 = -3.597714285714287e-06*u[20];
+  const double x44 = 8.954223666666671e-08*u[13];
+  const double x45 = 8.954223666666671e-08*u[19];
+  const double x46 = 0.00839466666666667*q[10];
+  const double x47 = 0.00839466666666667*q[16];
+  const double x48 = 0.005036800000000002*q[4] + 0.015110400000000005*q[16] + (x46 + 0.03357866666666667*q[4] + 0.005036800000000002)*q[4] + 0.010745173333333339 + (0.03357866666666667*q[10] + 0.010073600000000004 + 0.00839466666666667*q[4] + x47)*q[10] + q[22]*(0.016789333333333337*q[22] + x47 + 0.009234133333333337) + 0.009234133333333337*q[22] + 0.010073600000000004*q[10] + (x46 + 0.015110400000000005 + 0.03357866666666667*q[16] + 0.00839466666666667*q[22])*q[16];
+  const double x49 = -(-(q[14]*x11) - ((x31 + x32 + x33 + x20 + x34)*q[18]) + x35*q[20] - (q[6]*x21) - ((x22 + x23 + x24 + x25 + 0.006475885714285718*q[6])*q[12]) + x10*q[8] - (q[26]*x3) - (q[24]*(x18 + x24 + x19 + 0.00026383238095238116*q[26])));
+  const double x50 = -(q[12]*x8) + q[6]*x39 + q[24]*x17 - (q[14]*x36) + q[18]*x30 - (q[20]*x16) + q[8]*x40 + q[26]*x15;
+  const double x51 = std::cos(q[2]);
+  const double x52 = x41*x51;
+  const double x53 = 0.00016789333333333336*q[22] + 3.357866666666668e-05 - 0.00016789333333333342*q[10];
+  const double x54 = 3.357866666666668e-05 + 0.00016789333333333336*q[10];
+  const double x55 = 0.0001511040000000001 + 0.00016789333333333342*q[16] + 0.00025184000000000014*q[22];
+  const double x56 = 0.005036800000000003 + 0.007555200000000003*q[10] + 0.035257600000000014*q[4];
+  const double x57 = 0.035257600000000014*q[10] + 0.010073600000000002 + 0.007555200000000005*q[4] + 0.007555200000000003*q[16];
+  const double x58 = 0.017628800000000003*q[22] + 0.007555200000000005*q[16] + 0.009318080000000003;
+  const double x59 = 0.00016789333333333336*q[16] + 3.357866666666665e-05 - 0.00016789333333333342*q[4];
+  const double x60 = 0.007555200000000005*q[10] + 0.035257600000000014*q[16] + 0.007555200000000003*q[22] + 0.015110400000000006;
+  const double x61 = q[21]*x53 + q[9]*x54 - (q[27]*x55) + x56*q[5] + x57*q[11] + x58*q[23] + x59*q[15] + x60*q[17];
+  const double x62 = 0.00839466666666667*u[16];
+  const double x63 = 0.00839466666666667*u[10];
+  const double x64 = std::sin(q[1]);
+  const double x65 = u[0]*x64*x42;
+  const double x66 = q[18]*x60 - (q[20]*x53) + q[26]*x55 + q[24]*x58 + x57*q[12] - (x59*q[14]) + x56*q[6] - (q[8]*x54);
+  const double x67 = (x4 + x5 + x6 + 0.006475885714285718*q[17] + x7)*q[11] - (q[23]*x17) + q[9]*x40 + (x12 + x13 - 0.00026383238095238116*q[23] + x14)*q[27] - (q[5]*(x37 + x38 + x29)) - (q[15]*x36) - (q[21]*x16) - ((x26 + x27 + x28 - 0.006475885714285718*q[23] + x29)*q[17]);
+  const double x68 = 0.006475885714285718*u[12];
+  const double x69 = 0.006475885714285718*u[17];
+  const double x70 = 3.597714285714287e-06*u[21];
+  const double x71 = std::cos(q[1]);
+  const double x72 = 0.0004197333333333336*q[26] + 0.05036800000000001*q[6] + 0.05036800000000001*q[12] + 0.025184000000000005*q[24] + 0.05036800000000001*q[18];
+  const double x73 = 0.025184000000000005*q[22] + 0.05036800000000001*q[4] + 0.05036800000000001*q[16] + 0.05036800000000001*q[10] + 0.040294400000000015;
+  const double x74 = -0.05036800000000001*q[11] - 0.05036800000000001*q[5] - 0.025184000000000005*q[23] + 0.0004197333333333336*q[27] - 0.05036800000000001*q[17];
+  const double x75 = u[0]*x71;
+  const double x76 = u[0]*x64;
+  const double x77 = u[0]*x64*x51;
+  T = 0.5*((x0 + 0.037416228571428574*u[12] + 0.006475885714285718*u[6] + 0.00015590095238095247*u[20] - 0.00015590095238095242*u[8])*u[12]) + 0.5*(u[5]*(0.037416228571428574*u[5] - 0.00015590095238095247*u[15] + x1)) - ((u[27]*x3 + 2.686267100000001e-07*u[25] + u[12]*x8 - (x10*u[9]) + u[15]*x11 - (x15*u[26]) + u[20]*x16 + 5.372534200000001e-07*u[19] - (u[24]*x17) - ((x18 + 0.006475885714285717*q[18] + 0.0002638323809523811*q[26] + x19)*u[23]) + 5.372534200000001e-07*u[7] - (u[5]*x21) + 5.372534200000001e-07*u[13] - (u[11]*(x22 + x23 + x24 + x25 + 0.006475885714285717*q[6])) - (x30*u[18]) - (u[17]*(x31 + x32 + x33 + x34 + 0.006475885714285717*q[12])) - (x35*u[21]) + u[14]*x36 - (x39*u[6]) - (u[8]*x40))*x41*x42) + 0.5*((4.796952380952386e-06*u[26] + 0.00026383238095238116*u[24] + 0.00015590095238095247*u[18] + x43)*u[26]) + 0.5*((3.5816894666666673e-07*u[19] + 8.954223666666671e-08*u[25] + x44)*u[19]) + 0.5*(u[24]*(x0 + 0.00026383238095238116*u[26] - 0.00015590095238095242*u[20] + 0.018708114285714287*u[24])) + 0.5*(u[13]*(x45 + 3.5816894666666673e-07*u[13] + 8.954223666666671e-08*u[7])) + 0.5*(u[2]*(u[2]*(x48 + 1.0745068400000003e-06 + x49) + x50*x52 + x61*x41*x42)) - 0.5*((-0.00015590095238095242*u[23] + 3.597714285714287e-06*u[15] + 0.00015590095238095247*u[11] + 3.597714285714287e-06*u[27] - 9.593904761904768e-06*u[21])*u[21]) + 0.1*u[3]*u[3] + 0.5*((9.593904761904768e-06*u[9] - 3.597714285714287e-06*u[15] + 0.00015590095238095242*u[11])*u[9]) + 0.5*(u[10]*(x62 + 0.03357866666666667*u[10] + 0.00839466666666667*u[4])) + 0.5*(u[16]*(x63 + 0.03357866666666667*u[16] + 0.00839466666666667*u[22])) + 0.5*((9.593904761904768e-06*u[20] - 3.597714285714287e-06*u[14] + 0.00015590095238095247*u[12] - 3.597714285714287e-06*u[26] - 0.00015590095238095242*u[24])*u[20]) + 0.5*((x45 + 1.7908447333333336e-07*u[25])*u[25]) + 0.0010073600000000003*x65*x65 + 0.5*((u[2]*x61 + x66*x52 + (x49 + 2.1490136800000006e-06 + x67)*x41*x42)*x41*x42) + 0.5*((0.006475885714285718*u[24] + x68 - 0.00015590095238095242*u[14] + 0.037416228571428574*u[18] + 0.00015590095238095247*u[26])*u[18]) + 0.1*(u[0]*(0.05036800000000001*u[18] + 0.05036800000000001*u[12] + 0.0004197333333333336*u[26] + 0.05036800000000001*u[6] + 0.025184000000000005*u[24])*x64*x42) + 0.5*((0.00015590095238095242*u[9] + 0.006475885714285718*u[5] - 0.00015590095238095247*u[21] + x69 + 0.037416228571428574*u[11])*u[11]) + 0.5*(u[4]*(0.03357866666666667*u[4] + x63)) - 0.5*((3.597714285714287e-06*u[9] + 0.00015590095238095247*u[5] - 9.593904761904768e-06*u[15] - 0.00015590095238095242*u[17] + x70)*u[15]) + 0.1*(u[0]*(0.05036800000000001*u[16] + 0.05036800000000001*u[10] + 0.05036800000000001*u[4] + 0.025184000000000005*u[22])*x64*x51) + 0.1*(u[0]*x71*(x41*x42*x72 + x52*x73)) + 0.5*((x43 - 0.00015590095238095242*u[18] + 9.593904761904768e-06*u[14] - 3.597714285714287e-06*u[8] + 0.00015590095238095247*u[6])*u[14]) + 0.1*(u[0]*x64*(x52*x74 + u[2]*x72)*x51) + 0.5*((x66*x41*x42 + u[2]*x50 + (x48 + 1.0745068400000003e-06 + x67)*x52)*x52) + 0.5*(u[6]*(0.00015590095238095247*u[14] + x68 + 0.037416228571428574*u[6])) - 0.1*(u[0]*(u[2]*x73 - (x41*x42*x74))*x64*x42) + 0.0010573600000000005*x75*x75 - 0.5*((0.00026383238095238116*u[23] + 0.00015590095238095247*u[17] + x70 - 4.796952380952386e-06*u[27])*u[27]) + 0.5*(u[22]*(x62 + 0.016789333333333337*u[22])) + 0.5*((0.006475885714285718*u[23] + 0.037416228571428574*u[17] + x1 + 0.00015590095238095242*u[15] - 0.00015590095238095247*u[27])*u[17]) + 0.00015*(u[0]*u[0]) + 5e-07*(x41*x41) + u[2]*(u[10]*(0.007555200000000003*q[6] + 0.007555200000000005*q[18] - 0.00016789333333333336*q[8] + 0.035257600000000014*q[12] + 0.00016789333333333342*q[20]) - (x56*u[6]) + (0.035257600000000014*q[6] + 0.00016789333333333342*q[14] + 0.007555200000000005*q[12])*u[4] + x59*u[14] + u[8]*x54 - (u[12]*x57) + (0.007555200000000005*q[24] + 0.007555200000000003*q[12] + 0.035257600000000014*q[18] + 0.00016789333333333342*q[26] - 0.00016789333333333336*q[14])*u[16] + u[22]*(0.017628800000000003*q[24] + 0.007555200000000003*q[18] - 0.00016789333333333336*q[20] + 0.00025184000000000014*q[26]) - (x55*u[26]) - (x60*u[18]) - (x58*u[24]) + u[20]*x53) + 0.5*(u[23]*(0.00015590095238095242*u[21] - 0.00026383238095238116*u[27] + x69 + 0.018708114285714287*u[23])) + 0.1*(u[0]*x71*(0.05036800000000001*u[17] + 0.05036800000000001*u[11] - 0.0004197333333333336*u[27] + 0.025184000000000005*u[23] + 0.05036800000000001*u[5])) + 0.00037500000000000006*u[0]*u[0] + 5.000000000000001e-05*x76*x76 + (u[21]*x53 + (-0.00016789333333333336*q[21] - 0.017628800000000003*q[23] - 0.007555200000000003*q[17] + 0.00025184000000000014*q[27])*u[22] + x58*u[23] - (u[10]*(0.035257600000000014*q[11] + 0.007555200000000003*q[5] + 0.00016789333333333336*q[9] - 0.00016789333333333342*q[21] + 0.007555200000000005*q[17])) + u[11]*x57 - (x55*u[27]) + x60*u[17] + x56*u[5] + (0.00016789333333333342*q[27] - 0.00016789333333333336*q[15] - 0.007555200000000005*q[23] - 0.035257600000000014*q[17] - 0.007555200000000003*q[11])*u[16] + u[4]*(-0.007555200000000005*q[11] - 0.035257600000000014*q[5] + 0.00016789333333333342*q[15]) + u[9]*x54 + x59*u[15])*x52 - 0.5*(u[8]*(0.00015590095238095242*u[12] + 3.597714285714287e-06*u[14] - 9.593904761904768e-06*u[8])) + 0.5*(u[7]*(3.5816894666666673e-07*u[7] + x44)) + 0.0010073600000000003*x77*x77;
+  return T;
+}
+
+double potential_energy(const Params& p, const double* q) {
+  double V;
+  const double x0 = 1365.32*q[14];
+  const double x1 = -40959.6*q[23];
+  const double x2 = 1365.32*q[15];
+  const double x3 = -819191.9999999998*q[11];
+  const double x4 = 5.9999999999999964*q[5];
+  const double x5 = -5.9999999999999964*q[11];
+  const double x6 = 0.18729833462074152*q[9] + x4 + x5 - 0.5872983346207419*q[15];
+  const double x7 = 0.25*q[9];
+  const double x8 = 0.25*q[15];
+  const double x9 = -15.0*q[11] + x7 + x8 + 15.0*q[5];
+  const double x10 = 5.999999999999999*q[6];
+  const double x11 = -5.999999999999999*q[12];
+  const double x12 = 0.5872983346207418*q[8] + x10 - 0.18729833462074166*q[14] + x11;
+  const double x13 = 5.999999999999999*q[11];
+  const double x14 = -5.999999999999999*q[5];
+  const double x15 = 0.5872983346207418*q[9] - 0.18729833462074166*q[15] + x13 + x14;
+  const double x16 = -15.0*q[12];
+  const double x17 = 15.0*q[6];
+  const double x18 = x16 - 0.25*q[14] - 0.25*q[8] + x17;
+  const double x19 = 5.9999999999999964*q[6];
+  const double x20 = -5.9999999999999964*q[12];
+  const double x21 = 0.5872983346207419*q[14] + x19 + x20 - 0.18729833462074152*q[8];
+  const double x22 = 0.1388888888888888*x6*x6 + 0.2222222222222222*x9*x9 + 0.1388888888888888*x12*x12 + 0.1388888888888888*x15*x15 + 0.2222222222222222*x18*x18 + 0.1388888888888888*x21*x21;
+  const double x23 = -1e+01*q[10];
+  const double x24 = -15.0*q[5] + x7;
+  const double x25 = 0.18729833462074166*q[8] + x10;
+  const double x26 = -0.5872983346207419*q[8] + x19;
+  const double x27 = 0.5872983346207419*q[9] + x4;
+  const double x28 = 0.18729833462074166*q[9] + x14;
+  const double x29 = 0.25*q[8] + x17;
+  const double x30 = 0.2222222222222222*x24*x24 + 0.1388888888888888*x25*x25 + 0.1388888888888888*x26*x26 + 0.1388888888888888*x27*x27 + 0.1388888888888888*x28*x28 + 0.2222222222222222*x29*x29;
+  const double x31 = 1365.32*q[21];
+  const double x32 = -819191.9999999998*q[24];
+  const double x33 = -40959.6*q[26];
+  const double x34 = 819191.9999999998*q[18];
+  const double x35 = 819191.9999999998*q[17];
+  const double x36 = -819191.9999999998*q[12];
+  const double x37 = -1365.32*q[20];
+  const double x38 = 15.0*q[18];
+  const double x39 = -0.25*q[26] - 0.25*q[20] - 15.0*q[24] + x38;
+  const double x40 = 5.9999999999999964*q[23] - 0.18729833462074152*q[21] - 5.9999999999999964*q[17] + 0.5872983346207419*q[27];
+  const double x41 = -5.999999999999999*q[23] + 5.999999999999999*q[17] - 0.5872983346207418*q[21] + 0.18729833462074166*q[27];
+  const double x42 = 5.999999999999999*q[18];
+  const double x43 = -5.999999999999999*q[24] - 0.18729833462074166*q[26] + 0.5872983346207418*q[20] + x42;
+  const double x44 = 5.9999999999999964*q[18];
+  const double x45 = x44 - 5.9999999999999964*q[24] + 0.5872983346207419*q[26] - 0.18729833462074152*q[20];
+  const double x46 = 0.25*q[21];
+  const double x47 = 15.0*q[17] - 15.0*q[23] + x46 + 0.25*q[27];
+  const double x48 = 0.2222222222222222*x39*x39 + 0.1388888888888888*x40*x40 + 0.1388888888888888*x41*x41 + 0.1388888888888888*x43*x43 + 0.1388888888888888*x45*x45 + 0.2222222222222222*x47*x47;
+  const double x49 = 0.18729833462074166*q[20] - 0.5872983346207418*q[14] + x42 + x11;
+  const double x50 = 0.18729833462074152*q[14] + x44 + x20 - 0.5872983346207419*q[20];
+  const double x51 = -0.5872983346207418*q[15] + x13 - 5.999999999999999*q[17] + 0.18729833462074166*q[21];
+  const double x52 = 0.25*q[14] + 0.25*q[20] + x16 + x38;
+  const double x53 = 0.5872983346207419*q[21] + 5.9999999999999964*q[17] - 0.18729833462074152*q[15] + x5;
+  const double x54 = -15.0*q[17] + x46 + x8 + 15.0*q[11];
+  const double x55 = 0.1388888888888888*x49*x49 + 0.1388888888888888*x50*x50 + 0.1388888888888888*x51*x51 + 0.2222222222222222*x52*x52 + 0.1388888888888888*x53*x53 + 0.2222222222222222*x54*x54;
+  const double x56 = 40959.6*q[27];
+  const double x57 = -819191.9999999998*q[23];
+  V = -(-0.5*(q[20]*(5461.28*q[20] + x0 - 40959.6*q[12] + 1365.32*q[26] + 40959.6*q[24])) - 0.5*(q[21]*(x1 + 40959.6*q[11] + x2 + 5461.28*q[21] + 1365.32*q[27])) - 6.4e+07*((-q[10] + 2.0*q[4])*q[4]) - 0.5*((40959.6*q[15] + x3 + 1638383.9999999995*q[5])*q[5]) + 1.28e+06*(x22*(1e+01*q[4] + x23)) - 9.81*((0.0004197333333333336*q[26] + 0.05036800000000001*q[6] + 0.05036800000000001*q[12] + 0.025184000000000005*q[24] + 0.05036800000000001*q[18])*std::cos(q[2])) - 1.28e+07*(x30*q[4]) + 6.4e+07*((q[22] + q[10] - 2.0*q[16])*q[16]) - 0.5*((2730.64*q[27] + x1 + x31 + 40959.6*q[17])*q[27]) - 6.4e+05*x22*x22 - 0.5*(q[15]*(40959.6*q[5] + x31 + 5461.28*q[15] + 1365.32*q[9] - 40959.6*q[17])) + 0.5*(q[24]*(-40959.6*q[20] + x32 + x33 + x34)) - 1.9620000000000002*p.h + 0.5*((40959.6*q[9] - 40959.6*q[21] + 819191.9999999998*q[5] + x35 - 1638383.9999999995*q[11])*q[11]) - 0.5*(q[6]*(x36 - 40959.6*q[14] + 1638383.9999999995*q[6])) + 0.5*((40959.6*q[6] - 40959.6*q[18] + x37 - 5461.28*q[14] - 1365.32*q[8])*q[14]) - 1.28e+06*((-1e+01*q[16] + 1e+01*q[22])*x48) - 1.28e+06*(x55*(1e+01*q[16] + x23)) + 0.5*((-2730.64*q[26] - 40959.6*q[24] + x37 + 40959.6*q[18])*q[26]) + 221.5*((q[19] - 2.0*q[13] + q[7])*q[13]) + 0.5*((x56 + x57 + x35 + 40959.6*q[21])*q[23]) - 0.5*(q[18]*(x36 + 1638383.9999999995*q[18] + x32 + x33 + 40959.6*q[14])) - 6.4e+05*x48*x48 + 221.5*(q[19]*(q[25] - 2.0*q[19] + q[13])) - 0.5*(q[9]*(-40959.6*q[11] + 5461.28*q[9] + x2)) + 0.5*((-40959.6*q[8] - 1638383.9999999995*q[12] + 40959.6*q[20] + 819191.9999999998*q[6] + x34)*q[12]) + 9.81*(std::sin(q[2])*(0.025184000000000005*q[22] + 0.05036800000000001*q[4] + 0.05036800000000001*q[16] + 0.05036800000000001*q[10] + 0.040294400000000015)) - 6.4e+05*x55*x55 - 0.5*((x0 + 40959.6*q[12] + 5461.28*q[8])*q[8]) - 0.5*((x56 + 1638383.9999999995*q[17] - 40959.6*q[15] + x57 + x3)*q[17]) + 6.4e+07*((-2.0*q[10] + q[16] + q[4])*q[10]) + 221.5*((-2.0*q[7] + q[13])*q[7]) - 6.4e+05*x30*x30 - 221.5*(q[25]*(q[25] - q[19])) - 6.4e+07*(q[22]*(-q[16] + q[22])));
+  return V;
+}
+
+void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
+  y[0] = q[3];
+  y[1] = q[10];
+  y[2] = q[11];
+  y[3] = q[12];
+  y[4] = -(40959.6*q[6] + 1365.3200000000002*q[8]);
+  y[5] = -(1365.3200000000002*q[9] - 40959.6*q[5]);
+  y[6] = 0.0;
+  y[7] = 0.0;
+  y[8] = 0.0;
+  // Loop forces: lambda of the dynamics at these inputs of zero (NaN where it cannot be solved).
+  double reaction_udot[NU], lambda[NC];
+  const double no_inputs[4] = {};
+  const bool solved = constrained_dynamics(p, t, q, u, no_inputs, reaction_udot, lambda) == 0;
+  y[6] = solved ? lambda[0] : std::nan("");
+  y[7] = solved ? lambda[1] : std::nan("");
+  y[8] = solved ? lambda[2] : std::nan("");
+}
 
 void constraints(const Params& p, const double* q, double* phi) {
-  (void)p;
-  (void)q;
   const double x0 = std::cos(q[0]);
   const double x1 = std::cos(q[1]);
   const double x2 = std::sin(q[0]);
@@ -1216,9 +1469,7 @@ void constraints(const Params& p, const double* q, double* phi) {
   phi[2] = -(p.h + x7*x5 - (q[24]*x6));
 }
 
-void constraint_jacobian(const Params& p, const double* q, double* C) {
-  (void)p;
-  (void)q;
+void constraint_jacobian([[maybe_unused]] const Params& p, const double* q, double* C) {
   const double x0 = std::sin(q[2]);
   const double x1 = std::cos(q[0]);
   const double x2 = std::sin(q[1]);
@@ -1320,10 +1571,7 @@ void constraint_jacobian(const Params& p, const double* q, double* C) {
   C[83] = 0.0;
 }
 
-void constraint_bias(const Params& p, const double* q, const double* u, double* gamma) {
-  (void)p;
-  (void)q;
-  (void)u;
+void constraint_bias([[maybe_unused]] const Params& p, const double* q, const double* u, double* gamma) {
   const double x0 = std::cos(q[0]);
   const double x1 = std::cos(q[1]);
   const double x2 = std::sin(q[0]);
@@ -1358,89 +1606,9 @@ void constraint_bias(const Params& p, const double* q, const double* u, double* 
   gamma[2] = -(u[2]*(-(u[24]*x11) + u[2]*(x11*x9 - (q[24]*x7)) - (u[22]*x7)) - (u[2]*u[24]*x11) - (u[2]*u[22]*x7));
 }
 
-namespace {
-
-constexpr int NS = 27;  // speeds solved for (not prescribed)
-
-// M: NS*NS (overwritten by L), b: NS (the right-hand side; udot on return),
-// C: NC*NS (overwritten by Y^T), g: NC. Returns 0, k > 0 for a non-positive
-// k-th pivot of M, -k when the k-th loop equation is (nearly) a combination
-// of the earlier ones.
-int solve_saddle(double* M, double* b, double* C, const double* g, double* lambda) {
-  for (int j = 0; j < NS; ++j) {
-    double s = M[j * NS + j];
-    for (int k = 0; k < j; ++k) s -= M[j * NS + k] * M[j * NS + k];
-    if (!(s > 0.0)) return j + 1;
-    const double l = std::sqrt(s);
-    M[j * NS + j] = l;
-    for (int i = j + 1; i < NS; ++i) {
-      double v = M[i * NS + j];
-      for (int k = 0; k < j; ++k) v -= M[i * NS + k] * M[j * NS + k];
-      M[i * NS + j] = v / l;
-    }
-  }
-  const auto forward = [M](double* x) {
-    for (int i = 0; i < NS; ++i) {
-      for (int k = 0; k < i; ++k) x[i] -= M[i * NS + k] * x[k];
-      x[i] /= M[i * NS + i];
-    }
-  };
-  forward(b);
-  for (int c = 0; c < NC; ++c) forward(C + c * NS);
-  double S[NC * NC];
-  for (int c = 0; c < NC; ++c) {
-    lambda[c] = g[c];
-    for (int i = 0; i < NS; ++i) lambda[c] -= C[c * NS + i] * b[i];
-    for (int d = 0; d <= c; ++d) {
-      double v = 0.0;
-      for (int i = 0; i < NS; ++i) v += C[c * NS + i] * C[d * NS + i];
-      S[c * NC + d] = v;
-    }
-  }
-  // A pivot small against the largest diagonal entry: a row that is
-  // (nearly) a combination of the others, or one whose Jacobian vanishes
-  // (a parallelogram's cranks in line).
-  double largest = 0.0;
-  for (int j = 0; j < NC; ++j)
-    if (S[j * NC + j] > largest) largest = S[j * NC + j];
-  for (int j = 0; j < NC; ++j) {
-    double s = S[j * NC + j];
-    for (int k = 0; k < j; ++k) s -= S[j * NC + k] * S[j * NC + k];
-    if (!(s > 1e-6 * largest)) return -(j + 1);
-    const double l = std::sqrt(s);
-    S[j * NC + j] = l;
-    for (int i = j + 1; i < NC; ++i) {
-      double v = S[i * NC + j];
-      for (int k = 0; k < j; ++k) v -= S[i * NC + k] * S[j * NC + k];
-      S[i * NC + j] = v / l;
-    }
-  }
-  for (int i = 0; i < NC; ++i) {
-    for (int k = 0; k < i; ++k) lambda[i] -= S[i * NC + k] * lambda[k];
-    lambda[i] /= S[i * NC + i];
-  }
-  for (int i = NC - 1; i >= 0; --i) {
-    for (int k = i + 1; k < NC; ++k) lambda[i] -= S[k * NC + i] * lambda[k];
-    lambda[i] /= S[i * NC + i];
-  }
-  for (int i = 0; i < NS; ++i)
-    for (int c = 0; c < NC; ++c) b[i] += C[c * NS + i] * lambda[c];
-  for (int i = NS - 1; i >= 0; --i) {
-    for (int k = i + 1; k < NS; ++k) b[i] -= M[k * NS + i] * b[k];
-    b[i] /= M[i * NS + i];
-  }
-  return 0;
-}
-
-}  // namespace
-
-int constrained_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
-                         double* udot, double* lambda) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
+int constrained_dynamics([[maybe_unused]] const Params& p, [[maybe_unused]] double t, const double* q,
+                         const double* u, const double* tau, double* udot, double* lambda) {
+  constexpr int NS = 27;  // speeds solved for (not prescribed)
   double ap0 = 0.0;  // prescribed acceleration of crank_angle_dot
   {
     ap0 = 0.0;
@@ -2542,7 +2710,7 @@ int constrained_dynamics(const Params& p, double t, const double* q, const doubl
   const double x255 = 0.00016789333333333342*u[16] + 0.00025184000000000014*u[22];
   b[25] = -(ap0*(4.197333333333336e-05*x205 + x129) - (-2730.64*q[26] - (x57*x189) + 2.0*((0.00015590095238095247*u[17] + 0.0002638323809523811*u[23] + x237 - 4.796952380952386e-06*u[27])*x149*x0) - 40959.6*q[24] + x235 + 0.0004197333333333336*x153 - (u[2]*x150*x98) + 40959.6*q[18] + x33*x150*x149*x0 + x190*x57 + 2.0*(u[2]*x255) + x197*x98 - ((0.16313842628353933*x245 - 0.05202731517242821*x244 - 0.1111111111111111*x241)*x249)));
   b[26] = ap0*(x130 + 4.197333333333336e-05*x4) + -((0.05202731517242821*x243 + 0.16313842628353933*x242 + 0.1111111111111111*x246)*x249) + -(x72*x186) + 2.0*(x255*x150) + 4.197333333333336e-05*x198 + x72*x190 - 2730.64*q[27] + x238 + x197*x57 + u[2]*x150*x57 + x253 + 2.0*((4.796952380952386e-06*u[26] + 0.00026383238095238116*u[24] + 0.00015590095238095247*u[18] + x239)*x149*x0) - 2.0*(u[2]*x33*x149*x0) - 40959.6*q[17];
-  const int status = solve_saddle(Ms, b, Cs, g, lambda);
+  const int status = solve_saddle<NS, NC>(Ms, b, Cs, g, lambda);
   udot[1] = b[0];
   udot[2] = b[1];
   udot[3] = b[2];
@@ -2572,217 +2740,6 @@ int constrained_dynamics(const Params& p, double t, const double* q, const doubl
   udot[27] = b[26];
   udot[0] = ap0;
   return status;
-}
-
-void coordinate_rates(const double* q, const double* u, double* qdot) {
-  (void)q;
-  (void)u;
-  (void)qdot;
-  qdot[0] = u[0];
-  qdot[1] = u[1];
-  qdot[2] = u[2];
-  qdot[3] = u[3];
-  qdot[4] = u[4];
-  qdot[5] = u[5];
-  qdot[6] = u[6];
-  qdot[7] = u[7];
-  qdot[8] = u[8];
-  qdot[9] = u[9];
-  qdot[10] = u[10];
-  qdot[11] = u[11];
-  qdot[12] = u[12];
-  qdot[13] = u[13];
-  qdot[14] = u[14];
-  qdot[15] = u[15];
-  qdot[16] = u[16];
-  qdot[17] = u[17];
-  qdot[18] = u[18];
-  qdot[19] = u[19];
-  qdot[20] = u[20];
-  qdot[21] = u[21];
-  qdot[22] = u[22];
-  qdot[23] = u[23];
-  qdot[24] = u[24];
-  qdot[25] = u[25];
-  qdot[26] = u[26];
-  qdot[27] = u[27];
-}
-
-double kinetic_energy(const Params& p, const double* q, const double* u) {
-  (void)p;
-  (void)q;
-  (void)u;
-  double T;
-  const double x0 = 0.006475885714285718*u[18];
-  const double x1 = 0.006475885714285718*u[11];
-  const double x2 = -3.597714285714287e-06*q[20];
-  const double x3 = 0.00026383238095238116*q[24] + 0.00015590095238095247*q[18] + x2 + 4.796952380952386e-06*q[26];
-  const double x4 = 0.037416228571428574*q[11];
-  const double x5 = -0.00015590095238095247*q[21];
-  const double x6 = 0.00015590095238095242*q[9];
-  const double x7 = 0.006475885714285718*q[5];
-  const double x8 = 0.006475885714285717*q[17] + x4 + x5 + x6 + x7;
-  const double x9 = 3.597714285714287e-06*q[14];
-  const double x10 = x9 + 0.00015590095238095242*q[12] - 9.593904761904768e-06*q[8];
-  const double x11 = 9.593904761904768e-06*q[14] + 0.00015590095238095247*q[6] - 3.597714285714287e-06*q[8] - 0.00015590095238095242*q[18] + x2;
-  const double x12 = 4.796952380952386e-06*q[27];
-  const double x13 = -3.597714285714287e-06*q[21];
-  const double x14 = -0.00015590095238095247*q[17];
-  const double x15 = x12 + x13 + x14 - 0.0002638323809523811*q[23];
-  const double x16 = 0.00015590095238095247*q[11] + 3.597714285714287e-06*q[15] - 0.00015590095238095242*q[23] - 9.593904761904768e-06*q[21] + 3.597714285714287e-06*q[27];
-  const double x17 = -0.00015590095238095242*q[21] - 0.006475885714285718*q[17] + 0.00026383238095238116*q[27] - 0.018708114285714287*q[23];
-  const double x18 = -0.00015590095238095242*q[20];
-  const double x19 = 0.018708114285714287*q[24];
-  const double x20 = 0.006475885714285718*q[12];
-  const double x21 = 0.037416228571428574*q[6] + x20 + 0.00015590095238095247*q[14];
-  const double x22 = 0.037416228571428574*q[12];
-  const double x23 = -0.00015590095238095242*q[8];
-  const double x24 = 0.006475885714285718*q[18];
-  const double x25 = 0.00015590095238095247*q[20];
-  const double x26 = 0.00015590095238095247*q[27];
-  const double x27 = -0.037416228571428574*q[17];
-  const double x28 = -0.00015590095238095242*q[15];
-  const double x29 = -0.006475885714285718*q[11];
-  const double x30 = x26 + x27 + x28 + x29 - 0.006475885714285717*q[23];
-  const double x31 = -0.00015590095238095242*q[14];
-  const double x32 = 0.037416228571428574*q[18];
-  const double x33 = 0.00015590095238095247*q[26];
-  const double x34 = 0.006475885714285718*q[24];
-  const double x35 = 0.00015590095238095242*q[24] - 0.00015590095238095247*q[12] - 9.593904761904768e-06*q[20] + 3.597714285714287e-06*q[26] + x9;
-  const double x36 = 3.597714285714287e-06*q[21] + 3.597714285714287e-06*q[9] - 9.593904761904768e-06*q[15] + 0.00015590095238095247*q[5] - 0.00015590095238095242*q[17];
-  const double x37 = -0.037416228571428574*q[5];
-  const double x38 = 0.00015590095238095247*q[15];
-  const double x39 = -0.006475885714285717*q[11] + x37 + x38;
-  const double x40 = -3.597714285714287e-06*q[15] + 0.00015590095238095242*q[11] + 9.593904761904768e-06*q[9];
-  const double x41 = u[1] + u[0];
-  const double x42 = std::sin(q[2]);
-  const double x43 = -3.597714285714287e-06*u[20];
-  const double x44 = 8.954223666666671e-08*u[13];
-  const double x45 = 8.954223666666671e-08*u[19];
-  const double x46 = 0.00839466666666667*q[10];
-  const double x47 = 0.00839466666666667*q[16];
-  const double x48 = 0.005036800000000002*q[4] + 0.015110400000000005*q[16] + (x46 + 0.03357866666666667*q[4] + 0.005036800000000002)*q[4] + 0.010745173333333339 + (0.03357866666666667*q[10] + 0.010073600000000004 + 0.00839466666666667*q[4] + x47)*q[10] + q[22]*(0.016789333333333337*q[22] + x47 + 0.009234133333333337) + 0.009234133333333337*q[22] + 0.010073600000000004*q[10] + (x46 + 0.015110400000000005 + 0.03357866666666667*q[16] + 0.00839466666666667*q[22])*q[16];
-  const double x49 = -(-(q[14]*x11) - ((x31 + x32 + x33 + x20 + x34)*q[18]) + x35*q[20] - (q[6]*x21) - ((x22 + x23 + x24 + x25 + 0.006475885714285718*q[6])*q[12]) + x10*q[8] - (q[26]*x3) - (q[24]*(x18 + x24 + x19 + 0.00026383238095238116*q[26])));
-  const double x50 = -(q[12]*x8) + q[6]*x39 + q[24]*x17 - (q[14]*x36) + q[18]*x30 - (q[20]*x16) + q[8]*x40 + q[26]*x15;
-  const double x51 = std::cos(q[2]);
-  const double x52 = x41*x51;
-  const double x53 = 0.00016789333333333336*q[22] + 3.357866666666668e-05 - 0.00016789333333333342*q[10];
-  const double x54 = 3.357866666666668e-05 + 0.00016789333333333336*q[10];
-  const double x55 = 0.0001511040000000001 + 0.00016789333333333342*q[16] + 0.00025184000000000014*q[22];
-  const double x56 = 0.005036800000000003 + 0.007555200000000003*q[10] + 0.035257600000000014*q[4];
-  const double x57 = 0.035257600000000014*q[10] + 0.010073600000000002 + 0.007555200000000005*q[4] + 0.007555200000000003*q[16];
-  const double x58 = 0.017628800000000003*q[22] + 0.007555200000000005*q[16] + 0.009318080000000003;
-  const double x59 = 0.00016789333333333336*q[16] + 3.357866666666665e-05 - 0.00016789333333333342*q[4];
-  const double x60 = 0.007555200000000005*q[10] + 0.035257600000000014*q[16] + 0.007555200000000003*q[22] + 0.015110400000000006;
-  const double x61 = q[21]*x53 + q[9]*x54 - (q[27]*x55) + x56*q[5] + x57*q[11] + x58*q[23] + x59*q[15] + x60*q[17];
-  const double x62 = 0.00839466666666667*u[16];
-  const double x63 = 0.00839466666666667*u[10];
-  const double x64 = std::sin(q[1]);
-  const double x65 = u[0]*x64*x42;
-  const double x66 = q[18]*x60 - (q[20]*x53) + q[26]*x55 + q[24]*x58 + x57*q[12] - (x59*q[14]) + x56*q[6] - (q[8]*x54);
-  const double x67 = (x4 + x5 + x6 + 0.006475885714285718*q[17] + x7)*q[11] - (q[23]*x17) + q[9]*x40 + (x12 + x13 - 0.00026383238095238116*q[23] + x14)*q[27] - (q[5]*(x37 + x38 + x29)) - (q[15]*x36) - (q[21]*x16) - ((x26 + x27 + x28 - 0.006475885714285718*q[23] + x29)*q[17]);
-  const double x68 = 0.006475885714285718*u[12];
-  const double x69 = 0.006475885714285718*u[17];
-  const double x70 = 3.597714285714287e-06*u[21];
-  const double x71 = std::cos(q[1]);
-  const double x72 = 0.0004197333333333336*q[26] + 0.05036800000000001*q[6] + 0.05036800000000001*q[12] + 0.025184000000000005*q[24] + 0.05036800000000001*q[18];
-  const double x73 = 0.025184000000000005*q[22] + 0.05036800000000001*q[4] + 0.05036800000000001*q[16] + 0.05036800000000001*q[10] + 0.040294400000000015;
-  const double x74 = -0.05036800000000001*q[11] - 0.05036800000000001*q[5] - 0.025184000000000005*q[23] + 0.0004197333333333336*q[27] - 0.05036800000000001*q[17];
-  const double x75 = u[0]*x71;
-  const double x76 = u[0]*x64;
-  const double x77 = u[0]*x64*x51;
-  T = 0.5*((x0 + 0.037416228571428574*u[12] + 0.006475885714285718*u[6] + 0.00015590095238095247*u[20] - 0.00015590095238095242*u[8])*u[12]) + 0.5*(u[5]*(0.037416228571428574*u[5] - 0.00015590095238095247*u[15] + x1)) - ((u[27]*x3 + 2.686267100000001e-07*u[25] + u[12]*x8 - (x10*u[9]) + u[15]*x11 - (x15*u[26]) + u[20]*x16 + 5.372534200000001e-07*u[19] - (u[24]*x17) - ((x18 + 0.006475885714285717*q[18] + 0.0002638323809523811*q[26] + x19)*u[23]) + 5.372534200000001e-07*u[7] - (u[5]*x21) + 5.372534200000001e-07*u[13] - (u[11]*(x22 + x23 + x24 + x25 + 0.006475885714285717*q[6])) - (x30*u[18]) - (u[17]*(x31 + x32 + x33 + x34 + 0.006475885714285717*q[12])) - (x35*u[21]) + u[14]*x36 - (x39*u[6]) - (u[8]*x40))*x41*x42) + 0.5*((4.796952380952386e-06*u[26] + 0.00026383238095238116*u[24] + 0.00015590095238095247*u[18] + x43)*u[26]) + 0.5*((3.5816894666666673e-07*u[19] + 8.954223666666671e-08*u[25] + x44)*u[19]) + 0.5*(u[24]*(x0 + 0.00026383238095238116*u[26] - 0.00015590095238095242*u[20] + 0.018708114285714287*u[24])) + 0.5*(u[13]*(x45 + 3.5816894666666673e-07*u[13] + 8.954223666666671e-08*u[7])) + 0.5*(u[2]*(u[2]*(x48 + 1.0745068400000003e-06 + x49) + x50*x52 + x61*x41*x42)) - 0.5*((-0.00015590095238095242*u[23] + 3.597714285714287e-06*u[15] + 0.00015590095238095247*u[11] + 3.597714285714287e-06*u[27] - 9.593904761904768e-06*u[21])*u[21]) + 0.1*u[3]*u[3] + 0.5*((9.593904761904768e-06*u[9] - 3.597714285714287e-06*u[15] + 0.00015590095238095242*u[11])*u[9]) + 0.5*(u[10]*(x62 + 0.03357866666666667*u[10] + 0.00839466666666667*u[4])) + 0.5*(u[16]*(x63 + 0.03357866666666667*u[16] + 0.00839466666666667*u[22])) + 0.5*((9.593904761904768e-06*u[20] - 3.597714285714287e-06*u[14] + 0.00015590095238095247*u[12] - 3.597714285714287e-06*u[26] - 0.00015590095238095242*u[24])*u[20]) + 0.5*((x45 + 1.7908447333333336e-07*u[25])*u[25]) + 0.0010073600000000003*x65*x65 + 0.5*((u[2]*x61 + x66*x52 + (x49 + 2.1490136800000006e-06 + x67)*x41*x42)*x41*x42) + 0.5*((0.006475885714285718*u[24] + x68 - 0.00015590095238095242*u[14] + 0.037416228571428574*u[18] + 0.00015590095238095247*u[26])*u[18]) + 0.1*(u[0]*(0.05036800000000001*u[18] + 0.05036800000000001*u[12] + 0.0004197333333333336*u[26] + 0.05036800000000001*u[6] + 0.025184000000000005*u[24])*x64*x42) + 0.5*((0.00015590095238095242*u[9] + 0.006475885714285718*u[5] - 0.00015590095238095247*u[21] + x69 + 0.037416228571428574*u[11])*u[11]) + 0.5*(u[4]*(0.03357866666666667*u[4] + x63)) - 0.5*((3.597714285714287e-06*u[9] + 0.00015590095238095247*u[5] - 9.593904761904768e-06*u[15] - 0.00015590095238095242*u[17] + x70)*u[15]) + 0.1*(u[0]*(0.05036800000000001*u[16] + 0.05036800000000001*u[10] + 0.05036800000000001*u[4] + 0.025184000000000005*u[22])*x64*x51) + 0.1*(u[0]*x71*(x41*x42*x72 + x52*x73)) + 0.5*((x43 - 0.00015590095238095242*u[18] + 9.593904761904768e-06*u[14] - 3.597714285714287e-06*u[8] + 0.00015590095238095247*u[6])*u[14]) + 0.1*(u[0]*x64*(x52*x74 + u[2]*x72)*x51) + 0.5*((x66*x41*x42 + u[2]*x50 + (x48 + 1.0745068400000003e-06 + x67)*x52)*x52) + 0.5*(u[6]*(0.00015590095238095247*u[14] + x68 + 0.037416228571428574*u[6])) - 0.1*(u[0]*(u[2]*x73 - (x41*x42*x74))*x64*x42) + 0.0010573600000000005*x75*x75 - 0.5*((0.00026383238095238116*u[23] + 0.00015590095238095247*u[17] + x70 - 4.796952380952386e-06*u[27])*u[27]) + 0.5*(u[22]*(x62 + 0.016789333333333337*u[22])) + 0.5*((0.006475885714285718*u[23] + 0.037416228571428574*u[17] + x1 + 0.00015590095238095242*u[15] - 0.00015590095238095247*u[27])*u[17]) + 0.00015*(u[0]*u[0]) + 5e-07*(x41*x41) + u[2]*(u[10]*(0.007555200000000003*q[6] + 0.007555200000000005*q[18] - 0.00016789333333333336*q[8] + 0.035257600000000014*q[12] + 0.00016789333333333342*q[20]) - (x56*u[6]) + (0.035257600000000014*q[6] + 0.00016789333333333342*q[14] + 0.007555200000000005*q[12])*u[4] + x59*u[14] + u[8]*x54 - (u[12]*x57) + (0.007555200000000005*q[24] + 0.007555200000000003*q[12] + 0.035257600000000014*q[18] + 0.00016789333333333342*q[26] - 0.00016789333333333336*q[14])*u[16] + u[22]*(0.017628800000000003*q[24] + 0.007555200000000003*q[18] - 0.00016789333333333336*q[20] + 0.00025184000000000014*q[26]) - (x55*u[26]) - (x60*u[18]) - (x58*u[24]) + u[20]*x53) + 0.5*(u[23]*(0.00015590095238095242*u[21] - 0.00026383238095238116*u[27] + x69 + 0.018708114285714287*u[23])) + 0.1*(u[0]*x71*(0.05036800000000001*u[17] + 0.05036800000000001*u[11] - 0.0004197333333333336*u[27] + 0.025184000000000005*u[23] + 0.05036800000000001*u[5])) + 0.00037500000000000006*u[0]*u[0] + 5.000000000000001e-05*x76*x76 + (u[21]*x53 + (-0.00016789333333333336*q[21] - 0.017628800000000003*q[23] - 0.007555200000000003*q[17] + 0.00025184000000000014*q[27])*u[22] + x58*u[23] - (u[10]*(0.035257600000000014*q[11] + 0.007555200000000003*q[5] + 0.00016789333333333336*q[9] - 0.00016789333333333342*q[21] + 0.007555200000000005*q[17])) + u[11]*x57 - (x55*u[27]) + x60*u[17] + x56*u[5] + (0.00016789333333333342*q[27] - 0.00016789333333333336*q[15] - 0.007555200000000005*q[23] - 0.035257600000000014*q[17] - 0.007555200000000003*q[11])*u[16] + u[4]*(-0.007555200000000005*q[11] - 0.035257600000000014*q[5] + 0.00016789333333333342*q[15]) + u[9]*x54 + x59*u[15])*x52 - 0.5*(u[8]*(0.00015590095238095242*u[12] + 3.597714285714287e-06*u[14] - 9.593904761904768e-06*u[8])) + 0.5*(u[7]*(3.5816894666666673e-07*u[7] + x44)) + 0.0010073600000000003*x77*x77;
-  return T;
-}
-
-double potential_energy(const Params& p, const double* q) {
-  (void)p;
-  (void)q;
-  double V;
-  const double x0 = 1365.32*q[14];
-  const double x1 = -40959.6*q[23];
-  const double x2 = 1365.32*q[15];
-  const double x3 = -819191.9999999998*q[11];
-  const double x4 = 5.9999999999999964*q[5];
-  const double x5 = -5.9999999999999964*q[11];
-  const double x6 = 0.18729833462074152*q[9] + x4 + x5 - 0.5872983346207419*q[15];
-  const double x7 = 0.25*q[9];
-  const double x8 = 0.25*q[15];
-  const double x9 = -15.0*q[11] + x7 + x8 + 15.0*q[5];
-  const double x10 = 5.999999999999999*q[6];
-  const double x11 = -5.999999999999999*q[12];
-  const double x12 = 0.5872983346207418*q[8] + x10 - 0.18729833462074166*q[14] + x11;
-  const double x13 = 5.999999999999999*q[11];
-  const double x14 = -5.999999999999999*q[5];
-  const double x15 = 0.5872983346207418*q[9] - 0.18729833462074166*q[15] + x13 + x14;
-  const double x16 = -15.0*q[12];
-  const double x17 = 15.0*q[6];
-  const double x18 = x16 - 0.25*q[14] - 0.25*q[8] + x17;
-  const double x19 = 5.9999999999999964*q[6];
-  const double x20 = -5.9999999999999964*q[12];
-  const double x21 = 0.5872983346207419*q[14] + x19 + x20 - 0.18729833462074152*q[8];
-  const double x22 = 0.1388888888888888*x6*x6 + 0.2222222222222222*x9*x9 + 0.1388888888888888*x12*x12 + 0.1388888888888888*x15*x15 + 0.2222222222222222*x18*x18 + 0.1388888888888888*x21*x21;
-  const double x23 = -1e+01*q[10];
-  const double x24 = -15.0*q[5] + x7;
-  const double x25 = 0.18729833462074166*q[8] + x10;
-  const double x26 = -0.5872983346207419*q[8] + x19;
-  const double x27 = 0.5872983346207419*q[9] + x4;
-  const double x28 = 0.18729833462074166*q[9] + x14;
-  const double x29 = 0.25*q[8] + x17;
-  const double x30 = 0.2222222222222222*x24*x24 + 0.1388888888888888*x25*x25 + 0.1388888888888888*x26*x26 + 0.1388888888888888*x27*x27 + 0.1388888888888888*x28*x28 + 0.2222222222222222*x29*x29;
-  const double x31 = 1365.32*q[21];
-  const double x32 = -819191.9999999998*q[24];
-  const double x33 = -40959.6*q[26];
-  const double x34 = 819191.9999999998*q[18];
-  const double x35 = 819191.9999999998*q[17];
-  const double x36 = -819191.9999999998*q[12];
-  const double x37 = -1365.32*q[20];
-  const double x38 = 15.0*q[18];
-  const double x39 = -0.25*q[26] - 0.25*q[20] - 15.0*q[24] + x38;
-  const double x40 = 5.9999999999999964*q[23] - 0.18729833462074152*q[21] - 5.9999999999999964*q[17] + 0.5872983346207419*q[27];
-  const double x41 = -5.999999999999999*q[23] + 5.999999999999999*q[17] - 0.5872983346207418*q[21] + 0.18729833462074166*q[27];
-  const double x42 = 5.999999999999999*q[18];
-  const double x43 = -5.999999999999999*q[24] - 0.18729833462074166*q[26] + 0.5872983346207418*q[20] + x42;
-  const double x44 = 5.9999999999999964*q[18];
-  const double x45 = x44 - 5.9999999999999964*q[24] + 0.5872983346207419*q[26] - 0.18729833462074152*q[20];
-  const double x46 = 0.25*q[21];
-  const double x47 = 15.0*q[17] - 15.0*q[23] + x46 + 0.25*q[27];
-  const double x48 = 0.2222222222222222*x39*x39 + 0.1388888888888888*x40*x40 + 0.1388888888888888*x41*x41 + 0.1388888888888888*x43*x43 + 0.1388888888888888*x45*x45 + 0.2222222222222222*x47*x47;
-  const double x49 = 0.18729833462074166*q[20] - 0.5872983346207418*q[14] + x42 + x11;
-  const double x50 = 0.18729833462074152*q[14] + x44 + x20 - 0.5872983346207419*q[20];
-  const double x51 = -0.5872983346207418*q[15] + x13 - 5.999999999999999*q[17] + 0.18729833462074166*q[21];
-  const double x52 = 0.25*q[14] + 0.25*q[20] + x16 + x38;
-  const double x53 = 0.5872983346207419*q[21] + 5.9999999999999964*q[17] - 0.18729833462074152*q[15] + x5;
-  const double x54 = -15.0*q[17] + x46 + x8 + 15.0*q[11];
-  const double x55 = 0.1388888888888888*x49*x49 + 0.1388888888888888*x50*x50 + 0.1388888888888888*x51*x51 + 0.2222222222222222*x52*x52 + 0.1388888888888888*x53*x53 + 0.2222222222222222*x54*x54;
-  const double x56 = 40959.6*q[27];
-  const double x57 = -819191.9999999998*q[23];
-  V = -(-0.5*(q[20]*(5461.28*q[20] + x0 - 40959.6*q[12] + 1365.32*q[26] + 40959.6*q[24])) - 0.5*(q[21]*(x1 + 40959.6*q[11] + x2 + 5461.28*q[21] + 1365.32*q[27])) - 6.4e+07*((-q[10] + 2.0*q[4])*q[4]) - 0.5*((40959.6*q[15] + x3 + 1638383.9999999995*q[5])*q[5]) + 1.28e+06*(x22*(1e+01*q[4] + x23)) - 9.81*((0.0004197333333333336*q[26] + 0.05036800000000001*q[6] + 0.05036800000000001*q[12] + 0.025184000000000005*q[24] + 0.05036800000000001*q[18])*std::cos(q[2])) - 1.28e+07*(x30*q[4]) + 6.4e+07*((q[22] + q[10] - 2.0*q[16])*q[16]) - 0.5*((2730.64*q[27] + x1 + x31 + 40959.6*q[17])*q[27]) - 6.4e+05*x22*x22 - 0.5*(q[15]*(40959.6*q[5] + x31 + 5461.28*q[15] + 1365.32*q[9] - 40959.6*q[17])) + 0.5*(q[24]*(-40959.6*q[20] + x32 + x33 + x34)) - 1.9620000000000002*p.h + 0.5*((40959.6*q[9] - 40959.6*q[21] + 819191.9999999998*q[5] + x35 - 1638383.9999999995*q[11])*q[11]) - 0.5*(q[6]*(x36 - 40959.6*q[14] + 1638383.9999999995*q[6])) + 0.5*((40959.6*q[6] - 40959.6*q[18] + x37 - 5461.28*q[14] - 1365.32*q[8])*q[14]) - 1.28e+06*((-1e+01*q[16] + 1e+01*q[22])*x48) - 1.28e+06*(x55*(1e+01*q[16] + x23)) + 0.5*((-2730.64*q[26] - 40959.6*q[24] + x37 + 40959.6*q[18])*q[26]) + 221.5*((q[19] - 2.0*q[13] + q[7])*q[13]) + 0.5*((x56 + x57 + x35 + 40959.6*q[21])*q[23]) - 0.5*(q[18]*(x36 + 1638383.9999999995*q[18] + x32 + x33 + 40959.6*q[14])) - 6.4e+05*x48*x48 + 221.5*(q[19]*(q[25] - 2.0*q[19] + q[13])) - 0.5*(q[9]*(-40959.6*q[11] + 5461.28*q[9] + x2)) + 0.5*((-40959.6*q[8] - 1638383.9999999995*q[12] + 40959.6*q[20] + 819191.9999999998*q[6] + x34)*q[12]) + 9.81*(std::sin(q[2])*(0.025184000000000005*q[22] + 0.05036800000000001*q[4] + 0.05036800000000001*q[16] + 0.05036800000000001*q[10] + 0.040294400000000015)) - 6.4e+05*x55*x55 - 0.5*((x0 + 40959.6*q[12] + 5461.28*q[8])*q[8]) - 0.5*((x56 + 1638383.9999999995*q[17] - 40959.6*q[15] + x57 + x3)*q[17]) + 6.4e+07*((-2.0*q[10] + q[16] + q[4])*q[10]) + 221.5*((-2.0*q[7] + q[13])*q[7]) - 6.4e+05*x30*x30 - 221.5*(q[25]*(q[25] - q[19])) - 6.4e+07*(q[22]*(-q[16] + q[22])));
-  return V;
-}
-
-void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)y;
-  y[0] = q[3];
-  y[1] = q[10];
-  y[2] = q[11];
-  y[3] = q[12];
-  y[4] = -(40959.6*q[6] + 1365.3200000000002*q[8]);
-  y[5] = -(1365.3200000000002*q[9] - 40959.6*q[5]);
-  y[6] = 0.0;
-  y[7] = 0.0;
-  y[8] = 0.0;
-  // Loop forces: lambda of the dynamics at these inputs of zero (NaN where it cannot be solved).
-  double reaction_udot[NU], lambda[NC];
-  const double no_inputs[4] = {};
-  const bool solved = constrained_dynamics(p, t, q, u, no_inputs, reaction_udot, lambda) == 0;
-  y[6] = solved ? lambda[0] : std::nan("");
-  y[7] = solved ? lambda[1] : std::nan("");
-  y[8] = solved ? lambda[2] : std::nan("");
 }
 
 }  // namespace spatial_slider_crank

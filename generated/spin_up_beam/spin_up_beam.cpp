@@ -17,10 +17,8 @@ const char* const parameter_names[2] = {"Ws", "Ts"};
 const double q0[31] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
 const double u0[31] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
 
+
 bool set_parameter(Params& p, const char* name, double value) {
-  (void)p;
-  (void)name;
-  (void)value;
   if (std::strcmp(name, "Ws") == 0) {
     p.Ws = value;
     return true;
@@ -33,7 +31,6 @@ bool set_parameter(Params& p, const char* name, double value) {
 }
 
 double get_parameter(const Params& p, int i) {
-  (void)p;
   switch (i) {
     case 0: return p.Ws;
     case 1: return p.Ts;
@@ -41,18 +38,14 @@ double get_parameter(const Params& p, int i) {
   }
 }
 
-void initial_state(const Params& p, double* q, double* u) {
-  (void)p;
+void initial_state([[maybe_unused]] const Params& p, double* q, double* u) {
   for (int i = 0; i < NQ; ++i) q[i] = q0[i];
   for (int i = 0; i < NU; ++i) u[i] = u0[i];
   q[0] = 0.0;
   u[0] = 0.0;
 }
 
-void mass_matrix(const Params& p, const double* q, double* M) {
-  (void)p;
-  (void)q;
-  (void)M;
+void mass_matrix([[maybe_unused]] const Params& p, const double* q, double* M) {
   const double x0 = 0.15428571428571433*q[8];
   const double x1 = 0.15428571428571433*q[23];
   const double x2 = -0.008571428571428572*q[21];
@@ -1062,13 +1055,8 @@ void mass_matrix(const Params& p, const double* q, double* M) {
   M[960] = 0.011428571428571437;
 }
 
-void forcing(const Params& p, double t, const double* q, const double* u, const double* tau, double* f) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
-  (void)f;
+void forcing([[maybe_unused]] const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
+             [[maybe_unused]] const double* tau, double* f) {
   const double x0 = 0.008571428571428572*q[6];
   const double x1 = 0.008571428571428572*q[12];
   const double x2 = x0 - 0.037142857142857144*q[11] + x1 + 0.03714285714285716*q[5] - 0.022857142857142868*q[9];
@@ -1263,13 +1251,8 @@ void forcing(const Params& p, double t, const double* q, const double* u, const 
   f[30] = -(x152 + x46*x11 + 8.4e+04*q[26] - 2.0*(u[0]*(0.040000000000000015*u[25] + 0.06000000000000002*u[28])) + 5.6e+04*q[30] + x160) + (0.05202731517242821*x154 + 0.16313842628353933*x155 - 0.1111111111111111*x156)*x158;
 }
 
-int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
-                     double* udot) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
+int forward_dynamics(const Params& p, double t, const double* q, const double* u,
+                     [[maybe_unused]] const double* tau, double* udot) {
   double ap0 = 0.0;  // prescribed acceleration of hub_dot
   if (t < 15.0) {
     const double xap0_0_0 = 1.0/(p.Ts);
@@ -1855,10 +1838,7 @@ int forward_dynamics(const Params& p, double t, const double* q, const double* u
   return 0;
 }
 
-void coordinate_rates(const double* q, const double* u, double* qdot) {
-  (void)q;
-  (void)u;
-  (void)qdot;
+void coordinate_rates([[maybe_unused]] const double* q, const double* u, double* qdot) {
   qdot[0] = u[0];
   qdot[1] = u[1];
   qdot[2] = u[2];
@@ -1892,10 +1872,7 @@ void coordinate_rates(const double* q, const double* u, double* qdot) {
   qdot[30] = u[30];
 }
 
-double kinetic_energy(const Params& p, const double* q, const double* u) {
-  (void)p;
-  (void)q;
-  (void)u;
+double kinetic_energy([[maybe_unused]] const Params& p, const double* q, const double* u) {
   double T;
   const double x0 = 0.15428571428571433*u[20];
   const double x1 = 0.20000000000000007*u[22];
@@ -1935,9 +1912,7 @@ double kinetic_energy(const Params& p, const double* q, const double* u) {
   return T;
 }
 
-double potential_energy(const Params& p, const double* q) {
-  (void)p;
-  (void)q;
+double potential_energy([[maybe_unused]] const Params& p, const double* q) {
   double V;
   const double x0 = 0.25*q[9];
   const double x1 = 0.25*q[6];
@@ -2014,12 +1989,8 @@ double potential_energy(const Params& p, const double* q) {
   return V;
 }
 
-void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)y;
+void outputs([[maybe_unused]] const Params& p, [[maybe_unused]] double t, const double* q,
+             [[maybe_unused]] const double* u, double* y) {
   y[0] = q[28];
   y[1] = q[29];
   y[2] = 0.0;

@@ -17,10 +17,8 @@ const char* const parameter_names[1] = {"Omega"};
 const double q0[31] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
 const double u0[31] = {1e+01, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
 
+
 bool set_parameter(Params& p, const char* name, double value) {
-  (void)p;
-  (void)name;
-  (void)value;
   if (std::strcmp(name, "Omega") == 0) {
     p.Omega = value;
     return true;
@@ -29,7 +27,6 @@ bool set_parameter(Params& p, const char* name, double value) {
 }
 
 double get_parameter(const Params& p, int i) {
-  (void)p;
   switch (i) {
     case 0: return p.Omega;
     default: return 0.0;
@@ -37,17 +34,13 @@ double get_parameter(const Params& p, int i) {
 }
 
 void initial_state(const Params& p, double* q, double* u) {
-  (void)p;
   for (int i = 0; i < NQ; ++i) q[i] = q0[i];
   for (int i = 0; i < NU; ++i) u[i] = u0[i];
   q[0] = 0.0;
   u[0] = p.Omega;
 }
 
-void mass_matrix(const Params& p, const double* q, double* M) {
-  (void)p;
-  (void)q;
-  (void)M;
+void mass_matrix([[maybe_unused]] const Params& p, const double* q, double* M) {
   const double x0 = 0.004500000000000002*q[4];
   const double x1 = 0.004500000000000002*q[16];
   const double x2 = 0.004500000000000002*q[22];
@@ -1019,13 +1012,8 @@ void mass_matrix(const Params& p, const double* q, double* M) {
   M[960] = 2.5714285714285737e-06;
 }
 
-void forcing(const Params& p, double t, const double* q, const double* u, const double* tau, double* f) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
-  (void)f;
+void forcing([[maybe_unused]] const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
+             [[maybe_unused]] const double* tau, double* f) {
   const double x0 = 0.0034714285714285732*q[23];
   const double x1 = -1.9285714285714293e-06*q[21];
   const double x2 = 1.9285714285714293e-06*q[24];
@@ -1202,13 +1190,8 @@ void forcing(const Params& p, double t, const double* q, const double* u, const 
   f[30] = 0.0022072500000000013 + x134 + 5.6e+03*q[29] - 373.33333333333337*q[30] - 186.66666666666669*q[27] - (x141*(-0.1111111111111111*x136 + 0.16313842628353933*x135 + 0.05202731517242821*x137));
 }
 
-int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
-                     double* udot) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)tau;
+int forward_dynamics([[maybe_unused]] const Params& p, [[maybe_unused]] double t, const double* q,
+                     const double* u, [[maybe_unused]] const double* tau, double* udot) {
   double ap0 = 0.0;  // prescribed acceleration of hub_dot
   {
     ap0 = 0.0;
@@ -1784,10 +1767,7 @@ int forward_dynamics(const Params& p, double t, const double* q, const double* u
   return 0;
 }
 
-void coordinate_rates(const double* q, const double* u, double* qdot) {
-  (void)q;
-  (void)u;
-  (void)qdot;
+void coordinate_rates([[maybe_unused]] const double* q, const double* u, double* qdot) {
   qdot[0] = u[0];
   qdot[1] = u[1];
   qdot[2] = u[2];
@@ -1821,10 +1801,7 @@ void coordinate_rates(const double* q, const double* u, double* qdot) {
   qdot[30] = u[30];
 }
 
-double kinetic_energy(const Params& p, const double* q, const double* u) {
-  (void)p;
-  (void)q;
-  (void)u;
+double kinetic_energy([[maybe_unused]] const Params& p, const double* q, const double* u) {
   double T;
   const double x0 = 1.9285714285714293e-06*u[12];
   const double x1 = 0.004500000000000002*u[16];
@@ -1856,9 +1833,7 @@ double kinetic_energy(const Params& p, const double* q, const double* u) {
   return T;
 }
 
-double potential_energy(const Params& p, const double* q) {
-  (void)p;
-  (void)q;
+double potential_energy([[maybe_unused]] const Params& p, const double* q) {
   double V;
   const double x0 = 5.999999999999999*q[14];
   const double x1 = -5.999999999999999*q[17];
@@ -1946,12 +1921,8 @@ double potential_energy(const Params& p, const double* q) {
   return V;
 }
 
-void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
-  (void)p;
-  (void)t;
-  (void)q;
-  (void)u;
-  (void)y;
+void outputs([[maybe_unused]] const Params& p, [[maybe_unused]] double t, const double* q,
+             [[maybe_unused]] const double* u, double* y) {
   y[0] = q[28];
   y[1] = q[29];
   y[2] = 0.0;

@@ -55,7 +55,8 @@ int generate(const RunOptions& options, const std::string& out_dir) {
   if (!options.quiet) {
     std::printf("%s: %d coordinates, %zu intermediates; load %.3f s, derive %.3f s, emit %.3f s\n", g.name.c_str(),
                 g.nq, g.intermediates, g.seconds.load, g.seconds.derive, g.seconds.emit);
-    for (const auto& [kernel, count] : g.operations) std::printf("  %-18s %8ld operations\n", kernel.c_str(), count);
+    for (const auto& [kernel, count] : g.operations)
+      std::printf("  %-18s %8ld operations\n", kanegen::codegen::signature(kernel).name, count);
     for (const auto& [file, content] : g.files)
       std::printf("  wrote %s\n", (std::filesystem::path(out_dir) / file).c_str());
   }

@@ -15,14 +15,10 @@
 #include <vector>
 
 #include "codegen/cpp_printer.hpp"
+#include "codegen/embedded_templates.hpp"
 #include "codegen/emitter.hpp"
 #include "pipeline/pipeline.hpp"
 
-namespace kanegen::embedded {
-extern const char* const model_hpp_template;
-extern const char* const model_cpp_template;
-extern const char* const runner_cpp_template;
-}  // namespace kanegen::embedded
 
 namespace kanegen::cli {
 namespace fs = std::filesystem;
@@ -69,9 +65,7 @@ std::string cache_key(const std::string& model_path, const RuntimeLocation& runt
   // The generator itself: a rebuilt kanegen of the same version may emit other code.
   std::error_code error;
   if (fs::exists("/proc/self/exe", error)) bytes += pipeline::read_file("/proc/self/exe");
-  bytes += embedded::model_hpp_template;
-  bytes += embedded::model_cpp_template;
-  bytes += embedded::runner_cpp_template;
+  for (const char* text : embedded::all_templates()) bytes += text;
   bytes += compiler();
   for (const auto& entry : fs::recursive_directory_iterator(runtime.include_dir / "kanegen"))
     if (entry.is_regular_file()) bytes += pipeline::read_file(entry.path().string());
@@ -165,7 +159,7 @@ std::string build_runner(const std::string& model_path, const BuildOptions& opti
 
   if (options.verbose)
     std::fprintf(stderr, "kanegen: compiling %s (%ld operations in forward_dynamics) ...\n",
-                 generated.name.c_str(), generated.operations.at("forward_dynamics"));
+                 generated.name.c_str(), generated.operations.at(codegen::Kernel::forward_dynamics));
   compile_runner(dir, generated.name, runtime, runner,
                  "the generated code did not compile (see the compiler's messages above); please report this "
                  "as a kanegen bug");

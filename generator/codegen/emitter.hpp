@@ -6,6 +6,7 @@
 #include <map>
 #include <string>
 
+#include "codegen/kernel_table.hpp"
 #include "kane/equations.hpp"
 #include "model/model.hpp"
 #include "symbolic/program.hpp"
@@ -15,7 +16,7 @@ namespace kanegen::codegen {
 
 struct EmittedModel {
   std::map<std::string, std::string> files;  ///< file name -> content
-  std::map<std::string, long> operations;    ///< kernel -> operation count
+  std::map<Kernel, long> operations;         ///< operation count of each counted kernel
 };
 
 /// model_hash: a digest of the model file, quoted in the header comment.

@@ -68,7 +68,8 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
     start = std::chrono::steady_clock::now();
     codegen::EmittedModel candidate = codegen::emit_model(model, equations, vars, program, hash);
     out.seconds.emit += seconds_since(start);
-    if (emitted.files.empty() || candidate.operations.at("forward_dynamics") < emitted.operations.at("forward_dynamics")) {
+    if (emitted.files.empty() || candidate.operations.at(codegen::Kernel::forward_dynamics) <
+                                       emitted.operations.at(codegen::Kernel::forward_dynamics)) {
       emitted = std::move(candidate);
       intermediates = program.size();
       nq = equations.nq;

@@ -6,6 +6,7 @@
 #include <map>
 #include <string>
 
+#include "codegen/kernel_table.hpp"
 #include "model/load.hpp"
 
 namespace kanegen::pipeline {
@@ -16,9 +17,9 @@ struct StageTimes {
 
 struct GeneratedModel {
   std::string name;
-  std::map<std::string, std::string> files;  ///< file name -> content
-  std::map<std::string, long> operations;    ///< kernel -> operation count
-  std::size_t intermediates = 0;             ///< named intermediates of the derivation
+  std::map<std::string, std::string> files;    ///< file name -> content
+  std::map<codegen::Kernel, long> operations;  ///< operation count of each counted kernel
+  std::size_t intermediates = 0;               ///< named intermediates of the derivation
   int nq = 0, nu = 0;
   StageTimes seconds;
 };

@@ -14,6 +14,8 @@ GiNaC::ex number(double value) {
   return GiNaC::numeric(value);
 }
 
+std::string prescribed_acceleration_name(int speed) { return "ap" + std::to_string(speed); }
+
 Variables::Variables(const model::Model& model, const std::vector<int>& elastic_counts)
     : source_file_(model.source_file) {
   cpp_names_[t] = "t";
@@ -28,7 +30,7 @@ Variables::Variables(const model::Model& model, const std::vector<int>& elastic_
   for (const auto& joint : model.joints) {
     if (!joint.moves()) continue;
     if (joint.is_prescribed()) {
-      const std::string name = "ap" + std::to_string(index);
+      const std::string name = prescribed_acceleration_name(index);
       prescribed_acceleration.emplace(index, GiNaC::symbol(name));
       cpp_names_[prescribed_acceleration.at(index)] = name;
     }

@@ -17,6 +17,10 @@ namespace kanegen::symbolic {
 /// A literal of the model as an expression; integral values stay exact.
 GiNaC::ex number(double value);
 
+/// The C++ local that holds the given acceleration of prescribed speed
+/// `speed` in the emitted dynamics ("ap<speed>").
+std::string prescribed_acceleration_name(int speed);
+
 class Variables {
  public:
   /// Creates the symbols for `model`: one coordinate, speed and input per

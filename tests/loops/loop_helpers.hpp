@@ -30,7 +30,7 @@ template <class System>
 LoopRun run_loops(double t_end, double dt, double rtol,
                   const std::function<void(typename System::Params&)>& configure = {},
                   const std::function<void(double*)>& adjust = {}) {
-  kanegen::runtime::SystemModel<System> model;
+  kanegen::runtime::Model model = kanegen::runtime::make_model<System>();
   typename System::Params p;
   if (configure) {
     configure(p);

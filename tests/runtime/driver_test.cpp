@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <new>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -98,6 +99,47 @@ struct System {
   static void outputs(const Params& p, double, const double* q, const double*, double* y) {
     y[0] = p.l * std::sin(q[0]);
     y[1] = -p.l * std::cos(q[0]);
+  }
+  static void initial_state(const Params&, double* q, double* u) {
+    q[0] = q0()[0];
+    u[0] = u0()[0];
+  }
+  // As a generated header writes it (templates/model.hpp.in).
+  template <class Table>
+  static Table kernel_table() {
+    Table t{};
+    t.name = name;
+    t.nq = nq, t.nu = nu, t.ntau = ntau, t.ny = ny, t.np = np;
+    t.coordinate_names = coordinate_names(), t.speed_names = speed_names(), t.input_names = input_names();
+    t.output_names = output_names(), t.parameter_names = parameter_names(), t.q0 = q0(), t.u0 = u0();
+    t.parameters_size = sizeof(Params);
+    t.default_parameters = [](void* p) { new (p) Params(); };
+    t.set_parameter = [](void* p, const char* n, double v) { return set_parameter(*static_cast<Params*>(p), n, v); };
+    t.get_parameter = [](const void* p, int i) { return get_parameter(*static_cast<const Params*>(p), i); };
+    t.initial_state = [](const void* p, double* q, double* u) {
+      initial_state(*static_cast<const Params*>(p), q, u);
+    };
+    t.mass_matrix = [](const void* p, const double* q, double* M) {
+      mass_matrix(*static_cast<const Params*>(p), q, M);
+    };
+    t.forcing = [](const void* p, double t, const double* q, const double* u, const double* tau, double* f) {
+      forcing(*static_cast<const Params*>(p), t, q, u, tau, f);
+    };
+    t.forward_dynamics = [](const void* p, double t, const double* q, const double* u, const double* tau,
+                            double* udot) {
+      return forward_dynamics(*static_cast<const Params*>(p), t, q, u, tau, udot);
+    };
+    t.coordinate_rates = coordinate_rates;
+    t.kinetic_energy = [](const void* p, const double* q, const double* u) {
+      return kinetic_energy(*static_cast<const Params*>(p), q, u);
+    };
+    t.potential_energy = [](const void* p, const double* q) {
+      return potential_energy(*static_cast<const Params*>(p), q);
+    };
+    t.outputs = [](const void* p, double t, const double* q, const double* u, double* y) {
+      outputs(*static_cast<const Params*>(p), t, q, u, y);
+    };
+    return t;
   }
 };
 

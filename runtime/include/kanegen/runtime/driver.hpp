@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The main() of a compiled model ("runner"). A generated model's main is
 //   int main(int c, char** v) { return kanegen::runtime::run_model<kanegen_models::NAME::System>(c, v); }
+// (System::kernel_table gives the runtime its kernels: model_table.hpp).
 // Subcommands: simulate, eval, info, batch (see docs/runtime.md or RUNNER --help).
 #pragma once
 
@@ -27,19 +28,19 @@ int run_model(Model& model, int argc, char** argv);
 
 template <class System>
 int run_model(const std::vector<std::string>& args, std::FILE* out, std::FILE* err) {
-  SystemModel<System> model;
+  Model model = make_model<System>();
   return run_model(model, args, out, err);
 }
 
 template <class System>
 int run_model(const std::vector<std::string>& args, std::FILE* in, std::FILE* out, std::FILE* err) {
-  SystemModel<System> model;
+  Model model = make_model<System>();
   return run_model(model, args, in, out, err);
 }
 
 template <class System>
 int run_model(int argc, char** argv) {
-  SystemModel<System> model;
+  Model model = make_model<System>();
   return run_model(model, argc, argv);
 }
 

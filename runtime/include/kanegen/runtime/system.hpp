@@ -38,7 +38,13 @@
 //     static void constraint_bias(const Params& p, const double* q, const double* u, double* gamma);  // nc
 //     static int constrained_dynamics(const Params& p, double t, const double* q, const double* u,
 //                                     const double* tau, double* udot, double* lambda);  // -k: singular
+//     // The same kernels as a table of function pointers, for the runtime's
+//     // Model (model.hpp: make_model<System>()); Table is model_table.hpp's ModelTable:
+//     template <class Table> static Table kernel_table();
 //   };
+//
+// The generator prints every kernel's declaration, definition, System member
+// and table entry from one table (generator/codegen/kernel_table.cpp).
 //
 // All generated functions are allocation-free and exception-free; arrays
 // with a size of zero are still valid pointers (sized 1 in the generated code).

@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: MIT
+// The kernels of one generated model as plain function pointers: what the
+// generated `kernel_table<kanegen::runtime::ModelTable>()` fills in (see the
+// generated header), so that everything in the runner that does not depend
+// on the model is compiled once, in the runtime library. Every kernel takes
+// the model's Params as an untyped pointer.
+#pragma once
+
+#include <cstddef>
+
+namespace kanegen::runtime {
+
+struct ModelTable {
+  // Sizes, names and the default initial state.
+  const char* name = nullptr;
+  int nq = 0, nu = 0, ntau = 0, ny = 0, np = 0;
+  const char* const* coordinate_names = nullptr;
+  const char* const* speed_names = nullptr;
+  const char* const* input_names = nullptr;
+  const char* const* output_names = nullptr;
+  const char* const* parameter_names = nullptr;
+  const double* q0 = nullptr;
+  const double* u0 = nullptr;
+  // Closed loops (0 and null for an open tree).
+  int nc = 0;
+  const char* const* constraint_names = nullptr;
+  const int* coordinate_roles = nullptr;  ///< nq: 0 free, 1 marked independent, 2 prescribed
+
+  /// The size of Params, and its default construction in storage of that size.
+  std::size_t parameters_size = 0;
+  void (*default_parameters)(void* p) = nullptr;
+
+  // The kernels (the generated header documents each).
+  bool (*set_parameter)(void* p, const char* name, double value) = nullptr;
+  double (*get_parameter)(const void* p, int i) = nullptr;
+  void (*initial_state)(const void* p, double* q, double* u) = nullptr;
+  void (*mass_matrix)(const void* p, const double* q, double* M) = nullptr;
+  void (*forcing)(const void* p, double t, const double* q, const double* u, const double* tau,
+                  double* f) = nullptr;
+  int (*forward_dynamics)(const void* p, double t, const double* q, const double* u, const double* tau,
+                          double* udot) = nullptr;
+  void (*coordinate_rates)(const double* q, const double* u, double* qdot) = nullptr;
+  double (*kinetic_energy)(const void* p, const double* q, const double* u) = nullptr;
+  double (*potential_energy)(const void* p, const double* q) = nullptr;
+  void (*outputs)(const void* p, double t, const double* q, const double* u, double* y) = nullptr;
+  // Closed loops only (null for an open tree).
+  void (*constraints)(const void* p, const double* q, double* phi) = nullptr;
+  void (*constraint_jacobian)(const void* p, const double* q, double* C) = nullptr;
+  void (*constraint_bias)(const void* p, const double* q, const double* u, double* gamma) = nullptr;
+  int (*constrained_dynamics)(const void* p, double t, const double* q, const double* u, const double* tau,
+                              double* udot, double* lambda) = nullptr;
+};
+
+}  // namespace kanegen::runtime
