@@ -472,6 +472,28 @@ double potential_energy(const Params& p, const double* q) {
   return V;
 }
 
+void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
+  const double x0 = p.i2 + p.m2*p.da*p.da;
+  const double x1 = p.m2*std::cos(q[1])*p.da*p.rr;
+  const double x2 = x0 - x1;
+  h[0] = u[1]*x2 + u[0]*(p.i1 + x0 + p.ra*p.ra*p.m1 + p.m2*p.rr*p.rr - 2.0*x1);
+  h[1] = u[1]*x0 + u[0]*x2;
+  h[2] = u[2]*(p.i3 + p.m3*(p.sa*p.sa + p.sb*p.sb));
+  const double x3 = p.e - p.ea;
+  const double x4 = p.i4 + x3*x3*p.m4;
+  const double x5 = p.zt*(p.m4*std::sin(q[3])*x3);
+  const double x6 = x4 + x5;
+  h[3] = u[3]*x4 + u[4]*x6;
+  h[4] = u[4]*(p.m5*(p.tb*p.tb + p.ta*p.ta) + p.i5 + p.m4*p.zt*p.zt + x4 + 2.0*x5) + u[3]*x6;
+  const double x7 = p.zf - p.fa;
+  const double x8 = p.m6*x7;
+  const double x9 = std::sin(q[5]);
+  const double x10 = p.i6 + p.m6*x7*x7;
+  const double x11 = -(p.uu*x8*x9) + x10;
+  h[5] = u[6]*x11 + u[5]*x10;
+  h[6] = u[5]*x11 - (u[6]*(2.0*((x8*x9)*p.uu) - p.i7 - (p.m6*p.uu*p.uu) - (p.m7*(p.ub*p.ub + p.ua*p.ua)) - x10));
+}
+
 void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
   const double x0 = std::cos(q[0]);
   const double x1 = std::cos(q[1]);

@@ -69,6 +69,9 @@ double kinetic_energy(const Params& p, const double* q, const double* u);
 /// V, the potential energy (gravity, springs, strain).
 double potential_energy(const Params& p, const double* q);
 
+/// h: NU, the generalized momenta h = M(q) u = dT/du.
+void generalized_momentum(const Params& p, const double* q, const double* u, double* h);
+
 /// y: NY, in output_names order.
 void outputs(const Params& p, double t, const double* q, const double* u, double* y);
 
@@ -169,6 +172,9 @@ struct System {
   }
   static double potential_energy(const Params& p, const double* q) {
     return ::kanegen_models::beam_tip_mass::potential_energy(p, q);
+  }
+  static void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
+    ::kanegen_models::beam_tip_mass::generalized_momentum(p, q, u, h);
   }
   static void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
     ::kanegen_models::beam_tip_mass::outputs(p, t, q, u, y);

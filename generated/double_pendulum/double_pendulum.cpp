@@ -144,6 +144,16 @@ double potential_energy(const Params& p, const double* q) {
   return V;
 }
 
+void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
+  const double x0 = p.l1*p.l1;
+  const double x1 = p.m2*p.l1*p.l2*std::cos(q[1]);
+  const double x2 = p.l2*p.l2;
+  const double x3 = 0.3333333333333333*(p.m2*x2);
+  const double x4 = x3 + 0.5*x1;
+  h[0] = u[0]*(p.m2*x0 + x1 + x3 + 0.3333333333333333*(p.m1*x0)) + u[1]*x4;
+  h[1] = 0.3333333333333333*(u[1]*p.m2*x2) + u[0]*x4;
+}
+
 void outputs(const Params& p, [[maybe_unused]] double t, const double* q, [[maybe_unused]] const double* u,
              double* y) {
   const double x0 = std::cos(q[0]);

@@ -206,6 +206,17 @@ double potential_energy(const Params& p, const double* q) {
   return V;
 }
 
+void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
+  const double x0 = p.b*p.b;
+  const double x1 = 0.3333333333333333*(p.m_b*x0);
+  const double x2 = p.b*p.a*p.m_b*std::cos(q[1]);
+  const double x3 = x1 + 0.5*x2;
+  const double x4 = p.a*p.a;
+  h[0] = u[1]*x3 + u[0]*(x1 + p.m_b*x4 + x2 + 0.3333333333333333*(p.m_a*x4));
+  h[1] = u[0]*x3 + 0.3333333333333333*(u[1]*p.m_b*x0);
+  h[2] = 0.3333333333333333*u[2]*p.m_c*p.c*p.c;
+}
+
 void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
   const double x0 = std::cos(q[0]);
   const double x1 = x0*p.a;

@@ -218,6 +218,22 @@ double potential_energy(const Params& p, const double* q) {
   return V;
 }
 
+void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
+  const double x0 = p.m*p.l*p.l*std::cos(q[3]);
+  const double x1 = p.l*p.l;
+  const double x2 = p.m*x1;
+  const double x3 = 0.3333333333333333*x2;
+  const double x4 = 0.5*x0 + x3;
+  const double x5 = 1.6666666666666665*x2;
+  h[0] = u[3]*x4 + u[0]*(x0 + x5);
+  const double x6 = p.m*p.l*p.l*std::cos(q[4]);
+  const double x7 = 0.5*x6 + x3;
+  h[1] = u[1]*(x6 + x5) + x7*u[4];
+  h[2] = 0.3333333333333333*p.m*u[2]*x1;
+  h[3] = 0.3333333333333333*(u[3]*p.m*x1) + u[0]*x4;
+  h[4] = x7*u[1] + 0.3333333333333333*(p.m*x1*u[4]);
+}
+
 void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
   y[0] = std::cos(q[0])*p.l;
   y[1] = p.l*std::sin(q[0]);

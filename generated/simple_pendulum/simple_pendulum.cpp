@@ -86,6 +86,10 @@ double potential_energy(const Params& p, const double* q) {
   return V;
 }
 
+void generalized_momentum(const Params& p, [[maybe_unused]] const double* q, const double* u, double* h) {
+  h[0] = u[0]*(p.m*p.l*p.l);
+}
+
 void outputs(const Params& p, [[maybe_unused]] double t, const double* q, [[maybe_unused]] const double* u,
              double* y) {
   y[0] = -p.l*std::sin(q[0]);

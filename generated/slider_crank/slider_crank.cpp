@@ -207,6 +207,14 @@ double potential_energy([[maybe_unused]] const Params& p, [[maybe_unused]] const
   return V;
 }
 
+void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
+  const double x0 = p.m2*std::cos(q[1])*p.L1*p.L2;
+  const double x1 = p.J2 + 0.5*x0;
+  h[0] = u[1]*x1 + u[0]*(p.J1 + p.J2 + x0 + p.m2*p.L1*p.L1);
+  h[1] = u[1]*p.J2 + u[0]*x1;
+  h[2] = p.m3*u[2];
+}
+
 void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
   y[0] = q[2];
   y[1] = u[2];

@@ -23,6 +23,7 @@ enum class Kernel {
   coordinate_rates,
   kinetic_energy,
   potential_energy,
+  generalized_momentum,
   outputs,
   constraints,
   constraint_jacobian,

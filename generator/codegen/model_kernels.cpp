@@ -220,6 +220,16 @@ KernelCode energy_kernel(Kernel kernel, const char* variable, const GiNaC::ex& e
   return code;
 }
 
+KernelCode generalized_momentum_kernel(const Derivation& d) {
+  std::vector<Assignment> momentum;
+  for (int r = 0; r < d.n(); ++r) {
+    GiNaC::ex h = 0;
+    for (int s = 0; s < d.n(); ++s) h += d.eq.mass_matrix[r * d.n() + s] * d.vars.u[s];
+    momentum.push_back({"h[" + str(r) + "]", d.graph.add(h)});
+  }
+  return printed(Kernel::generalized_momentum, d.graph, momentum);
+}
+
 /// The loop forces among the outputs: lambda of the dynamics at zero inputs.
 std::string reaction_outputs(const Derivation& d) {
   if (d.eq.reaction_outputs.empty()) return "";
@@ -258,6 +268,7 @@ std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Eq
   kernels.push_back(coordinate_rates_kernel(d));
   kernels.push_back(energy_kernel(Kernel::kinetic_energy, "T", eq.kinetic_energy, graph));
   kernels.push_back(energy_kernel(Kernel::potential_energy, "V", eq.potential_energy, graph));
+  kernels.push_back(generalized_momentum_kernel(d));
   kernels.push_back(outputs_kernel(d));
   if (d.loops()) {
     kernels.push_back(constraints_kernel(d));
