@@ -229,6 +229,41 @@ std::array<double, 4> resultants(const FlexibleData& f, const std::vector<double
           f.E * f.Iz * combine(hxx, v_values(l))};
 }
 
+/// One output column's value (model/output_columns.hpp). `reaction`: the
+/// loop forces at inputs of zero, every loop's rows in order.
+double output_value(const Instance& m, const model::OutputColumn& column, const State& s,
+                    const std::vector<Pose<double>>& poses, const std::vector<std::vector<double>>& dofs,
+                    const std::vector<double>& reaction) {
+  const OutputData& o = m.outputs[column.output];
+  switch (o.kind) {
+    case model::OutputKind::point_position:
+      return point_position(poses, o.body, o.point)[column.component];
+    case model::OutputKind::joint_coordinate:
+      return s.q[o.coordinate];
+    case model::OutputKind::joint_speed:
+      return s.u[o.coordinate];
+    case model::OutputKind::reaction: {
+      std::size_t first = 0;  // the loop's first row
+      for (int k = 0; k < o.loop; ++k) first += m.loops[k].rows.size();
+      return reaction[first + column.component];
+    }
+    case model::OutputKind::node_displacement: {
+      const FlexibleData& f = *m.bodies[o.body].beam;
+      return sub(displaced_node(f, dofs[o.body], o.node), f.nodes[o.node])[column.component];
+    }
+    default:
+      break;
+  }
+  const FlexibleData& f = *m.bodies[o.body].beam;
+  const std::array<double, 4> n4 = resultants(f, dofs[o.body], o.node);  // N, T, M_y, M_z
+  if (o.kind == model::OutputKind::axial_force) return n4[0];
+  if (o.kind == model::OutputKind::bending_moment) return n4[column.component + 1];  // about y (1), z (2)
+  // The bending stress at the extreme fibres.
+  double stress = std::abs(n4[0]) / f.A + std::abs(n4[3]) * f.fibre_y / f.Iz;
+  if (!f.planar) stress += std::abs(n4[2]) * f.fibre_z / f.Iy;
+  return stress;
+}
+
 /// The beam's strain energy; with `nonlinear` false, its linear part 1/2 u^T K u.
 double strain_energy(const FlexibleData& f, const std::vector<double>& dofs, bool nonlinear = true) {
   return sum_elements(f, dofs, nullptr, [&](const BeamElementData& e, const LocalDofs<double>& l) {
@@ -759,48 +794,8 @@ Evaluation evaluate(const Instance& m, const State& s) {
 
   std::vector<Pose<double>> poses(nb);
   for (int b = 0; b < nb; ++b) poses[b] = {motion.body[b].r, motion.body[b].p};
-  for (const OutputData& o : m.outputs) {
-    switch (o.kind) {
-      case model::OutputKind::point_position: {
-        const Vec<double> x = point_position(poses, o.body, o.point);
-        e.outputs.insert(e.outputs.end(), x.begin(), x.end());
-        break;
-      }
-      case model::OutputKind::joint_coordinate:
-        e.outputs.push_back(s.q[o.coordinate]);
-        break;
-      case model::OutputKind::joint_speed:
-        e.outputs.push_back(s.u[o.coordinate]);
-        break;
-      case model::OutputKind::reaction: {
-        std::size_t first = 0;
-        for (int k = 0; k < o.loop; ++k) first += m.loops[k].rows.size();
-        for (std::size_t i = 0; i < m.loops[o.loop].rows.size(); ++i)
-          e.outputs.push_back(reaction[first + i]);
-        break;
-      }
-      case model::OutputKind::node_displacement: {
-        const FlexibleData& f = *m.bodies[o.body].beam;
-        const Vec<double> t = sub(displaced_node(f, dofs[o.body], o.node), f.nodes[o.node]);
-        e.outputs.insert(e.outputs.end(), t.begin(), t.end());
-        break;
-      }
-      default: {
-        const FlexibleData& f = *m.bodies[o.body].beam;
-        const std::array<double, 4> n4 = resultants(f, dofs[o.body], o.node);  // N, T, M_y, M_z
-        if (o.kind == model::OutputKind::axial_force) {
-          e.outputs.push_back(n4[0]);
-        } else if (o.kind == model::OutputKind::bending_moment) {
-          if (!f.planar) e.outputs.push_back(n4[2]);
-          e.outputs.push_back(n4[3]);
-        } else {  // bending stress at the extreme fibres
-          double stress = std::abs(n4[0]) / f.A + std::abs(n4[3]) * f.fibre_y / f.Iz;
-          if (!f.planar) stress += std::abs(n4[2]) * f.fibre_z / f.Iy;
-          e.outputs.push_back(stress);
-        }
-      }
-    }
-  }
+  for (const model::OutputColumn& column : m.output_columns)
+    e.outputs.push_back(output_value(m, column, s, poses, dofs, reaction));
   return e;
 }
 
