@@ -114,19 +114,7 @@ Link link_runner(const model::Model& model, const numeric::Instance& instance, c
 
   link.outputs = info["outputs"].get<std::vector<std::string>>();
   std::vector<std::string> expected;
-  for (const numeric::OutputData& o : instance.outputs) {
-    std::vector<const char*> parts;
-    if (o.kind == model::OutputKind::point_position || o.kind == model::OutputKind::node_displacement)
-      parts = {".x", ".y", ".z"};
-    else if (o.kind == model::OutputKind::bending_moment && !instance.bodies[o.body].beam->planar)
-      parts = {".y", ".z"};
-    if (o.kind == model::OutputKind::reaction) {
-      for (const std::string& row : instance.loops[o.loop].rows) expected.push_back(o.name + "." + row);
-      continue;
-    }
-    if (parts.empty()) expected.push_back(o.name);
-    for (const char* axis : parts) expected.push_back(o.name + axis);
-  }
+  for (const model::OutputColumn& column : instance.output_columns) expected.push_back(column.name);
   if (link.outputs != expected)
     throw mismatch("outputs " + json(link.outputs).dump() + ", expected " + json(expected).dump());
   return link;
