@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // kanegen: generate, simulate and evaluate Kane's equations of a model.
 #include <CLI/CLI.hpp>
-
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
@@ -19,6 +18,7 @@ namespace {
 
 using kanegen::cli::BuildOptions;
 
+/// The options every subcommand has.
 struct RunOptions {
   std::string model;
   std::vector<std::string> sets;
@@ -27,8 +27,12 @@ struct RunOptions {
 };
 
 void add_common(CLI::App* command, RunOptions& options) {
-  command->add_option("MODEL", options.model, "model file (.json or .urdf)")->required()->check(CLI::ExistingFile);
-  command->add_option("--gravity", options.gravity, "URDF only: gravity vector X,Y,Z in m/s^2 (default 0,0,-9.81)")
+  command->add_option("MODEL", options.model, "model file (.json or .urdf)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command
+      ->add_option("--gravity", options.gravity,
+                   "URDF only: gravity vector X,Y,Z in m/s^2 (default 0,0,-9.81)")
       ->expected(3)
       ->delimiter(',');
   command->add_flag("--quiet", options.quiet, "no progress lines on stderr");
@@ -37,7 +41,8 @@ void add_common(CLI::App* command, RunOptions& options) {
 BuildOptions build_options(const RunOptions& options) {
   BuildOptions b;
   b.verbose = !options.quiet;
-  if (options.gravity.size() == 3) b.load.urdf_gravity = {options.gravity[0], options.gravity[1], options.gravity[2]};
+  if (options.gravity.size() == 3)
+    b.load.urdf_gravity = {options.gravity[0], options.gravity[1], options.gravity[2]};
   return b;
 }
 
@@ -48,19 +53,195 @@ void append_pairs(std::vector<std::string>& args, const char* flag, const std::v
   }
 }
 
-int generate(const RunOptions& options, const std::string& out_dir) {
-  const BuildOptions b = build_options(options);
-  const kanegen::pipeline::GeneratedModel g = kanegen::pipeline::generate(options.model, b.load);
-  kanegen::codegen::write_files_atomically(out_dir, g.files);
-  if (!options.quiet) {
-    std::printf("%s: %d coordinates, %zu intermediates; load %.3f s, derive %.3f s, emit %.3f s\n", g.name.c_str(),
-                g.nq, g.intermediates, g.seconds.load, g.seconds.derive, g.seconds.emit);
+// Each subcommand: its options (which CLI11 fills in place, so they stay
+// where main declares them), a function that registers them and one that runs it.
+
+struct GenerateCommand {
+  CLI::App* command = nullptr;
+  RunOptions run;
+  std::string out_dir;
+};
+
+void add_generate(CLI::App& app, GenerateCommand& c) {
+  c.command =
+      app.add_subcommand("generate", "write the model's C++ kernels (header, source, runner) to a directory");
+  add_common(c.command, c.run);
+  c.command->add_option("-o,--output", c.out_dir, "output directory (created if needed)")->required();
+}
+
+int run_generate(const GenerateCommand& c) {
+  const BuildOptions b = build_options(c.run);
+  const kanegen::pipeline::GeneratedModel g = kanegen::pipeline::generate(c.run.model, b.load);
+  kanegen::codegen::write_files_atomically(c.out_dir, g.files);
+  if (!c.run.quiet) {
+    std::printf("%s: %d coordinates, %zu intermediates; load %.3f s, derive %.3f s, emit %.3f s\n",
+                g.name.c_str(), g.nq, g.intermediates, g.seconds.load, g.seconds.derive, g.seconds.emit);
     for (const auto& [kernel, count] : g.operations)
       std::printf("  %-18s %8ld operations\n", kanegen::codegen::signature(kernel).name, count);
     for (const auto& [file, content] : g.files)
-      std::printf("  wrote %s\n", (std::filesystem::path(out_dir) / file).c_str());
+      std::printf("  wrote %s\n", (std::filesystem::path(c.out_dir) / file).c_str());
   }
   return 0;
+}
+
+struct SimulateCommand {
+  CLI::App* command = nullptr;
+  RunOptions run;
+  std::string t_end, dt = "0.01", rtol = "1e-8", atol = "1e-10";
+  std::string integrator = "dopri5", csv, max_steps = "10000000";
+  std::vector<std::string> q0, u0;
+  bool stats = false;
+};
+
+void add_simulate(CLI::App& app, SimulateCommand& c) {
+  CLI::App* sim = c.command =
+      app.add_subcommand("simulate", "generate (cached), compile and integrate the model; write CSV");
+  add_common(sim, c.run);
+  sim->add_option("--t-end", c.t_end, "end time in s")->required()->check(CLI::Number);
+  sim->add_option("--dt", c.dt, "output interval, and the step of rk4, in s")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  sim->add_option("--integrator", c.integrator, "rk4 (fixed step) or dopri5 (adaptive)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"rk4", "dopri5"}));
+  sim->add_option("--rtol", c.rtol, "dopri5 relative tolerance")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  sim->add_option("--atol", c.atol, "dopri5 absolute tolerance")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  sim->add_option("--max-steps", c.max_steps, "fail after this many integrator steps")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  sim->add_option("--set", c.run.sets, "parameter value NAME=VALUE (repeatable)");
+  sim->add_option("--q0", c.q0, "initial coordinate NAME=VALUE (repeatable)");
+  sim->add_option("--u0", c.u0, "initial speed NAME=VALUE (repeatable)");
+  sim->add_option("-o,--output", c.csv, "CSV file (default: standard output)");
+  sim->add_flag("--stats", c.stats, "print integrator statistics on stderr");
+}
+
+/// The runner's own simulate, with the options passed on.
+int run_simulate(const SimulateCommand& c) {
+  const std::string runner = kanegen::cli::build_runner(c.run.model, build_options(c.run));
+  std::vector<std::string> args{"simulate",     "--t-end",     c.t_end,    "--dt", c.dt,
+                                "--integrator", c.integrator,  "--rtol",   c.rtol, "--atol",
+                                c.atol,         "--max-steps", c.max_steps};
+  append_pairs(args, "--set", c.run.sets);
+  append_pairs(args, "--q0", c.q0);
+  append_pairs(args, "--u0", c.u0);
+  if (!c.csv.empty()) args.insert(args.end(), {"-o", c.csv});
+  if (c.stats) args.push_back("--stats");
+  return kanegen::cli::run_program(runner, args);
+}
+
+struct EvalCommand {
+  CLI::App* command = nullptr;
+  RunOptions run;
+  std::string q_values, u_values, time = "0";
+};
+
+void add_eval(CLI::App& app, EvalCommand& c) {
+  c.command = app.add_subcommand("eval", "print M, f, udot and the energies at one state, as JSON");
+  add_common(c.command, c.run);
+  c.command->add_option("--q", c.q_values, "coordinates v1,v2,... (model order)")->required();
+  c.command->add_option("--u", c.u_values, "speeds v1,v2,... (model order)")->required();
+  c.command->add_option("--t", c.time, "time in s")->capture_default_str()->check(CLI::Number);
+  c.command->add_option("--set", c.run.sets, "parameter value NAME=VALUE (repeatable)");
+}
+
+/// The runner's own eval, with the options passed on.
+int run_eval(const EvalCommand& c) {
+  const std::string runner = kanegen::cli::build_runner(c.run.model, build_options(c.run));
+  std::vector<std::string> args{"eval", "--q", c.q_values, "--u", c.u_values, "--t", c.time};
+  append_pairs(args, "--set", c.run.sets);
+  return kanegen::cli::run_program(runner, args);
+}
+
+struct VerifyCommand {
+  CLI::App* command = nullptr;
+  RunOptions run;
+  kanegen::cli::VerifyOptions options;
+};
+
+void add_verify(CLI::App& app, VerifyCommand& c) {
+  CLI::App* ver = c.command = app.add_subcommand(
+      "verify", "check the compiled kernels against an independent numeric derivation at random states");
+  add_common(ver, c.run);
+  ver->footer(
+      "Compares M, f, udot, the energies and the outputs of the compiled kernels with a numeric derivation\n"
+      "(dual numbers, no computer algebra) at random states and parameters; checks that M is symmetric\n"
+      "positive definite and the Hessian of T in u, and the power balance d(T+V)/dt = P_nc along short\n"
+      "trajectories. Exit status 0: all agree; 1: a mismatch (named on stderr with its state). See "
+      "docs/verify.md.");
+  kanegen::cli::VerifyOptions& o = c.options;
+  ver->add_option("--samples", o.samples, "number of random states")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  ver->add_option("--seed", o.seed, "random seed")->capture_default_str();
+  ver->add_option("--rtol", o.rtol, "tolerance of the relative error measures (power balance: 100x)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  ver->add_option("--spread", o.spread, "parameters drawn in default*[1-S, 1+S] (0: the defaults)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 0.99));
+  ver->add_option("--trajectories", o.trajectories, "power-balance trajectories (0: none)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  ver->add_option("--duration", o.duration, "length of each trajectory in s")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  ver->add_option(
+         "--kernels", o.kernels_dir,
+         "verify this directory of generated files (from 'kanegen generate', possibly edited) instead of "
+         "generating the kernels afresh")
+      ->check(CLI::ExistingDirectory);
+  ver->add_flag("--json", o.json, "print the report as JSON on stdout");
+}
+
+int run_verify(VerifyCommand& c) {
+  c.options.model = c.run.model;
+  c.options.build = build_options(c.run);
+  return kanegen::cli::verify(c.options);
+}
+
+struct ModesCommand {
+  CLI::App* command = nullptr;
+  RunOptions run;
+  kanegen::cli::ModesOptions options;
+};
+
+void add_modes(CLI::App& app, ModesCommand& c) {
+  CLI::App* modes = c.command = app.add_subcommand(
+      "modes", "natural frequencies and mode shapes of the model linearised about its initial state (JSON)");
+  add_common(modes, c.run);
+  modes->footer(
+      "Linearises the compiled equations about the initial state (q0, u0 of the model, or --q0/--u0; t = 0)\n"
+      "by central differences and solves K phi = omega^2 M phi with the symmetric part of K. The\n"
+      "eigen-coordinates are the elastic coordinates of the flexible bodies; free joints are held at\n"
+      "their initial state (with --free-joints, or in a model without flexible bodies, their coordinates\n"
+      "join in); prescribed joints move as prescribed, so a hub spinning at a constant rate gives the\n"
+      "rotating-beam frequencies. Mode shapes are mass-normalised, largest entry positive. Exit status 1\n"
+      "if a mode is unstable (omega^2 < 0; the JSON marks it \"stable\": false). See docs/modes.md.");
+  kanegen::cli::ModesOptions& o = c.options;
+  modes->add_option("--set", o.sets, "parameter value NAME=VALUE (repeatable)");
+  modes->add_option("--q0", o.q0, "operating point: initial coordinate NAME=VALUE (repeatable)");
+  modes->add_option("--u0", o.u0, "initial speed NAME=VALUE (repeatable)");
+  modes->add_flag("--free-joints", o.free_joints,
+                  "include the free (not prescribed) joint coordinates in the eigenproblem");
+  modes->add_option("--count", o.count, "print only the K lowest modes (default: all)")
+      ->type_name("K")
+      ->check(CLI::Range(1, 1000000));
+  modes->add_flag("--matrices", o.matrices,
+                  "also print M, K = -dr/dq, C = -dr/du and r at the initial state");
+  modes->add_option("--step", o.step, "relative finite-difference step")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-10, 1e-2));
+}
+
+int run_modes(ModesCommand& c) {
+  c.options.model = c.run.model;
+  c.options.build = build_options(c.run);
+  return kanegen::cli::modes(c.options);
 }
 
 }  // namespace
@@ -71,137 +252,25 @@ int main(int argc, char** argv) {
                "Models are kanegen JSON (docs/model-format.md) or URDF files."};
   app.set_version_flag("--version", "kanegen " KANEGEN_VERSION);
   app.require_subcommand(1);
-
-  RunOptions gen_options;
-  std::string out_dir;
-  CLI::App* gen = app.add_subcommand("generate", "write the model's C++ kernels (header, source, runner) to a directory");
-  add_common(gen, gen_options);
-  gen->add_option("-o,--output", out_dir, "output directory (created if needed)")->required();
-
-  RunOptions sim_options;
-  std::string t_end, dt = "0.01", rtol = "1e-8", atol = "1e-10";
-  std::string integrator = "dopri5", csv, max_steps = "10000000";
-  std::vector<std::string> q0, u0;
-  bool stats = false;
-  CLI::App* sim = app.add_subcommand("simulate", "generate (cached), compile and integrate the model; write CSV");
-  add_common(sim, sim_options);
-  sim->add_option("--t-end", t_end, "end time in s")->required()->check(CLI::Number);
-  sim->add_option("--dt", dt, "output interval, and the step of rk4, in s")->capture_default_str()->check(CLI::PositiveNumber);
-  sim->add_option("--integrator", integrator, "rk4 (fixed step) or dopri5 (adaptive)")->capture_default_str()
-      ->check(CLI::IsMember({"rk4", "dopri5"}));
-  sim->add_option("--rtol", rtol, "dopri5 relative tolerance")->capture_default_str()->check(CLI::PositiveNumber);
-  sim->add_option("--atol", atol, "dopri5 absolute tolerance")->capture_default_str()->check(CLI::PositiveNumber);
-  sim->add_option("--max-steps", max_steps, "fail after this many integrator steps")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  sim->add_option("--set", sim_options.sets, "parameter value NAME=VALUE (repeatable)");
-  sim->add_option("--q0", q0, "initial coordinate NAME=VALUE (repeatable)");
-  sim->add_option("--u0", u0, "initial speed NAME=VALUE (repeatable)");
-  sim->add_option("-o,--output", csv, "CSV file (default: standard output)");
-  sim->add_flag("--stats", stats, "print integrator statistics on stderr");
-
-  RunOptions eval_options;
-  std::string q_values, u_values, time = "0";
-  CLI::App* eval = app.add_subcommand("eval", "print M, f, udot and the energies at one state, as JSON");
-  add_common(eval, eval_options);
-  eval->add_option("--q", q_values, "coordinates v1,v2,... (model order)")->required();
-  eval->add_option("--u", u_values, "speeds v1,v2,... (model order)")->required();
-  eval->add_option("--t", time, "time in s")->capture_default_str()->check(CLI::Number);
-  eval->add_option("--set", eval_options.sets, "parameter value NAME=VALUE (repeatable)");
-
-  RunOptions verify_options;
-  kanegen::cli::VerifyOptions ver_options;
-  CLI::App* ver = app.add_subcommand(
-      "verify", "check the compiled kernels against an independent numeric derivation at random states");
-  add_common(ver, verify_options);
-  ver->footer(
-      "Compares M, f, udot, the energies and the outputs of the compiled kernels with a numeric derivation\n"
-      "(dual numbers, no computer algebra) at random states and parameters; checks that M is symmetric\n"
-      "positive definite and the Hessian of T in u, and the power balance d(T+V)/dt = P_nc along short\n"
-      "trajectories. Exit status 0: all agree; 1: a mismatch (named on stderr with its state). See "
-      "docs/verify.md.");
-  ver->add_option("--samples", ver_options.samples, "number of random states")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  ver->add_option("--seed", ver_options.seed, "random seed")->capture_default_str();
-  ver->add_option("--rtol", ver_options.rtol,
-                  "tolerance of the relative error measures (power balance: 100x)")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  ver->add_option("--spread", ver_options.spread, "parameters drawn in default*[1-S, 1+S] (0: the defaults)")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 0.99));
-  ver->add_option("--trajectories", ver_options.trajectories, "power-balance trajectories (0: none)")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
-  ver->add_option("--duration", ver_options.duration, "length of each trajectory in s")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  ver->add_option(
-         "--kernels", ver_options.kernels_dir,
-         "verify this directory of generated files (from 'kanegen generate', possibly edited) instead of "
-         "generating the kernels afresh")
-      ->check(CLI::ExistingDirectory);
-  ver->add_flag("--json", ver_options.json, "print the report as JSON on stdout");
-
-  RunOptions modes_run;
-  kanegen::cli::ModesOptions modes_options;
-  CLI::App* modes = app.add_subcommand(
-      "modes", "natural frequencies and mode shapes of the model linearised about its initial state (JSON)");
-  add_common(modes, modes_run);
-  modes->footer(
-      "Linearises the compiled equations about the initial state (q0, u0 of the model, or --q0/--u0; t = 0)\n"
-      "by central differences and solves K phi = omega^2 M phi with the symmetric part of K. The\n"
-      "eigen-coordinates are the elastic coordinates of the flexible bodies; free joints are held at\n"
-      "their initial state (with --free-joints, or in a model without flexible bodies, their coordinates\n"
-      "join in); prescribed joints move as prescribed, so a hub spinning at a constant rate gives the\n"
-      "rotating-beam frequencies. Mode shapes are mass-normalised, largest entry positive. Exit status 1\n"
-      "if a mode is unstable (omega^2 < 0; the JSON marks it \"stable\": false). See docs/modes.md.");
-  modes->add_option("--set", modes_options.sets, "parameter value NAME=VALUE (repeatable)");
-  modes->add_option("--q0", modes_options.q0, "operating point: initial coordinate NAME=VALUE (repeatable)");
-  modes->add_option("--u0", modes_options.u0, "initial speed NAME=VALUE (repeatable)");
-  modes->add_flag("--free-joints", modes_options.free_joints,
-                  "include the free (not prescribed) joint coordinates in the eigenproblem");
-  modes->add_option("--count", modes_options.count, "print only the K lowest modes (default: all)")
-      ->type_name("K")
-      ->check(CLI::Range(1, 1000000));
-  modes->add_flag("--matrices", modes_options.matrices,
-                  "also print M, K = -dr/dq, C = -dr/du and r at the initial state");
-  modes->add_option("--step", modes_options.step, "relative finite-difference step")
-      ->capture_default_str()
-      ->check(CLI::Range(1e-10, 1e-2));
+  GenerateCommand generate;
+  SimulateCommand simulate;
+  EvalCommand eval;
+  VerifyCommand verify;
+  ModesCommand modes;
+  add_generate(app, generate);
+  add_simulate(app, simulate);
+  add_eval(app, eval);
+  add_verify(app, verify);
+  add_modes(app, modes);
 
   CLI11_PARSE(app, argc, argv);
 
   try {
-    if (*gen) return generate(gen_options, out_dir);
-    if (*sim) {
-      const std::string runner = kanegen::cli::build_runner(sim_options.model, build_options(sim_options));
-      std::vector<std::string> args{"simulate", "--t-end", t_end, "--dt", dt, "--integrator", integrator,
-                                    "--rtol", rtol, "--atol", atol, "--max-steps", max_steps};
-      append_pairs(args, "--set", sim_options.sets);
-      append_pairs(args, "--q0", q0);
-      append_pairs(args, "--u0", u0);
-      if (!csv.empty()) args.insert(args.end(), {"-o", csv});
-      if (stats) args.push_back("--stats");
-      return kanegen::cli::run_program(runner, args);
-    }
-    if (*eval) {
-      const std::string runner = kanegen::cli::build_runner(eval_options.model, build_options(eval_options));
-      std::vector<std::string> args{"eval", "--q", q_values, "--u", u_values, "--t", time};
-      append_pairs(args, "--set", eval_options.sets);
-      return kanegen::cli::run_program(runner, args);
-    }
-    if (*ver) {
-      ver_options.model = verify_options.model;
-      ver_options.build = build_options(verify_options);
-      return kanegen::cli::verify(ver_options);
-    }
-    if (*modes) {
-      modes_options.model = modes_run.model;
-      modes_options.build = build_options(modes_run);
-      return kanegen::cli::modes(modes_options);
-    }
+    if (*generate.command) return run_generate(generate);
+    if (*simulate.command) return run_simulate(simulate);
+    if (*eval.command) return run_eval(eval);
+    if (*verify.command) return run_verify(verify);
+    if (*modes.command) return run_modes(modes);
   } catch (const kanegen::model::ModelError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;

@@ -114,19 +114,7 @@ Link link_runner(const model::Model& model, const numeric::Instance& instance, c
 
   link.outputs = info["outputs"].get<std::vector<std::string>>();
   std::vector<std::string> expected;
-  for (const numeric::OutputData& o : instance.outputs) {
-    std::vector<const char*> parts;
-    if (o.kind == model::OutputKind::point_position || o.kind == model::OutputKind::node_displacement)
-      parts = {".x", ".y", ".z"};
-    else if (o.kind == model::OutputKind::bending_moment && !instance.bodies[o.body].beam->planar)
-      parts = {".y", ".z"};
-    if (o.kind == model::OutputKind::reaction) {
-      for (const std::string& row : instance.loops[o.loop].rows) expected.push_back(o.name + "." + row);
-      continue;
-    }
-    if (parts.empty()) expected.push_back(o.name);
-    for (const char* axis : parts) expected.push_back(o.name + axis);
-  }
+  for (const model::OutputColumn& column : instance.output_columns) expected.push_back(column.name);
   if (link.outputs != expected)
     throw mismatch("outputs " + json(link.outputs).dump() + ", expected " + json(expected).dump());
   return link;
@@ -613,29 +601,22 @@ std::string failure_message(const Row& r, const std::string& state) {
   return state.empty() ? m : m + "; " + state;
 }
 
-}  // namespace
-
-int verify(const VerifyOptions& o) {
+void check_options(const VerifyOptions& o) {
   if (o.samples < 1) throw std::invalid_argument("--samples must be at least 1");
   if (!(o.rtol > 0)) throw std::invalid_argument("--rtol must be positive");
   if (!(o.spread >= 0 && o.spread < 1)) throw std::invalid_argument("--spread must be in [0, 1)");
   if (o.trajectories < 0 || !(o.duration > 0))
     throw std::invalid_argument("--trajectories >= 0, --duration > 0");
-  const auto start = std::chrono::steady_clock::now();
-  const auto progress = [&](const std::string& line) {
-    if (o.build.verbose) std::fprintf(stderr, "kanegen: verify: %s\n", line.c_str());
-  };
+}
 
-  const model::Model model = model::load_model(o.model, o.build.load);
-  const std::string runner = o.kernels_dir.empty() ? build_runner(o.model, o.build)
-                                                   : build_runner_from_directory(o.kernels_dir, o.build);
-  const json info = runner_info(runner);
-  const numeric::Instance base = numeric::instantiate(model, model::default_parameter_values(model));
-  const Link link = link_runner(model, base, info);
+/// A progress line on stderr, with --verbose (that is, without --quiet).
+void progress(const VerifyOptions& o, const std::string& line) {
+  if (o.build.verbose) std::fprintf(stderr, "kanegen: verify: %s\n", line.c_str());
+}
 
-  progress(std::to_string(o.samples) + " random states of " + model.name +
-           " against the numeric derivation ...");
-  RunnerProcess process(runner, {"batch"});
+/// The random states with the generated kernels' values at each.
+std::vector<Sample> draw_samples(RunnerProcess& process, const model::Model& model, const Link& link,
+                                 const numeric::Instance& base, const VerifyOptions& o) {
   Sampler sampler(model, link, base, o.seed, o.spread);
   std::vector<Sample> samples;
   for (int i = 0; i < o.samples; ++i) {
@@ -643,36 +624,14 @@ int verify(const VerifyOptions& o) {
     evaluate_generated(process, samples.back());
   }
   if (sampler.redrawn() > 0)
-    progress(std::to_string(sampler.redrawn()) +
-             " random states had (nearly) dependent loop equations and were drawn again (docs/verify.md)");
+    progress(
+        o, std::to_string(sampler.redrawn()) +
+               " random states had (nearly) dependent loop equations and were drawn again (docs/verify.md)");
+  return samples;
+}
 
-  const Comparison c(link, samples, o.rtol);
-  std::vector<Row> rows;
-  rows.push_back(defaults_row(model, base, link, info, o.rtol));
-  rows.push_back(c.vectors(
-      "mass_matrix", "numeric M", [](const Sample& s) { return s.mass_matrix; },
-      [](const Sample& s) { return s.reference.mass_matrix; }, c.matrix_name(), true));
-  rows.push_back(c.vectors(
-      "forcing", "numeric f", [](const Sample& s) { return s.forcing; },
-      [](const Sample& s) { return s.reference.forcing; }, c.coordinate_name(), false,
-      [](const Sample& s) { return s.reference.forcing_magnitude; }));
-  rows.push_back(c.udot());
-  rows.push_back(c.vectors(
-      "kinetic_energy", "numeric T", [](const Sample& s) { return std::vector<double>{s.kinetic}; },
-      [](const Sample& s) { return std::vector<double>{s.reference.kinetic_energy}; },
-      [](int) { return std::string(); }));
-  rows.push_back(c.vectors(
-      "potential_energy", "numeric V", [](const Sample& s) { return std::vector<double>{s.potential}; },
-      [](const Sample& s) { return std::vector<double>{s.reference.potential_energy}; },
-      [](int) { return std::string(); }));
-  rows.push_back(c.vectors(
-      "outputs", "numeric outputs", [](const Sample& s) { return s.outputs; },
-      [](const Sample& s) { return s.reference.outputs; }, c.output_name()));
-  if (link.outputs.empty()) {
-    rows.back().applicable = false;
-    rows.back().note = "the model has no outputs";
-  }
-  // Closed loops: the loop kernels and the loop forces (numeric/loops.hpp).
+/// Closed loops: the loop kernels and the loop forces (numeric/loops.hpp).
+void add_loop_rows(const Comparison& c, const Link& link, std::vector<Row>& rows) {
   const auto loop_row = [&](const std::string& quantity, const std::string& against,
                             const Comparison::Values& generated, const Comparison::Values& reference,
                             const EntryName& name) {
@@ -698,60 +657,101 @@ int verify(const VerifyOptions& o) {
                                           : s.reference.lambda;
       },
       c.constraint_name());
+}
+
+/// The generated values against the numeric reference, and the checks of M
+/// that need none.
+void add_comparison_rows(const Comparison& c, const Link& link, std::vector<Row>& rows) {
+  rows.push_back(c.vectors(
+      "mass_matrix", "numeric M", [](const Sample& s) { return s.mass_matrix; },
+      [](const Sample& s) { return s.reference.mass_matrix; }, c.matrix_name(), true));
+  rows.push_back(c.vectors(
+      "forcing", "numeric f", [](const Sample& s) { return s.forcing; },
+      [](const Sample& s) { return s.reference.forcing; }, c.coordinate_name(), false,
+      [](const Sample& s) { return s.reference.forcing_magnitude; }));
+  rows.push_back(c.udot());
+  rows.push_back(c.vectors(
+      "kinetic_energy", "numeric T", [](const Sample& s) { return std::vector<double>{s.kinetic}; },
+      [](const Sample& s) { return std::vector<double>{s.reference.kinetic_energy}; },
+      [](int) { return std::string(); }));
+  rows.push_back(c.vectors(
+      "potential_energy", "numeric V", [](const Sample& s) { return std::vector<double>{s.potential}; },
+      [](const Sample& s) { return std::vector<double>{s.reference.potential_energy}; },
+      [](int) { return std::string(); }));
+  rows.push_back(c.vectors(
+      "outputs", "numeric outputs", [](const Sample& s) { return s.outputs; },
+      [](const Sample& s) { return s.reference.outputs; }, c.output_name()));
+  if (link.outputs.empty()) {
+    rows.back().applicable = false;
+    rows.back().note = "the model has no outputs";
+  }
+  add_loop_rows(c, link, rows);
   rows.push_back(c.symmetry());
   rows.push_back(c.positive_definite());
   rows.push_back(c.kinetic_hessian());
+}
 
+/// The power balance along the trajectory from sample k's state, with its
+/// prescribed speeds on their motion.
+Worst trajectory_power_balance(RunnerProcess& process, const Sample& s, int k, double duration,
+                               long* points) {
+  TrajectoryStart from{&s.instance, s.state, s.runner_tau, s.runner_p};
+  std::vector<int> prescribed;
+  for (int r = 0; r < s.instance.joint_coordinates(); ++r) {
+    const numeric::JointData& j = s.instance.joints[s.instance.coordinate_joint[r]];
+    if (!j.is_prescribed()) continue;
+    const std::array<double, 3> motion = numeric::prescribed_motion(j, s.state.t);
+    from.state.q[r] = motion[0];
+    from.state.u[r] = motion[1];
+    prescribed.push_back(r);
+  }
+  // Closed loops: from the state projected onto the constraints (off
+  // them a random slider-crank's rod soon turns across the slide, a
+  // singular configuration), and if that runs into one too (a projected
+  // parallelogram may land on its folded, singular branch), from the
+  // state as drawn; the loop forces' power makes both valid (docs/verify.md).
+  TrajectoryStart projected = from;
+  const bool loops =
+      !s.instance.loops.empty() &&
+      numeric::project_onto_loops(s.instance, prescribed, projected.state.q, projected.state.u);
+  Worst w = power_balance(process, loops ? projected : from, duration, k, points);
+  if (loops && std::isinf(w.rel) && w.entry.rfind("(integration failed", 0) == 0)
+    w = power_balance(process, from, duration, k, points);
+  return w;
+}
+
+Row power_balance_row(RunnerProcess& process, const std::vector<Sample>& samples, const VerifyOptions& o) {
   Row power("power balance", "integral of numeric P_nc", 100 * o.rtol);
   power.where_kind = "trajectory";
   const int trajectories = std::min(o.trajectories, o.samples);
-  if (trajectories > 0) {
-    char line[96];
-    std::snprintf(line, sizeof line, "%d trajectories of %g s for the power balance ...", trajectories,
-                  o.duration);
-    progress(line);
-    for (int k = 0; k < trajectories; ++k) {
-      const Sample& s = samples[k];
-      TrajectoryStart from{&s.instance, s.state, s.runner_tau, s.runner_p};
-      // Prescribed speeds start on their motion.
-      std::vector<int> prescribed;
-      for (int r = 0; r < s.instance.joint_coordinates(); ++r) {
-        const numeric::JointData& j = s.instance.joints[s.instance.coordinate_joint[r]];
-        if (!j.is_prescribed()) continue;
-        const std::array<double, 3> motion = numeric::prescribed_motion(j, s.state.t);
-        from.state.q[r] = motion[0];
-        from.state.u[r] = motion[1];
-        prescribed.push_back(r);
-      }
-      // Closed loops: from the state projected onto the constraints (off
-      // them a random slider-crank's rod soon turns across the slide, a
-      // singular configuration), and if that runs into one too (a projected
-      // parallelogram may land on its folded, singular branch), from the
-      // state as drawn; the loop forces' power makes both valid (docs/verify.md).
-      TrajectoryStart projected = from;
-      const bool loops =
-          !s.instance.loops.empty() &&
-          numeric::project_onto_loops(s.instance, prescribed, projected.state.q, projected.state.u);
-      Worst w = power_balance(process, loops ? projected : from, o.duration, k, &power.compared);
-      if (loops && std::isinf(w.rel) && w.entry.rfind("(integration failed", 0) == 0)
-        w = power_balance(process, from, o.duration, k, &power.compared);
-      power.consider(w);
-    }
-  } else {
+  if (trajectories == 0) {
     power.applicable = false;
     power.note = "--trajectories 0";
+    return power;
   }
-  rows.push_back(power);
-  // Constraint Jacobians are compared with central differences of their
-  // functions (numeric/finite_difference.hpp) once the kernels emit any:
-  // one more row per Jacobian, evaluated through the batch protocol.
-  Row jacobians("Jacobians", "finite differences", o.rtol);
+  char line[96];
+  std::snprintf(line, sizeof line, "%d trajectories of %g s for the power balance ...", trajectories,
+                o.duration);
+  progress(o, line);
+  for (int k = 0; k < trajectories; ++k)
+    power.consider(trajectory_power_balance(process, samples[k], k, o.duration, &power.compared));
+  return power;
+}
+
+/// Constraint Jacobians are compared with central differences of their
+/// functions (numeric/finite_difference.hpp) once the kernels emit any:
+/// one more row per Jacobian, evaluated through the batch protocol.
+Row jacobians_row(const Link& link, double rtol) {
+  Row jacobians("Jacobians", "finite differences", rtol);
   jacobians.applicable = false;
   jacobians.note = link.constraints.empty() ? "none emitted (tree)"
                                             : "constraint_jacobian is compared with dual numbers above";
-  rows.push_back(jacobians);
-  process.finish();
+  return jacobians;
+}
 
+/// Each failed row's message, with the state it failed at.
+std::vector<std::string> failures_of(const std::vector<Row>& rows, const model::Model& model,
+                                     const std::vector<Sample>& samples) {
   std::vector<std::string> failures;
   for (const Row& r : rows) {
     if (r.passed()) continue;
@@ -762,23 +762,55 @@ int verify(const VerifyOptions& o) {
                                         describe(model, samples[r.worst.where]);
     failures.push_back(failure_message(r, state));
   }
+  return failures;
+}
 
-  ReportHeader header{model.name,
-                      static_cast<int>(link.coordinates.size()),
-                      static_cast<int>(model.parameters.size()),
-                      o.samples,
-                      o.seed,
-                      o.rtol,
-                      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
-  if (o.json) {
+/// The report on stdout (a table or JSON), the failures on stderr.
+void print_report(const ReportHeader& header, const std::vector<Row>& rows,
+                  const std::vector<std::string>& failures, bool json) {
+  if (json) {
     std::printf("%s\n", report_json(header, rows, failures).dump(2).c_str());
   } else {
     print_table(stdout, header, rows);
-    std::printf("%s: %s in %.2f s\n", model.name.c_str(), failures.empty() ? "verified" : "MISMATCH",
+    std::printf("%s: %s in %.2f s\n", header.model.c_str(), failures.empty() ? "verified" : "MISMATCH",
                 header.seconds);
   }
   std::fflush(stdout);
   for (const std::string& f : failures) std::fprintf(stderr, "error: %s\n", f.c_str());
+}
+
+}  // namespace
+
+int verify(const VerifyOptions& o) {
+  check_options(o);
+  const auto start = std::chrono::steady_clock::now();
+  const model::Model model = model::load_model(o.model, o.build.load);
+  const std::string runner = o.kernels_dir.empty() ? build_runner(o.model, o.build)
+                                                   : build_runner_from_directory(o.kernels_dir, o.build);
+  const json info = runner_info(runner);
+  const numeric::Instance base = numeric::instantiate(model, model::default_parameter_values(model));
+  const Link link = link_runner(model, base, info);
+
+  progress(o, std::to_string(o.samples) + " random states of " + model.name +
+                  " against the numeric derivation ...");
+  RunnerProcess process(runner, {"batch"});
+  const std::vector<Sample> samples = draw_samples(process, model, link, base, o);
+  std::vector<Row> rows;
+  rows.push_back(defaults_row(model, base, link, info, o.rtol));
+  add_comparison_rows(Comparison(link, samples, o.rtol), link, rows);
+  rows.push_back(power_balance_row(process, samples, o));
+  rows.push_back(jacobians_row(link, o.rtol));
+  process.finish();
+
+  const std::vector<std::string> failures = failures_of(rows, model, samples);
+  const ReportHeader header{model.name,
+                            static_cast<int>(link.coordinates.size()),
+                            static_cast<int>(model.parameters.size()),
+                            o.samples,
+                            o.seed,
+                            o.rtol,
+                            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
+  print_report(header, rows, failures, o.json);
   return failures.empty() ? 0 : 1;
 }
 

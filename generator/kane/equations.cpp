@@ -2,6 +2,7 @@
 #include "kane/equations.hpp"
 
 #include <map>
+#include <stdexcept>
 
 #include "kane/beam_node.hpp"
 #include "kane/flexible_body.hpp"
@@ -9,6 +10,7 @@
 #include "kane/node_outputs.hpp"
 #include "kinematics/tree_kinematics.hpp"
 #include "model/model_error.hpp"
+#include "model/output_columns.hpp"
 #include "symbolic/vec3.hpp"
 
 namespace kanegen::kane {
@@ -390,18 +392,13 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
       const std::vector<ex> eta(vars.q.begin() + first, vars.q.begin() + first + vars.elastic_count[body]);
       const NodeOutputs node = node_outputs(model.bodies[body], flexible.at(body), out, eta, program);
       eq.outputs.insert(eq.outputs.end(), node.values.begin(), node.values.end());
-      eq.output_names.insert(eq.output_names.end(), node.names.begin(), node.names.end());
       continue;
     }
     if (out.kind == model::OutputKind::point_position) {
       const int state = tree.state_of(out.body);
       Vec3 p = vec(vars, out.point);
       if (state >= 0) p = tree.world_point(tree.bodies()[state], p);
-      const char* axes[] = {".x", ".y", ".z"};
-      for (int i = 0; i < 3; ++i) {
-        eq.outputs.push_back(p[i]);
-        eq.output_names.push_back(out.name + axes[i]);
-      }
+      eq.outputs.insert(eq.outputs.end(), p.begin(), p.end());
       continue;
     }
     if (out.kind == model::OutputKind::reaction) {
@@ -409,7 +406,6 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
         if (eq.loops.loops[c] == out.loop) {
           eq.reaction_outputs.emplace_back(static_cast<int>(eq.outputs.size()), c);
           eq.outputs.push_back(0);  // filled from lambda by the emitted code
-          eq.output_names.push_back(out.name + eq.loops.names[c].substr(out.loop.size()));
         }
       continue;
     }
@@ -419,8 +415,12 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
     eq.outputs.push_back(r < 0                                             ? ex(0)
                          : out.kind == model::OutputKind::joint_coordinate ? ex(vars.q[r])
                                                                            : ex(vars.u[r]));
-    eq.output_names.push_back(out.name);
   }
+  // The values above follow the columns the model's outputs expand into, which name them.
+  for (const model::OutputColumn& column : model::output_columns(model))
+    eq.output_names.push_back(column.name);
+  if (eq.output_names.size() != eq.outputs.size())
+    throw std::logic_error("derive_equations: the outputs' values do not match their columns");
   return eq;
 }
 

@@ -229,6 +229,41 @@ std::array<double, 4> resultants(const FlexibleData& f, const std::vector<double
           f.E * f.Iz * combine(hxx, v_values(l))};
 }
 
+/// One output column's value (model/output_columns.hpp). `reaction`: the
+/// loop forces at inputs of zero, every loop's rows in order.
+double output_value(const Instance& m, const model::OutputColumn& column, const State& s,
+                    const std::vector<Pose<double>>& poses, const std::vector<std::vector<double>>& dofs,
+                    const std::vector<double>& reaction) {
+  const OutputData& o = m.outputs[column.output];
+  switch (o.kind) {
+    case model::OutputKind::point_position:
+      return point_position(poses, o.body, o.point)[column.component];
+    case model::OutputKind::joint_coordinate:
+      return s.q[o.coordinate];
+    case model::OutputKind::joint_speed:
+      return s.u[o.coordinate];
+    case model::OutputKind::reaction: {
+      std::size_t first = 0;  // the loop's first row
+      for (int k = 0; k < o.loop; ++k) first += m.loops[k].rows.size();
+      return reaction[first + column.component];
+    }
+    case model::OutputKind::node_displacement: {
+      const FlexibleData& f = *m.bodies[o.body].beam;
+      return sub(displaced_node(f, dofs[o.body], o.node), f.nodes[o.node])[column.component];
+    }
+    default:
+      break;
+  }
+  const FlexibleData& f = *m.bodies[o.body].beam;
+  const std::array<double, 4> n4 = resultants(f, dofs[o.body], o.node);  // N, T, M_y, M_z
+  if (o.kind == model::OutputKind::axial_force) return n4[0];
+  if (o.kind == model::OutputKind::bending_moment) return n4[column.component + 1];  // about y (1), z (2)
+  // The bending stress at the extreme fibres.
+  double stress = std::abs(n4[0]) / f.A + std::abs(n4[3]) * f.fibre_y / f.Iz;
+  if (!f.planar) stress += std::abs(n4[2]) * f.fibre_z / f.Iy;
+  return stress;
+}
+
 /// The beam's strain energy; with `nonlinear` false, its linear part 1/2 u^T K u.
 double strain_energy(const FlexibleData& f, const std::vector<double>& dofs, bool nonlinear = true) {
   return sum_elements(f, dofs, nullptr, [&](const BeamElementData& e, const LocalDofs<double>& l) {
@@ -569,61 +604,80 @@ ElementSums element_sums(const Instance& m, const State& s, const std::vector<Ma
   return out;
 }
 
-}  // namespace
-
-Evaluation evaluate(const Instance& m, const State& s) {
-  check_sizes(m, s);
-  const int n = m.coordinates(), nb = static_cast<int>(m.bodies.size());
-  Evaluation e;
-  e.n = n;
-  e.mass_matrix.assign(static_cast<std::size_t>(n) * n, 0.0);
-  e.forcing.assign(n, 0.0);
-  e.forcing_magnitude.assign(n, 0.0);
-  const std::vector<MassElement> elements = mass_elements(m);
-  const PathMotion motion = motion_along(m, s, nullptr, 0);
-  std::vector<std::vector<double>> dofs(nb);  // the beams' dofs at q
-  for (int b = 0; b < nb; ++b)
+/// The beams' dofs at q, the values of the motion's.
+std::vector<std::vector<double>> dofs_at_q(const PathMotion& motion) {
+  std::vector<std::vector<double>> dofs(motion.dofs.size());
+  for (std::size_t b = 0; b < motion.dofs.size(); ++b)
     for (const D2& x : motion.dofs[b]) dofs[b].push_back(x.v.v);
+  return dofs;
+}
 
-  // One pass per coordinate seeded with e_r: the elastic forces of an elastic
-  // coordinate from the gradients of the beam's energies (dU/deta_r,
-  // beta (K eta_dot)_r), the forces' and springs' partial velocities.
-  std::vector<std::vector<Vec<double>>> force_partials(m.forces.size(), std::vector<Vec<double>>(n));
-  std::vector<double> nonconservative(n, 0.0);  // beam damping forces
-  std::vector<int> owner(n, -1);                // the flexible body of an elastic coordinate
-  for (int b = 0; b < nb; ++b)
+/// The flexible body of each elastic coordinate, -1 for a joint coordinate.
+std::vector<int> elastic_owners(const Instance& m) {
+  std::vector<int> owner(m.coordinates(), -1);
+  for (std::size_t b = 0; b < m.bodies.size(); ++b)
     if (m.bodies[b].beam)
-      for (int k = 0; k < m.bodies[b].beam->count(); ++k) owner[m.bodies[b].elastic_first + k] = b;
-  std::vector<std::vector<double>> spring_slope(n), spring_reach(n);  // per coordinate, per spring
-  std::vector<int> rows(n);
-  for (int r = 0; r < n; ++r) {
-    rows[r] = r;
-    const Pass pass = partial_pass(m, s, r, motion.body, nullptr, force_partials);
-    spring_slope[r] = pass.spring_slope;
-    spring_reach[r] = pass.spring_reach;
-    const int b = owner[r];
-    if (b < 0) continue;
-    const FlexibleData& f = *m.bodies[b].beam;
-    const std::vector<char>* nodes = &pass.touched.node[b];
-    const auto strain = element_gradient(
-        f, pass.dofs[b], nodes,
-        [&](const BeamElementData& el, const LocalDofs<D1>& l) { return strain_energy(f, el, l); });
-    e.forcing[r] -= strain.first;
-    e.forcing_magnitude[r] += strain.second;
-    if (f.rayleigh_beta != 0) {
-      std::vector<D1> rate(f.count());
-      const int first = m.bodies[b].elastic_first;
-      for (int k = 0; k < f.count(); ++k) rate[k] = D1(s.u[first + k], first + k == r ? 1.0 : 0.0);
-      const auto k_rate = element_gradient(
-          f, beam_dofs(f, rate.data()), nodes,
-          [&](const BeamElementData& el, const LocalDofs<D1>& l) { return strain_energy(f, el, l, false); });
-      nonconservative[r] -= f.rayleigh_beta * k_rate.first;
-      e.forcing_magnitude[r] += f.rayleigh_beta * k_rate.second;
-    }
-  }
+      for (int k = 0; k < m.bodies[b].beam->count(); ++k)
+        owner[m.bodies[b].elastic_first + k] = static_cast<int>(b);
+  return owner;
+}
 
-  // Kane's sums over the mass elements; each beam's own elastic mass block on the side.
-  const ElementSums sums = element_sums(m, s, elements, rows, nullptr, true);
+/// The partial velocities of the forces' points and the springs, from the
+/// passes seeded with each coordinate's unit vector e_r.
+struct CoordinatePartials {
+  std::vector<std::vector<Vec<double>>> force;                  ///< per force, per coordinate
+  std::vector<std::vector<double>> spring_slope, spring_reach;  ///< per coordinate, per spring (see Pass)
+};
+
+/// The elastic forces of coordinate r of body b from the gradients of the
+/// beam's energies along e_r: -dU/deta_r into f, the Rayleigh stiffness
+/// damping -beta (K eta_dot)_r into `nonconservative`.
+void add_elastic_gradients(const Instance& m, const State& s, int r, int b, const Pass& pass, Evaluation& e,
+                           std::vector<double>& nonconservative) {
+  const FlexibleData& f = *m.bodies[b].beam;
+  const std::vector<char>* nodes = &pass.touched.node[b];
+  const auto strain = element_gradient(
+      f, pass.dofs[b], nodes,
+      [&](const BeamElementData& el, const LocalDofs<D1>& l) { return strain_energy(f, el, l); });
+  e.forcing[r] -= strain.first;
+  e.forcing_magnitude[r] += strain.second;
+  if (f.rayleigh_beta == 0) return;
+  std::vector<D1> rate(f.count());
+  const int first = m.bodies[b].elastic_first;
+  for (int k = 0; k < f.count(); ++k) rate[k] = D1(s.u[first + k], first + k == r ? 1.0 : 0.0);
+  const auto k_rate = element_gradient(
+      f, beam_dofs(f, rate.data()), nodes,
+      [&](const BeamElementData& el, const LocalDofs<D1>& l) { return strain_energy(f, el, l, false); });
+  nonconservative[r] -= f.rayleigh_beta * k_rate.first;
+  e.forcing_magnitude[r] += f.rayleigh_beta * k_rate.second;
+}
+
+/// One pass per coordinate seeded with e_r: the forces' and springs'
+/// partial velocities, and the elastic forces of an elastic coordinate.
+CoordinatePartials coordinate_passes(const Instance& m, const State& s, const PathMotion& motion,
+                                     Evaluation& e, std::vector<double>& nonconservative) {
+  const int n = m.coordinates();
+  CoordinatePartials out;
+  out.force.assign(m.forces.size(), std::vector<Vec<double>>(n));
+  out.spring_slope.resize(n);
+  out.spring_reach.resize(n);
+  const std::vector<int> owner = elastic_owners(m);
+  for (int r = 0; r < n; ++r) {
+    const Pass pass = partial_pass(m, s, r, motion.body, nullptr, out.force);
+    out.spring_slope[r] = pass.spring_slope;
+    out.spring_reach[r] = pass.spring_reach;
+    if (owner[r] >= 0) add_elastic_gradients(m, s, r, owner[r], pass, e, nonconservative);
+  }
+  return out;
+}
+
+/// Kane's sums over the mass elements into M, f, T and V. Returns each
+/// beam's own elastic mass block (for its Rayleigh damping alpha M).
+std::vector<Eigen::MatrixXd> add_mass_elements(const Instance& m, const State& s, Evaluation& e) {
+  const int n = m.coordinates();
+  std::vector<int> rows(n);
+  for (int r = 0; r < n; ++r) rows[r] = r;
+  ElementSums sums = element_sums(m, s, mass_elements(m), rows, nullptr, true);
   for (int r = 0; r < n; ++r) {
     e.forcing[r] += sums.forcing[r];
     e.forcing_magnitude[r] += sums.magnitude[r];
@@ -631,10 +685,14 @@ Evaluation evaluate(const Instance& m, const State& s) {
   e.mass_matrix = sums.mass_matrix;
   e.kinetic_energy += sums.kinetic;
   e.potential_energy += sums.potential;
-  const std::vector<Eigen::MatrixXd>& own_mass = sums.own_mass;
+  return std::move(sums.own_mass);
+}
 
-  // The beams: strain energy, Rayleigh alpha M or modal damping.
-  for (int b = 0; b < nb; ++b) {
+/// The beams: strain energy into V; Rayleigh alpha M or modal damping into `nonconservative`.
+void add_beams(const Instance& m, const State& s, const std::vector<std::vector<double>>& dofs,
+               const std::vector<Eigen::MatrixXd>& own_mass, Evaluation& e,
+               std::vector<double>& nonconservative) {
+  for (std::size_t b = 0; b < m.bodies.size(); ++b) {
     if (!m.bodies[b].beam) continue;
     const FlexibleData& f = *m.bodies[b].beam;
     const int first = m.bodies[b].elastic_first;
@@ -652,18 +710,26 @@ Evaluation evaluate(const Instance& m, const State& s) {
       e.forcing_magnitude[first + k] += magnitude;
     }
   }
-  for (int r = 0; r < n; ++r) {
+}
+
+/// The beams' damping forces into f, and their power.
+void add_beam_damping(const State& s, const std::vector<double>& nonconservative, Evaluation& e) {
+  for (std::size_t r = 0; r < nonconservative.size(); ++r) {
     e.forcing[r] += nonconservative[r];
     e.nonconservative_power += nonconservative[r] * s.u[r];
   }
+}
 
+/// Point forces: F.v_r on each row; a world force's potential -F.p, a body force's power.
+void add_point_forces(const Instance& m, const PathMotion& motion, const CoordinatePartials& partials,
+                      Evaluation& e) {
   for (std::size_t i = 0; i < m.forces.size(); ++i) {
     const ForceData& f = m.forces[i];
+    const std::vector<Vec<double>>& partial = partials.force[i];
     const Vec<double> force = f.body_frame ? mul(motion.body[f.body].r, f.force) : f.force;
-    for (int r = 0; r < n; ++r) {
-      e.forcing[r] += dot(force, force_partials[i][r]);
-      e.forcing_magnitude[r] +=
-          std::sqrt(dot(force, force) * dot(force_partials[i][r], force_partials[i][r]));
+    for (int r = 0; r < e.n; ++r) {
+      e.forcing[r] += dot(force, partial[r]);
+      e.forcing_magnitude[r] += std::sqrt(dot(force, force) * dot(partial[r], partial[r]));
     }
     const Vec<D2> at = force_point(m, f, motion.poses, motion.dofs);
     if (f.body_frame) {
@@ -672,20 +738,27 @@ Evaluation evaluate(const Instance& m, const State& s) {
       e.potential_energy -= dot(force, Vec<double>{at[0].v.v, at[1].v.v, at[2].v.v});
     }
   }
+}
 
-  // Springs: -tension dl/dq_r on each row; the damper's power -c l_dot^2.
+/// Springs: -tension dl/dq_r on each row; their energy; the damper's power -c l_dot^2.
+void add_springs(const Instance& m, const PathMotion& motion, const CoordinatePartials& partials,
+                 Evaluation& e) {
   for (std::size_t i = 0; i < m.springs.size(); ++i) {
     const SpringData& spring = m.springs[i];
     const SpringState st = spring_state(spring, motion.poses);
-    for (int r = 0; r < n; ++r) {
-      e.forcing[r] -= st.tension * spring_slope[r][i];
-      e.forcing_magnitude[r] += std::abs(st.tension) * spring_reach[r][i];
+    for (int r = 0; r < e.n; ++r) {
+      e.forcing[r] -= st.tension * partials.spring_slope[r][i];
+      e.forcing_magnitude[r] += std::abs(st.tension) * partials.spring_reach[r][i];
     }
     const double stretch = st.length - spring.rest_length;
     e.potential_energy += 0.5 * spring.stiffness * stretch * stretch;
     e.nonconservative_power -= spring.damping * st.rate * st.rate;
   }
+}
 
+/// The joints: spring, damper, input and efforts on their rows, the springs'
+/// energy and the power; the prescribed speeds and their accelerations at t.
+void add_joints(const Instance& m, const State& s, Evaluation& e) {
   for (int r = 0; r < m.joint_coordinates(); ++r) {
     const JointData& j = m.joints[m.coordinate_joint[r]];
     const double stretch = s.q[r] - j.rest;
@@ -701,17 +774,25 @@ Evaluation evaluate(const Instance& m, const State& s) {
     }
   }
   e.nonconservative_power += joint_power(m, s);
+}
 
-  // udot: the prescribed accelerations, the rest from M_ff udot_f = f_f - M_fp udot_p.
+/// The speeds that are solved for: all but the prescribed.
+std::vector<int> free_speeds(const Evaluation& e) {
+  std::vector<char> given(e.n, 0);
+  for (int p : e.prescribed) given[p] = 1;
   std::vector<int> free;
-  std::vector<double> udot(n, 0.0);
-  std::vector<char> given(n, 0);
-  for (std::size_t p = 0; p < e.prescribed.size(); ++p) {
-    udot[e.prescribed[p]] = e.prescribed_acceleration[p];
-    given[e.prescribed[p]] = 1;
-  }
-  for (int r = 0; r < n; ++r)
+  for (int r = 0; r < e.n; ++r)
     if (!given[r]) free.push_back(r);
+  return free;
+}
+
+/// A tree's udot: the prescribed accelerations, the rest from
+/// M_ff udot_f = f_f - M_fp udot_p; left empty if M_ff is not positive definite.
+void solve_tree(Evaluation& e) {
+  const int n = e.n;
+  std::vector<double> udot(n, 0.0);
+  for (std::size_t p = 0; p < e.prescribed.size(); ++p) udot[e.prescribed[p]] = e.prescribed_acceleration[p];
+  const std::vector<int> free = free_speeds(e);
   const int nf = static_cast<int>(free.size());
   Eigen::MatrixXd mff(nf, nf);
   Eigen::VectorXd rhs(nf);
@@ -721,86 +802,84 @@ Evaluation evaluate(const Instance& m, const State& s) {
     for (int c = 0; c < nf; ++c) mff(a, c) = e.mass_matrix[free[a] * n + free[c]];
   }
   const Eigen::LLT<Eigen::MatrixXd> llt(mff);
-  if (m.loops.empty() && llt.info() == Eigen::Success) {
-    const Eigen::VectorXd x = llt.solve(rhs);
-    for (int a = 0; a < nf; ++a) udot[free[a]] = x[a];
-    e.udot = udot;
-  }
-  std::vector<double> reaction;  // lambda at inputs of zero, for the reaction outputs
-  if (!m.loops.empty()) {
-    const LoopKinematics loops = loop_kinematics(m, s.q, s.u);
-    e.phi = loops.phi;
-    e.constraint_jacobian = loops.jacobian;
-    e.constraint_bias = loops.bias;
-    const ConstrainedSolution solved =
-        solve_constrained(n, e.mass_matrix, e.forcing, loops, e.prescribed, e.prescribed_acceleration);
-    if (solved.ok) {
-      e.udot = solved.udot;
-      e.lambda = solved.lambda;
-      for (int r : free)
-        for (std::size_t i = 0; i < e.lambda.size(); ++i)
-          e.loop_power += e.lambda[i] * loops.jacobian[i * n + r] * s.u[r];
-      e.nonconservative_power += e.loop_power;
-    }
-    std::vector<double> unforced = e.forcing;
-    for (int r = 0; r < m.joint_coordinates(); ++r)
-      if (m.joints[m.coordinate_joint[r]].actuated) unforced[r] -= s.tau[r];
-    const ConstrainedSolution at_rest =
-        solve_constrained(n, e.mass_matrix, unforced, loops, e.prescribed, e.prescribed_acceleration);
-    reaction = at_rest.ok ? at_rest.lambda : std::vector<double>(loops.phi.size(), std::nan(""));
-  }
-  // The work of the constraint forces that hold the prescribed speeds on their motion.
-  if (!e.udot.empty())
-    for (int p : e.prescribed) {
-      double lambda = -e.forcing[p];
-      for (int c = 0; c < n; ++c) lambda += e.mass_matrix[p * n + c] * e.udot[c];
-      e.nonconservative_power += lambda * s.u[p];
-    }
+  if (llt.info() != Eigen::Success) return;
+  const Eigen::VectorXd x = llt.solve(rhs);
+  for (int a = 0; a < nf; ++a) udot[free[a]] = x[a];
+  e.udot = udot;
+}
 
-  std::vector<Pose<double>> poses(nb);
-  for (int b = 0; b < nb; ++b) poses[b] = {motion.body[b].r, motion.body[b].p};
-  for (const OutputData& o : m.outputs) {
-    switch (o.kind) {
-      case model::OutputKind::point_position: {
-        const Vec<double> x = point_position(poses, o.body, o.point);
-        e.outputs.insert(e.outputs.end(), x.begin(), x.end());
-        break;
-      }
-      case model::OutputKind::joint_coordinate:
-        e.outputs.push_back(s.q[o.coordinate]);
-        break;
-      case model::OutputKind::joint_speed:
-        e.outputs.push_back(s.u[o.coordinate]);
-        break;
-      case model::OutputKind::reaction: {
-        std::size_t first = 0;
-        for (int k = 0; k < o.loop; ++k) first += m.loops[k].rows.size();
-        for (std::size_t i = 0; i < m.loops[o.loop].rows.size(); ++i)
-          e.outputs.push_back(reaction[first + i]);
-        break;
-      }
-      case model::OutputKind::node_displacement: {
-        const FlexibleData& f = *m.bodies[o.body].beam;
-        const Vec<double> t = sub(displaced_node(f, dofs[o.body], o.node), f.nodes[o.node]);
-        e.outputs.insert(e.outputs.end(), t.begin(), t.end());
-        break;
-      }
-      default: {
-        const FlexibleData& f = *m.bodies[o.body].beam;
-        const std::array<double, 4> n4 = resultants(f, dofs[o.body], o.node);  // N, T, M_y, M_z
-        if (o.kind == model::OutputKind::axial_force) {
-          e.outputs.push_back(n4[0]);
-        } else if (o.kind == model::OutputKind::bending_moment) {
-          if (!f.planar) e.outputs.push_back(n4[2]);
-          e.outputs.push_back(n4[3]);
-        } else {  // bending stress at the extreme fibres
-          double stress = std::abs(n4[0]) / f.A + std::abs(n4[3]) * f.fibre_y / f.Iz;
-          if (!f.planar) stress += std::abs(n4[2]) * f.fibre_z / f.Iy;
-          e.outputs.push_back(stress);
-        }
-      }
-    }
+/// Closed loops: Phi, C, gamma; udot and lambda of the constrained system
+/// and the loop forces' power. Returns the reactions, lambda at inputs of
+/// zero (NaN where not solved), for the reaction outputs.
+std::vector<double> solve_loops(const Instance& m, const State& s, Evaluation& e) {
+  const int n = e.n;
+  const LoopKinematics loops = loop_kinematics(m, s.q, s.u);
+  e.phi = loops.phi;
+  e.constraint_jacobian = loops.jacobian;
+  e.constraint_bias = loops.bias;
+  const ConstrainedSolution solved =
+      solve_constrained(n, e.mass_matrix, e.forcing, loops, e.prescribed, e.prescribed_acceleration);
+  if (solved.ok) {
+    e.udot = solved.udot;
+    e.lambda = solved.lambda;
+    for (int r : free_speeds(e))
+      for (std::size_t i = 0; i < e.lambda.size(); ++i)
+        e.loop_power += e.lambda[i] * loops.jacobian[i * n + r] * s.u[r];
+    e.nonconservative_power += e.loop_power;
   }
+  std::vector<double> unforced = e.forcing;
+  for (int r = 0; r < m.joint_coordinates(); ++r)
+    if (m.joints[m.coordinate_joint[r]].actuated) unforced[r] -= s.tau[r];
+  const ConstrainedSolution at_rest =
+      solve_constrained(n, e.mass_matrix, unforced, loops, e.prescribed, e.prescribed_acceleration);
+  return at_rest.ok ? at_rest.lambda : std::vector<double>(loops.phi.size(), std::nan(""));
+}
+
+/// The power of the constraint forces that hold the prescribed speeds on
+/// their motion, lambda_p = (M udot - f)_p, with this udot.
+void add_prescribed_power(const State& s, Evaluation& e) {
+  if (e.udot.empty()) return;
+  for (int p : e.prescribed) {
+    double lambda = -e.forcing[p];
+    for (int c = 0; c < e.n; ++c) lambda += e.mass_matrix[p * e.n + c] * e.udot[c];
+    e.nonconservative_power += lambda * s.u[p];
+  }
+}
+
+}  // namespace
+
+Evaluation evaluate(const Instance& m, const State& s) {
+  check_sizes(m, s);
+  const int n = m.coordinates();
+  Evaluation e;
+  e.n = n;
+  e.forcing.assign(n, 0.0);
+  e.forcing_magnitude.assign(n, 0.0);
+  const PathMotion motion = motion_along(m, s, nullptr, 0);
+  const std::vector<std::vector<double>> dofs = dofs_at_q(motion);
+
+  // Each step adds its terms to f (and its magnitude), the energies and the
+  // power in turn; the order is that of the sums' round-off.
+  std::vector<double> nonconservative(n, 0.0);  // the beams' damping forces
+  const CoordinatePartials partials = coordinate_passes(m, s, motion, e, nonconservative);
+  const std::vector<Eigen::MatrixXd> own_mass = add_mass_elements(m, s, e);
+  add_beams(m, s, dofs, own_mass, e, nonconservative);
+  add_beam_damping(s, nonconservative, e);
+  add_point_forces(m, motion, partials, e);
+  add_springs(m, motion, partials, e);
+  add_joints(m, s, e);
+
+  std::vector<double> reaction;
+  if (m.loops.empty())
+    solve_tree(e);
+  else
+    reaction = solve_loops(m, s, e);
+  add_prescribed_power(s, e);
+
+  std::vector<Pose<double>> poses(m.bodies.size());
+  for (std::size_t b = 0; b < poses.size(); ++b) poses[b] = {motion.body[b].r, motion.body[b].p};
+  for (const model::OutputColumn& column : m.output_columns)
+    e.outputs.push_back(output_value(m, column, s, poses, dofs, reaction));
   return e;
 }
 

@@ -61,7 +61,7 @@ struct Evaluation {
   /// dampers (joints, springs and beams), inputs, joint efforts, body-frame forces, geometric
   /// stiffness, and the constraint forces of the prescribed speeds with this udot.
   double nonconservative_power = 0;
-  std::vector<double> outputs;  ///< point outputs as x, y, z; joint outputs one each; node outputs; reactions
+  std::vector<double> outputs;  ///< one per column of Instance::output_columns
   // Closed loops (empty for a tree; numeric/loops.hpp). udot is then the
   // solution of M udot = f + C^T lambda, C udot = gamma (empty if S = C M^-1
   // C^T is not positive definite), and nonconservative_power includes

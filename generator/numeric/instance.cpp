@@ -251,17 +251,7 @@ Instance instantiate(const model::Model& model, const model::ParameterValues& p,
     d.node2 = l.node2;
     d.point2 = vector_value(l.point2, p);
     d.axis = normalized(Vec<double>{l.axis[0], l.axis[1], l.axis[2]});
-    // The rows as docs/model-format.md lists them; a planar revolute about
-    // z names its rows after the world axes.
-    const bool z_plane = l.axis == std::array<double, 3>{0.0, 0.0, 1.0};
-    if (l.type == model::LoopType::spherical)
-      d.rows = {"x", "y", "z"};
-    else if (l.type == model::LoopType::revolute && l.planar)
-      d.rows = z_plane ? std::vector<std::string>{"x", "y"} : std::vector<std::string>{"f1", "f2"};
-    else if (l.type == model::LoopType::revolute)
-      d.rows = {"x", "y", "z", "m1", "m2"};
-    else
-      d.rows = l.planar ? std::vector<std::string>{"n"} : std::vector<std::string>{"f1", "f2"};
+    d.rows = model::loop_rows(l);
     const auto has_node = [&](int body, int node) {
       return node < 0 ||
              (body >= 0 && m.bodies[body].beam && node < static_cast<int>(m.bodies[body].beam->nodes.size()));
@@ -294,6 +284,7 @@ Instance instantiate(const model::Model& model, const model::ParameterValues& p,
     }
     m.outputs.push_back(d);
   }
+  m.output_columns = model::output_columns(model);
   return m;
 }
 

@@ -11,6 +11,7 @@
 
 #include "model/expression_eval.hpp"
 #include "model/model.hpp"
+#include "model/output_columns.hpp"
 #include "numeric/small_matrix.hpp"
 #include "numeric/time_function.hpp"
 
@@ -152,7 +153,7 @@ struct LoopData {
   int body2 = -1, node2 = -1;
   Vec<double> point2;
   Vec<double> axis;  ///< unit
-  /// The row names' suffixes ("x", "y", "f1", "m1", "n", ...), one per equation.
+  /// The row names' suffixes ("x", "y", "f1", "m1", "n", ...), one per equation (model::loop_rows).
   std::vector<std::string> rows;
 };
 
@@ -167,6 +168,7 @@ struct Instance {
   std::vector<SpringData> springs;
   std::vector<EffortData> efforts;
   std::vector<OutputData> outputs;
+  std::vector<model::OutputColumn> output_columns;  ///< what Evaluation::outputs holds, column by column
   std::vector<LoopData> loops;
 
   /// The number of loop equations (rows of Phi) over all loops.
