@@ -141,59 +141,92 @@ Mat<double> rotation_from_rpy(double roll, double pitch, double yaw) {
   return mul(rz, mul(ry, rx));
 }
 
-Instance instantiate(const model::Model& model, const model::ParameterValues& p, const Instance* same_model) {
-  Instance m;
+namespace {
+
+/// The model being instantiated, at parameter values p, and the bodies'
+/// indices by name.
+struct Instantiation {
+  const model::Model& model;
+  const model::ParameterValues& p;
+  Instance& m;
   std::map<std::string, int> body_index;
-  for (std::size_t i = 0; i < model.bodies.size(); ++i) {
-    const model::Body& b = model.bodies[i];
-    body_index[b.name] = static_cast<int>(m.bodies.size());
-    BodyData d{b.name,  -1, model::evaluate(b.mass, p), vector_value(b.com, p), inertia_value(b.inertia, p),
-               nullptr, -1};
-    if (b.flexible)
-      d.beam = same_model && i < same_model->bodies.size() && same_model->bodies[i].beam
-                   ? same_model->bodies[i].beam
-                   : beam_data(b, model.source_file);
-    m.bodies.push_back(d);
-  }
-  const auto body_of = [&](const std::string& name, const std::string& what) {
+
+  int body_of(const std::string& name, const std::string& what) const {
     if (name == model.ground) return -1;
     const auto found = body_index.find(name);
     if (found == body_index.end()) throw std::invalid_argument("unknown body '" + name + "' in " + what);
     return found->second;
-  };
+  }
+  /// Whether `node` (-1: none) is a node of `body`'s beam.
+  bool has_node(int body, int node) const {
+    return node < 0 ||
+           (body >= 0 && m.bodies[body].beam && node < static_cast<int>(m.bodies[body].beam->nodes.size()));
+  }
+  int coordinate_of(const std::string& joint) const {
+    for (const JointData& j : m.joints)
+      if (j.name == joint) return j.coordinate;
+    return -1;
+  }
+};
 
-  for (const model::Joint& j : model.joints) {
-    JointData d;
-    d.name = j.name;
-    d.parent = body_of(j.parent, "joint '" + j.name + "'");
-    d.parent_node = j.parent_node;
-    if (d.parent_node >= 0 && (d.parent < 0 || !m.bodies[d.parent].beam))
-      throw std::invalid_argument("joint '" + j.name + "' sits on a node of a body that is not flexible");
-    d.child = body_of(j.child, "joint '" + j.name + "'");
-    if (d.child < 0) throw std::invalid_argument("joint '" + j.name + "' has the ground as its child");
-    const Vec<double> rpy = vector_value(j.origin_rpy, p);
-    d.origin_rotation = rotation_from_rpy(rpy[0], rpy[1], rpy[2]);
-    d.origin_position = vector_value(j.origin_xyz, p);
-    // Normalised here as well, so that the path does not rely on the loader having done it.
-    const double length = std::sqrt(j.axis[0] * j.axis[0] + j.axis[1] * j.axis[1] + j.axis[2] * j.axis[2]);
-    d.axis = {j.axis[0] / length, j.axis[1] / length, j.axis[2] / length};
+void add_bodies(Instantiation& in, const Instance* same_model) {
+  for (std::size_t i = 0; i < in.model.bodies.size(); ++i) {
+    const model::Body& b = in.model.bodies[i];
+    in.body_index[b.name] = static_cast<int>(in.m.bodies.size());
+    BodyData d{
+        b.name,  -1, model::evaluate(b.mass, in.p), vector_value(b.com, in.p), inertia_value(b.inertia, in.p),
+        nullptr, -1};
+    if (b.flexible)
+      d.beam = same_model && i < same_model->bodies.size() && same_model->bodies[i].beam
+                   ? same_model->bodies[i].beam
+                   : beam_data(b, in.model.source_file);
+    in.m.bodies.push_back(d);
+  }
+}
+
+JointData joint_data(const Instantiation& in, const model::Joint& j) {
+  const model::ParameterValues& p = in.p;
+  JointData d;
+  d.name = j.name;
+  d.parent = in.body_of(j.parent, "joint '" + j.name + "'");
+  d.parent_node = j.parent_node;
+  if (d.parent_node >= 0 && (d.parent < 0 || !in.m.bodies[d.parent].beam))
+    throw std::invalid_argument("joint '" + j.name + "' sits on a node of a body that is not flexible");
+  d.child = in.body_of(j.child, "joint '" + j.name + "'");
+  if (d.child < 0) throw std::invalid_argument("joint '" + j.name + "' has the ground as its child");
+  const Vec<double> rpy = vector_value(j.origin_rpy, p);
+  d.origin_rotation = rotation_from_rpy(rpy[0], rpy[1], rpy[2]);
+  d.origin_position = vector_value(j.origin_xyz, p);
+  // Normalised here as well, so that the path does not rely on the loader having done it.
+  const double length = std::sqrt(j.axis[0] * j.axis[0] + j.axis[1] * j.axis[1] + j.axis[2] * j.axis[2]);
+  d.axis = {j.axis[0] / length, j.axis[1] / length, j.axis[2] / length};
+  if (!j.moves()) return d;
+  d.motion = j.type == model::JointType::prismatic ? Motion::translation : Motion::rotation;
+  d.coordinate = in.m.coordinates();
+  d.stiffness = model::evaluate(j.spring_stiffness, p);
+  d.rest = model::evaluate(j.spring_rest, p);
+  d.damping = model::evaluate(j.damping, p);
+  d.actuated = j.actuated;
+  for (const model::PrescribedPiece& piece : j.prescribed)
+    d.prescribed.push_back({TimeFunction(piece.q, p), piece.has_until, piece.until});
+  return d;
+}
+
+void add_joints(Instantiation& in) {
+  Instance& m = in.m;
+  for (const model::Joint& j : in.model.joints) {
+    const JointData d = joint_data(in, j);
     if (j.moves()) {
-      d.motion = j.type == model::JointType::prismatic ? Motion::translation : Motion::rotation;
-      d.coordinate = m.coordinates();
       m.coordinate_joint.push_back(static_cast<int>(m.joints.size()));
-      d.stiffness = model::evaluate(j.spring_stiffness, p);
-      d.rest = model::evaluate(j.spring_rest, p);
-      d.damping = model::evaluate(j.damping, p);
-      d.actuated = j.actuated;
-      for (const model::PrescribedPiece& piece : j.prescribed)
-        d.prescribed.push_back({TimeFunction(piece.q, p), piece.has_until, piece.until});
       m.coordinate_names.push_back(j.name);
     }
     m.bodies[d.child].joint = static_cast<int>(m.joints.size());
     m.joints.push_back(d);
   }
+}
 
-  // Parents first: place a body after placing its parent (the tree has been checked for cycles).
+/// Parents first: a body after its parent (the tree has been checked for cycles).
+void order_bodies(Instance& m) {
   std::vector<bool> placed(m.bodies.size(), false);
   const std::function<void(int)> place = [&](int b) {
     if (b < 0 || placed[b]) return;
@@ -204,33 +237,36 @@ Instance instantiate(const model::Model& model, const model::ParameterValues& p,
     m.order.push_back(b);
   };
   for (std::size_t b = 0; b < m.bodies.size(); ++b) place(static_cast<int>(b));
+}
 
-  // The elastic coordinates follow the joints', body by body.
+/// The elastic coordinates follow the joints', body by body.
+void add_elastic_coordinates(Instance& m) {
   for (BodyData& b : m.bodies) {
     if (!b.beam) continue;
     b.elastic_first = m.coordinates();
     for (const std::string& name : b.beam->names) m.coordinate_names.push_back(b.name + "." + name);
   }
+}
 
-  m.gravity = vector_value(model.gravity, p);
-  for (const model::PointForce& f : model.forces) {
-    m.forces.push_back({f.name, body_of(f.body, "force '" + f.name + "'"), vector_value(f.point, p), f.node,
-                        vector_value(f.force, p), f.frame == model::ForceFrame::body});
+void add_force_elements(Instantiation& in) {
+  const model::ParameterValues& p = in.p;
+  Instance& m = in.m;
+  for (const model::PointForce& f : in.model.forces) {
+    m.forces.push_back({f.name, in.body_of(f.body, "force '" + f.name + "'"), vector_value(f.point, p),
+                        f.node, vector_value(f.force, p), f.frame == model::ForceFrame::body});
     const ForceData& d = m.forces.back();
-    if (d.node >= 0 && (d.body < 0 || !m.bodies[d.body].beam ||
-                        d.node >= static_cast<int>(m.bodies[d.body].beam->nodes.size())))
+    if (d.node >= 0 && !(d.body >= 0 && in.has_node(d.body, d.node)))
       throw std::invalid_argument("force '" + f.name + "' is at a node the body does not have");
   }
-  for (const model::Spring& s : model.springs)
-    m.springs.push_back({s.name, body_of(s.body, "spring '" + s.name + "'"), vector_value(s.point, p),
-                         body_of(s.body2, "spring '" + s.name + "'"), vector_value(s.point2, p),
+  for (const model::Spring& s : in.model.springs)
+    m.springs.push_back({s.name, in.body_of(s.body, "spring '" + s.name + "'"), vector_value(s.point, p),
+                         in.body_of(s.body2, "spring '" + s.name + "'"), vector_value(s.point2, p),
                          model::evaluate(s.stiffness, p), model::evaluate(s.rest_length, p),
                          model::evaluate(s.damping, p)});
-  for (const model::JointEffort& f : model.joint_efforts) {
+  for (const model::JointEffort& f : in.model.joint_efforts) {
     EffortData d;
     d.name = f.name;
-    for (const JointData& j : m.joints)
-      if (j.name == f.joint) d.coordinate = j.coordinate;
+    d.coordinate = in.coordinate_of(f.joint);
     if (d.coordinate < 0) throw std::invalid_argument("joint effort '" + f.name + "' names no moving joint");
     d.varies = !f.value.is_literal;
     if (d.varies)
@@ -239,51 +275,64 @@ Instance instantiate(const model::Model& model, const model::ParameterValues& p,
       d.value = f.value.value;
     m.efforts.push_back(d);
   }
-  for (const model::Loop& l : model.loops) {
+}
+
+void add_loops(Instantiation& in) {
+  for (const model::Loop& l : in.model.loops) {
     LoopData d;
     d.name = l.name;
     d.type = l.type;
     d.planar = l.planar;
-    d.body = body_of(l.body, "loop '" + l.name + "'");
+    d.body = in.body_of(l.body, "loop '" + l.name + "'");
     d.node = l.node;
-    d.point = vector_value(l.point, p);
-    d.body2 = body_of(l.body2, "loop '" + l.name + "'");
+    d.point = vector_value(l.point, in.p);
+    d.body2 = in.body_of(l.body2, "loop '" + l.name + "'");
     d.node2 = l.node2;
-    d.point2 = vector_value(l.point2, p);
+    d.point2 = vector_value(l.point2, in.p);
     d.axis = normalized(Vec<double>{l.axis[0], l.axis[1], l.axis[2]});
     d.rows = model::loop_rows(l);
-    const auto has_node = [&](int body, int node) {
-      return node < 0 ||
-             (body >= 0 && m.bodies[body].beam && node < static_cast<int>(m.bodies[body].beam->nodes.size()));
-    };
-    if (!has_node(d.body, d.node) || !has_node(d.body2, d.node2))
+    if (!in.has_node(d.body, d.node) || !in.has_node(d.body2, d.node2))
       throw std::invalid_argument("loop '" + l.name + "' is at a node its body does not have");
-    m.loops.push_back(d);
+    in.m.loops.push_back(d);
   }
-  for (const model::Output& o : model.outputs) {
-    OutputData d;
-    d.name = o.name;
-    d.kind = o.kind;
-    if (o.kind == model::OutputKind::reaction) {
-      for (std::size_t k = 0; k < m.loops.size(); ++k)
-        if (m.loops[k].name == o.loop) d.loop = static_cast<int>(k);
-      if (d.loop < 0) throw std::invalid_argument("output '" + o.name + "' names no loop");
-    } else if (o.kind == model::OutputKind::point_position) {
-      d.body = body_of(o.body, "output '" + o.name + "'");
-      d.point = vector_value(o.point, p);
-    } else if (o.kind != model::OutputKind::joint_coordinate && o.kind != model::OutputKind::joint_speed) {
-      d.body = body_of(o.body, "output '" + o.name + "'");
-      d.node = o.node;
-      if (d.body < 0 || !m.bodies[d.body].beam || d.node < 0 ||
-          d.node >= static_cast<int>(m.bodies[d.body].beam->nodes.size()))
-        throw std::invalid_argument("output '" + o.name + "' names no node of a flexible body");
-    } else {
-      for (const JointData& j : m.joints)
-        if (j.name == o.joint) d.coordinate = j.coordinate;
-      if (d.coordinate < 0) throw std::invalid_argument("output '" + o.name + "' names no moving joint");
-    }
-    m.outputs.push_back(d);
+}
+
+OutputData output_data(const Instantiation& in, const model::Output& o) {
+  OutputData d;
+  d.name = o.name;
+  d.kind = o.kind;
+  if (o.kind == model::OutputKind::reaction) {
+    for (std::size_t k = 0; k < in.m.loops.size(); ++k)
+      if (in.m.loops[k].name == o.loop) d.loop = static_cast<int>(k);
+    if (d.loop < 0) throw std::invalid_argument("output '" + o.name + "' names no loop");
+  } else if (o.kind == model::OutputKind::point_position) {
+    d.body = in.body_of(o.body, "output '" + o.name + "'");
+    d.point = vector_value(o.point, in.p);
+  } else if (o.kind != model::OutputKind::joint_coordinate && o.kind != model::OutputKind::joint_speed) {
+    d.body = in.body_of(o.body, "output '" + o.name + "'");
+    d.node = o.node;
+    if (d.body < 0 || d.node < 0 || !in.has_node(d.body, d.node))
+      throw std::invalid_argument("output '" + o.name + "' names no node of a flexible body");
+  } else {
+    d.coordinate = in.coordinate_of(o.joint);
+    if (d.coordinate < 0) throw std::invalid_argument("output '" + o.name + "' names no moving joint");
   }
+  return d;
+}
+
+}  // namespace
+
+Instance instantiate(const model::Model& model, const model::ParameterValues& p, const Instance* same_model) {
+  Instance m;
+  Instantiation in{model, p, m, {}};
+  add_bodies(in, same_model);
+  add_joints(in);
+  order_bodies(m);
+  add_elastic_coordinates(m);
+  m.gravity = vector_value(model.gravity, p);
+  add_force_elements(in);
+  add_loops(in);
+  for (const model::Output& o : model.outputs) m.outputs.push_back(output_data(in, o));
   m.output_columns = model::output_columns(model);
   return m;
 }
