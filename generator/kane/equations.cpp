@@ -96,12 +96,32 @@ void add_node_subtree(FlexibleTerms& p, const kinematics::BodyState& child, cons
   }
 }
 
-}  // namespace
+/// What the steps of one derivation share: the inputs, the tree's
+/// kinematics and the equations being filled.
+struct Derivation {
+  const model::Model& model;
+  const symbolic::Variables& vars;
+  Program& program;
+  const FlexibleBodies& flexible;
+  const kinematics::TreeKinematics& tree;
+  MassMatrixMethod method;
+  Vec3 gravity;
+  Equations& eq;
+};
 
-Equations derive_equations(const model::Model& model, const symbolic::Variables& vars,
-                           symbolic::Program& program, MassMatrixMethod method,
-                           const FlexibleBodies& flexible) {
-  // Joints on nodes of flexible parents.
+/// Per tree state (TreeKinematics::bodies order): the body's inertia and
+/// applied-plus-inertia wrench, then, after composite_bodies, its subtree's;
+/// the flexible bodies' own terms by state index.
+struct BodySums {
+  std::vector<SpatialInertia> inertia;
+  std::vector<Wrench> wrench;
+  std::map<std::size_t, FlexibleTerms> elastic;
+};
+
+/// The joints on nodes of flexible parents, by joint index.
+std::map<int, kinematics::NodeAttachment> node_attachments(const model::Model& model,
+                                                           const symbolic::Variables& vars,
+                                                           const FlexibleBodies& flexible) {
   std::map<int, kinematics::NodeAttachment> attachments;
   for (std::size_t k = 0; k < model.joints.size(); ++k) {
     const model::Joint& j = model.joints[k];
@@ -127,264 +147,343 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
     }
     attachments.emplace(static_cast<int>(k), a);
   }
-  // The world-axes sum of M does not know the nodes' partial velocities.
-  if (!attachments.empty()) method = MassMatrixMethod::body_frames;
-  const Vec3 gravity = vec(vars, model.gravity);
-  // The ground accelerates at -g: every rest acceleration then carries gravity.
-  const kinematics::TreeKinematics tree(model, vars, program, zero_vec() - gravity, attachments);
-  Equations eq;
-  eq.nq = eq.nu = static_cast<int>(vars.q.size());
-  std::map<std::size_t, FlexibleTerms> elastic;  // by state index
-  const int n = eq.nu;
-  eq.mass_matrix.assign(n * n, 0);
-  eq.forcing.assign(n, 0);
-  eq.kinetic_energy = eq.potential_energy = 0;
-  const auto& states = tree.bodies();
+  return attachments;
+}
 
-  // Per body, in its own axes: its inertia about its origin, and the
-  // applied-plus-inertia wrench about its origin (-m a_c with gravity inside
-  // a_c, point forces, -I alpha - w x I w).
-  std::vector<SpatialInertia> inertia(states.size());
-  std::vector<Wrench> wrench(states.size());
-  for (std::size_t i = 0; i < states.size(); ++i) {
-    const kinematics::BodyState& b = states[i];
-    const model::Body& body = model.bodies[b.body];
-    const ex mass = vars.scalar(body.mass);
-    const auto& in = body.inertia;
-    const Mat3 central{vars.scalar(in[0]), vars.scalar(in[3]), vars.scalar(in[4]),
-                       vars.scalar(in[3]), vars.scalar(in[1]), vars.scalar(in[5]),
-                       vars.scalar(in[4]), vars.scalar(in[5]), vars.scalar(in[2])};
-    const Vec3 com = vec(vars, body.com);
-    const Vec3 com_velocity = named(program, b.velocity + cross(b.omega, com));
-    const Vec3 com_accel =
-        named(program, b.accel_rest + cross(b.alpha_rest, com) + cross(b.omega, cross(b.omega, com)));
-    const Vec3 spin = named(program, mul(central, b.omega));  // I w
+/// State i's rigid body, in its own axes: its inertia about its origin, and
+/// the applied-plus-inertia wrench about its origin (-m a_c with gravity
+/// inside a_c, point forces off nodes, -I alpha - w x I w); its energies.
+void add_rigid_body(Derivation& d, BodySums& sums, std::size_t i) {
+  Program& program = d.program;
+  const symbolic::Variables& vars = d.vars;
+  const kinematics::BodyState& b = d.tree.bodies()[i];
+  const model::Body& body = d.model.bodies[b.body];
+  const ex mass = vars.scalar(body.mass);
+  const auto& in = body.inertia;
+  const Mat3 central{vars.scalar(in[0]), vars.scalar(in[3]), vars.scalar(in[4]),
+                     vars.scalar(in[3]), vars.scalar(in[1]), vars.scalar(in[5]),
+                     vars.scalar(in[4]), vars.scalar(in[5]), vars.scalar(in[2])};
+  const Vec3 com = vec(vars, body.com);
+  const Vec3 com_velocity = named(program, b.velocity + cross(b.omega, com));
+  const Vec3 com_accel =
+      named(program, b.accel_rest + cross(b.alpha_rest, com) + cross(b.omega, cross(b.omega, com)));
+  const Vec3 spin = named(program, mul(central, b.omega));  // I w
 
-    Vec3 force = zero_vec() - mass * com_accel;
-    Vec3 torque = zero_vec() - mul(central, b.alpha_rest) - cross(b.omega, spin);
-    for (const model::PointForce& pf : model.forces) {
-      if (pf.body != body.name || pf.node >= 0) continue;
-      const Vec3 given = vec(vars, pf.force);
-      const Vec3 f =
-          pf.frame == model::ForceFrame::body ? given : named(program, mul_transposed(b.rotation, given));
-      const Vec3 at = vec(vars, pf.point);
-      force = force + f;
-      torque = torque + cross(at - com, f);
-      if (pf.frame == model::ForceFrame::world) eq.potential_energy -= dot(given, tree.world_point(b, at));
-    }
-    force = named(program, force);
-    wrench[i] = {named(program, torque + cross(com, force)), force};
-
-    inertia[i].mass = mass;
-    inertia[i].moment = mass * com;
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c)
-        inertia[i].second[3 * r + c] =
-            central[3 * r + c] + mass * ((r == c ? dot(com, com) : ex(0)) - com[r] * com[c]);
-
-    eq.kinetic_energy += (mass * dot(com_velocity, com_velocity) + dot(b.omega, spin)) / 2;
-    eq.potential_energy -= mass * dot(gravity, tree.world_point(b, com));
-
-    if (!body.flexible) continue;
-    const int first = vars.elastic_first[b.body], count = vars.elastic_count[b.body];
-    const std::vector<ex> eta(vars.q.begin() + first, vars.q.begin() + first + count);
-    const std::vector<ex> eta_dot(vars.u.begin() + first, vars.u.begin() + first + count);
-    const fem::ModelBeam& beam = flexible.at(b.body);
-    FlexibleTerms terms = flexible_terms(beam, b, eta, eta_dot, program);
-    for (const model::PointForce& pf : model.forces) {
-      if (pf.body != body.name || pf.node < 0) continue;
-      // At the deformed node p = r + T eta (+ f, the foreshortening): a force
-      // and moment about the origin on the link, and (T + D)^T f on eta.
-      const NodePoint node = node_point(beam, pf.node, eta, &program);
-      const Vec3& at = node.position;
-      const Vec3 given = vec(vars, pf.force);
-      const Vec3 f =
-          pf.frame == model::ForceFrame::body ? given : named(program, mul_transposed(b.rotation, given));
-      terms.force = terms.force + f;
-      terms.moment = terms.moment + cross(at, f);
-      for (int k = 0; k < count; ++k) terms.elastic_forcing[k] += dot(node.partial[k], f);
-      if (pf.frame == model::ForceFrame::world) eq.potential_energy -= dot(given, tree.world_point(b, at));
-    }
-    wrench[i].force = wrench[i].force + terms.force;
-    wrench[i].moment = wrench[i].moment + terms.moment;
-    inertia[i].mass += terms.mass;
-    inertia[i].moment = inertia[i].moment + terms.first_moment;
-    for (int k = 0; k < 9; ++k) inertia[i].second[k] += terms.second_moment[k];
-    eq.kinetic_energy += terms.kinetic_energy;
-    eq.potential_energy +=
-        terms.strain_energy - dot(gravity, terms.mass * b.origin + mul(b.rotation, terms.first_moment));
-    elastic.emplace(i, std::move(terms));
+  Vec3 force = zero_vec() - mass * com_accel;
+  Vec3 torque = zero_vec() - mul(central, b.alpha_rest) - cross(b.omega, spin);
+  for (const model::PointForce& pf : d.model.forces) {
+    if (pf.body != body.name || pf.node >= 0) continue;
+    const Vec3 given = vec(vars, pf.force);
+    const Vec3 f =
+        pf.frame == model::ForceFrame::body ? given : named(program, mul_transposed(b.rotation, given));
+    const Vec3 at = vec(vars, pf.point);
+    force = force + f;
+    torque = torque + cross(at - com, f);
+    if (pf.frame == model::ForceFrame::world) d.eq.potential_energy -= dot(given, d.tree.world_point(b, at));
   }
+  force = named(program, force);
+  sums.wrench[i] = {named(program, torque + cross(com, force)), force};
 
-  // Springs: their forces at the ends join the bodies' wrenches (so they
-  // also enter the pull of a subtree on a beam node), their energy V.
-  for (const model::Spring& spring : model.springs) {
-    const SpringLoads s = spring_loads(spring, tree, vars, program);
+  SpatialInertia& inertia = sums.inertia[i];
+  inertia.mass = mass;
+  inertia.moment = mass * com;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      inertia.second[3 * r + c] =
+          central[3 * r + c] + mass * ((r == c ? dot(com, com) : ex(0)) - com[r] * com[c]);
+
+  d.eq.kinetic_energy += (mass * dot(com_velocity, com_velocity) + dot(b.omega, spin)) / 2;
+  d.eq.potential_energy -= mass * dot(d.gravity, d.tree.world_point(b, com));
+}
+
+/// State i's flexible body (after add_rigid_body for its link): the deformed
+/// body's inertia and wrench join the link's, with the point forces on its
+/// nodes; its elastic terms are kept for the mass matrix and the forcing.
+void add_flexible_body(Derivation& d, BodySums& sums, std::size_t i) {
+  Program& program = d.program;
+  const symbolic::Variables& vars = d.vars;
+  const kinematics::BodyState& b = d.tree.bodies()[i];
+  const model::Body& body = d.model.bodies[b.body];
+  const int first = vars.elastic_first[b.body], count = vars.elastic_count[b.body];
+  const std::vector<ex> eta(vars.q.begin() + first, vars.q.begin() + first + count);
+  const std::vector<ex> eta_dot(vars.u.begin() + first, vars.u.begin() + first + count);
+  const fem::ModelBeam& beam = d.flexible.at(b.body);
+  FlexibleTerms terms = flexible_terms(beam, b, eta, eta_dot, program);
+  for (const model::PointForce& pf : d.model.forces) {
+    if (pf.body != body.name || pf.node < 0) continue;
+    // At the deformed node p = r + T eta (+ f, the foreshortening): a force
+    // and moment about the origin on the link, and (T + D)^T f on eta.
+    const NodePoint node = node_point(beam, pf.node, eta, &program);
+    const Vec3& at = node.position;
+    const Vec3 given = vec(vars, pf.force);
+    const Vec3 f =
+        pf.frame == model::ForceFrame::body ? given : named(program, mul_transposed(b.rotation, given));
+    terms.force = terms.force + f;
+    terms.moment = terms.moment + cross(at, f);
+    for (int k = 0; k < count; ++k) terms.elastic_forcing[k] += dot(node.partial[k], f);
+    if (pf.frame == model::ForceFrame::world) d.eq.potential_energy -= dot(given, d.tree.world_point(b, at));
+  }
+  Wrench& wrench = sums.wrench[i];
+  wrench.force = wrench.force + terms.force;
+  wrench.moment = wrench.moment + terms.moment;
+  SpatialInertia& inertia = sums.inertia[i];
+  inertia.mass += terms.mass;
+  inertia.moment = inertia.moment + terms.first_moment;
+  for (int k = 0; k < 9; ++k) inertia.second[k] += terms.second_moment[k];
+  d.eq.kinetic_energy += terms.kinetic_energy;
+  d.eq.potential_energy +=
+      terms.strain_energy - dot(d.gravity, terms.mass * b.origin + mul(b.rotation, terms.first_moment));
+  sums.elastic.emplace(i, std::move(terms));
+}
+
+/// Springs: their forces at the ends join the bodies' wrenches (so they
+/// also enter the pull of a subtree on a beam node), their energy V.
+void add_springs(Derivation& d, BodySums& sums) {
+  for (const model::Spring& spring : d.model.springs) {
+    const SpringLoads s = spring_loads(spring, d.tree, d.vars, d.program);
     for (const PointLoad& load : s.loads) {
-      wrench[load.state].force = wrench[load.state].force + load.force;
-      wrench[load.state].moment = wrench[load.state].moment + cross(load.at, load.force);
+      Wrench& w = sums.wrench[load.state];
+      w.force = w.force + load.force;
+      w.moment = w.moment + cross(load.at, load.force);
     }
-    eq.potential_energy += s.energy;
+    d.eq.potential_energy += s.energy;
   }
+}
 
-  // Composite bodies and subtree wrenches, leaves first, each in its own frame.
+/// Composite bodies and subtree wrenches, leaves first, each in its own
+/// frame; a subtree on a beam node also joins its parent's elastic terms.
+void composite_bodies(Derivation& d, BodySums& sums) {
+  Program& program = d.program;
+  const auto& states = d.tree.bodies();
   for (std::size_t i = states.size(); i-- > 0;) {
-    SpatialInertia& c = inertia[i];
+    SpatialInertia& c = sums.inertia[i];
     c.mass = program.define(c.mass);
     c.moment = named(program, c.moment);
     c.second = named(program, c.second);
-    wrench[i] = {named(program, wrench[i].moment), named(program, wrench[i].force)};
+    sums.wrench[i] = {named(program, sums.wrench[i].moment), named(program, sums.wrench[i].force)};
     const int parent = states[i].parent_state;
     if (parent < 0) continue;
     const SpatialInertia moved = to_parent(program, c, states[i].to_child, states[i].offset);
-    inertia[parent].mass += moved.mass;
-    inertia[parent].moment = inertia[parent].moment + moved.moment;
-    for (int k = 0; k < 9; ++k) inertia[parent].second[k] += moved.second[k];
-    const Wrench w = to_parent(program, wrench[i], states[i].to_child, states[i].offset);
+    SpatialInertia& p = sums.inertia[parent];
+    p.mass += moved.mass;
+    p.moment = p.moment + moved.moment;
+    for (int k = 0; k < 9; ++k) p.second[k] += moved.second[k];
+    const Wrench w = to_parent(program, sums.wrench[i], states[i].to_child, states[i].offset);
     if (states[i].node_first >= 0)
-      add_node_subtree(elastic.at(static_cast<std::size_t>(parent)), states[i], moved, w, program);
-    wrench[parent].moment = wrench[parent].moment + w.moment;
-    wrench[parent].force = wrench[parent].force + w.force;
+      add_node_subtree(sums.elastic.at(static_cast<std::size_t>(parent)), states[i], moved, w, program);
+    sums.wrench[parent].moment = sums.wrench[parent].moment + w.moment;
+    sums.wrench[parent].force = sums.wrench[parent].force + w.force;
+  }
+}
+
+/// A joint's share of a wrench: the moment about a revolute axis, the force along a prismatic one.
+ex project(const kinematics::JointFrame& frame, const Vec3& moment, const Vec3& force) {
+  return frame.prismatic ? dot(frame.axis, force) : dot(frame.axis, moment);
+}
+
+/// Kane's equations with the sums over bodies grouped by subtree. The
+/// partial velocities of speed r (joint k, child body i) at i's origin, in
+/// i's axes, are (w_r, v_r) = (a_k, 0) for a revolute and (0, a_k) for a
+/// prismatic joint, and a point p of the subtree has v_r + w_r x p. So
+///   f_r  = sum_i (v_r + w_r x c_i).F_i + w_r.T_i = a_k.N_sub (revolute) or a_k.F_sub,
+///   M_rs = sum_i m_i v_r^i.v_s^i + w_r.I_i w_s = w_r.L_s + v_r.P_s,
+/// where (L_s, P_s) is the momentum, about r's child origin, of the subtree
+/// of joint s moving with u_s = 1 alone (r an ancestor of s or s itself).
+/// MassRows writes M's rows and columns from such momenta.
+class MassRows {
+ public:
+  explicit MassRows(Derivation& d) : d_(d), n_(d.eq.nu) {
+    if (d.method == MassMatrixMethod::world_projection) world_axes();
   }
 
-  // Kane's equations with the sums over bodies grouped by subtree. The
-  // partial velocities of speed r (joint k, child body i) at i's origin, in
-  // i's axes, are (w_r, v_r) = (a_k, 0) for a revolute and (0, a_k) for a
-  // prismatic joint, and a point p of the subtree has v_r + w_r x p. So
-  //   f_r  = sum_i (v_r + w_r x c_i).F_i + w_r.T_i = a_k.N_sub (revolute) or a_k.F_sub,
-  //   M_rs = sum_i m_i v_r^i.v_s^i + w_r.I_i w_s = w_r.L_s + v_r.P_s,
-  // where (L_s, P_s) is the momentum, about r's child origin, of the subtree
-  // of joint s moving with u_s = 1 alone (r an ancestor of s or s itself).
+  /// Row and column s of M from the momentum (angular, linear), about state
+  /// i's origin in its axes, of everything that moves with u_s = 1 alone.
+  void spread(int s, std::size_t i, const Vec3& angular, const Vec3& linear) {
+    if (d_.method == MassMatrixMethod::world_projection)
+      spread_in_world(s, i, angular, linear);
+    else
+      spread_up_the_path(s, i, angular, linear);
+  }
+
+ private:
   struct WorldAxis {
     Vec3 direction, moment;  ///< a_k and o_k x a_k in world axes
   };
-  std::map<int, WorldAxis> world_axes;
-  if (method == MassMatrixMethod::world_projection)
-    for (const kinematics::BodyState& b : states) {
-      const kinematics::JointFrame& frame = tree.joints()[b.joint];
+
+  void set(int r, int s, const ex& value) {
+    d_.eq.mass_matrix[s * n_ + r] = d_.eq.mass_matrix[r * n_ + s] = value;
+  }
+
+  void world_axes() {
+    for (const kinematics::BodyState& b : d_.tree.bodies()) {
+      const kinematics::JointFrame& frame = d_.tree.joints()[b.joint];
       if (frame.speed < 0) continue;
-      const Vec3 a = named(program, mul(b.rotation, frame.axis));
-      world_axes[b.joint] = {a, frame.prismatic ? zero_vec() : named(program, cross(b.origin, a))};
+      const Vec3 a = named(d_.program, mul(b.rotation, frame.axis));
+      world_axes_[b.joint] = {a, frame.prismatic ? zero_vec() : named(d_.program, cross(b.origin, a))};
     }
-  auto project = [](const kinematics::JointFrame& frame, const Vec3& moment, const Vec3& force) {
-    return frame.prismatic ? dot(frame.axis, force) : dot(frame.axis, moment);
-  };
-  // Row s of M from the momentum (angular, linear), about state i's origin
-  // in its axes, of everything that moves with u_s = 1 alone.
-  const auto spread = [&](int s, std::size_t i, Vec3 angular, Vec3 linear) {
-    const kinematics::BodyState& b = states[i];
-    if (method == MassMatrixMethod::world_projection) {
-      // The momentum in world axes about the world origin, met by each
-      // ancestor's partial velocities at the world origin: w = a, v = o x a.
-      const Vec3 p_world = named(program, mul(b.rotation, linear));
-      const Vec3 l_world = named(program, mul(b.rotation, angular) + cross(b.origin, p_world));
-      for (int k : b.path) {
-        const kinematics::JointFrame& frame = tree.joints()[k];
-        const WorldAxis& axis = world_axes.at(k);
-        eq.mass_matrix[s * n + frame.speed] = eq.mass_matrix[frame.speed * n + s] =
-            frame.prismatic ? dot(axis.direction, p_world)
-                            : dot(axis.direction, l_world) + dot(axis.moment, p_world);
-      }
-      return;
+  }
+
+  /// The momentum in world axes about the world origin, met by each
+  /// ancestor's partial velocities at the world origin: w = a, v = o x a.
+  void spread_in_world(int s, std::size_t i, const Vec3& angular, const Vec3& linear) {
+    const kinematics::BodyState& b = d_.tree.bodies()[i];
+    const Vec3 p_world = named(d_.program, mul(b.rotation, linear));
+    const Vec3 l_world = named(d_.program, mul(b.rotation, angular) + cross(b.origin, p_world));
+    for (int k : b.path) {
+      const kinematics::JointFrame& frame = d_.tree.joints()[k];
+      const WorldAxis& axis = world_axes_.at(k);
+      set(frame.speed, s,
+          frame.prismatic ? dot(axis.direction, p_world)
+                          : dot(axis.direction, l_world) + dot(axis.moment, p_world));
     }
-    // Up the path: at each ancestor's frame, project on its joint.
+  }
+
+  /// Up the path: at each ancestor's frame, project on its joint and on the
+  /// elastic speeds of a beam node it hangs on.
+  void spread_up_the_path(int s, std::size_t i, Vec3 angular, Vec3 linear) {
+    const auto& states = d_.tree.bodies();
     for (int at = static_cast<int>(i);;) {
       const kinematics::BodyState& a = states[at];
-      const kinematics::JointFrame& frame = tree.joints()[a.joint];
-      if (frame.speed >= 0)
-        eq.mass_matrix[s * n + frame.speed] = eq.mass_matrix[frame.speed * n + s] =
-            project(frame, angular, linear);
+      const kinematics::JointFrame& frame = d_.tree.joints()[a.joint];
+      if (frame.speed >= 0) set(frame.speed, s, project(frame, angular, linear));
       if (a.parent_state < 0) break;
-      const Wrench up = to_parent(program, {angular, linear}, a.to_child, a.offset);
+      const Wrench up = to_parent(d_.program, {angular, linear}, a.to_child, a.offset);
       angular = up.moment;
       linear = up.force;
-      for (std::size_t e = 0; e < a.node_partial_angular.size(); ++e) {
-        const int r = a.node_first + static_cast<int>(e);
-        eq.mass_matrix[s * n + r] = eq.mass_matrix[r * n + s] =
-            dot(a.node_partial_angular[e], angular) + dot(a.node_partial_linear[e], linear);
-      }
+      for (std::size_t e = 0; e < a.node_partial_angular.size(); ++e)
+        set(a.node_first + static_cast<int>(e), s,
+            dot(a.node_partial_angular[e], angular) + dot(a.node_partial_linear[e], linear));
       at = a.parent_state;
     }
-  };
+  }
+
+  Derivation& d_;
+  const int n_;
+  std::map<int, WorldAxis> world_axes_;
+};
+
+/// The joint speeds' rows: the forcing from the subtree's wrench, M from the
+/// momentum of the subtree turning (sliding) with u_s = 1.
+void joint_rows(Derivation& d, const BodySums& sums, MassRows& rows) {
+  const auto& states = d.tree.bodies();
   for (std::size_t i = 0; i < states.size(); ++i) {
-    const kinematics::BodyState& b = states[i];
-    const kinematics::JointFrame& joint = tree.joints()[b.joint];
+    const kinematics::JointFrame& joint = d.tree.joints()[states[i].joint];
     if (joint.speed < 0) continue;
     const int s = joint.speed;
-    eq.forcing[s] = project(joint, wrench[i].moment, wrench[i].force);
+    d.eq.forcing[s] = project(joint, sums.wrench[i].moment, sums.wrench[i].force);
 
-    const SpatialInertia& c = inertia[i];
-    if (joint.prismatic)
-      spread(s, i, named(program, cross(c.moment, joint.axis)), named(program, c.mass * joint.axis));
-    else
-      spread(s, i, named(program, mul(c.second, joint.axis)), named(program, cross(joint.axis, c.moment)));
+    // The momentum of the subtree with u_s = 1. Linear part named first: the
+    // order GCC gave when both were arguments of one call, now fixed.
+    const SpatialInertia& c = sums.inertia[i];
+    const Vec3 linear = named(d.program, joint.prismatic ? c.mass * joint.axis : cross(joint.axis, c.moment));
+    const Vec3 angular =
+        named(d.program, joint.prismatic ? cross(c.moment, joint.axis) : mul(c.second, joint.axis));
+    rows.spread(s, i, angular, linear);
   }
-  // The elastic speeds: their own block, and their coupling with the joints on the path.
-  for (const auto& [i, terms] : elastic) {
-    const int body = states[i].body, first = vars.elastic_first[body], count = vars.elastic_count[body];
+}
+
+/// The elastic speeds' rows: their own block, and their coupling with the joints on the path.
+void elastic_rows(Derivation& d, const BodySums& sums, MassRows& rows) {
+  const int n = d.eq.nu;
+  for (const auto& [i, terms] : sums.elastic) {
+    const int body = d.tree.bodies()[i].body;
+    const int first = d.vars.elastic_first[body], count = d.vars.elastic_count[body];
     for (int k = 0; k < count; ++k) {
       const int r = first + k;
-      eq.forcing[r] = terms.elastic_forcing[k];
-      for (int l = 0; l < count; ++l) eq.mass_matrix[r * n + first + l] = terms.elastic_mass[k * count + l];
-      spread(r, i, terms.angular_momentum[k], terms.linear_momentum[k]);
+      d.eq.forcing[r] = terms.elastic_forcing[k];
+      for (int l = 0; l < count; ++l) d.eq.mass_matrix[r * n + first + l] = terms.elastic_mass[k * count + l];
+      rows.spread(r, i, terms.angular_momentum[k], terms.linear_momentum[k]);
     }
   }
+}
 
-  for (std::size_t k = 0; k < model.joints.size(); ++k) {
-    const model::Joint& joint = model.joints[k];
-    const int r = tree.joints()[k].speed;
+/// The joint's own forces on its speed r: spring, damper, actuator, efforts; the spring's energy.
+void add_joint_forces(Derivation& d, const model::Joint& joint, int r) {
+  const symbolic::Variables& vars = d.vars;
+  const ex stiffness = vars.scalar(joint.spring_stiffness);
+  const ex stretch = vars.q[r] - vars.scalar(joint.spring_rest);
+  d.eq.forcing[r] += -stiffness * stretch - vars.scalar(joint.damping) * vars.u[r];
+  if (joint.actuated) d.eq.forcing[r] += vars.tau[r];
+  for (const model::JointEffort& effort : d.model.joint_efforts)
+    if (effort.joint == joint.name) d.eq.forcing[r] += joint_effort_value(effort, vars);
+  d.eq.potential_energy += stiffness * stretch * stretch / 2;
+}
+
+/// A prescribed joint's accelerations piece by piece, and the initial state its motion gives.
+void add_prescribed_speed(Derivation& d, const model::Joint& joint, int r) {
+  const symbolic::Variables& vars = d.vars;
+  PrescribedSpeed prescribed;
+  prescribed.speed = r;
+  for (std::size_t p = 0; p < joint.prescribed.size(); ++p) {
+    const model::PrescribedPiece& piece = joint.prescribed[p];
+    const ex motion = vars.time_expression(piece.q, piece.where);
+    prescribed.pieces.push_back({motion.diff(vars.t, 2), piece.has_until, piece.until});
+    if (p == 0) {  // the initial state: in the parameters, and at their defaults
+      prescribed.position0 = motion.subs(vars.t == 0);
+      prescribed.speed0 = motion.diff(vars.t).subs(vars.t == 0);
+      d.eq.q0.push_back(vars.at_defaults(motion, 0.0));
+      d.eq.u0.push_back(vars.at_defaults(motion.diff(vars.t), 0.0));
+    }
+  }
+  d.eq.prescribed.push_back(std::move(prescribed));
+}
+
+/// The joint coordinates: forces, rates, names and initial state.
+void joint_coordinates(Derivation& d) {
+  Equations& eq = d.eq;
+  for (std::size_t k = 0; k < d.model.joints.size(); ++k) {
+    const model::Joint& joint = d.model.joints[k];
+    const int r = d.tree.joints()[k].speed;
     if (r < 0) continue;
-    const ex stiffness = vars.scalar(joint.spring_stiffness);
-    const ex stretch = vars.q[r] - vars.scalar(joint.spring_rest);
-    eq.forcing[r] += -stiffness * stretch - vars.scalar(joint.damping) * vars.u[r];
-    if (joint.actuated) eq.forcing[r] += vars.tau[r];
-    for (const model::JointEffort& effort : model.joint_efforts)
-      if (effort.joint == joint.name) eq.forcing[r] += joint_effort_value(effort, vars);
-    eq.potential_energy += stiffness * stretch * stretch / 2;
-    eq.coordinate_rates.push_back(vars.u[r]);
+    add_joint_forces(d, joint, r);
+    eq.coordinate_rates.push_back(d.vars.u[r]);
     eq.coordinate_names.push_back(joint.name);
     eq.speed_names.push_back(joint.name + "_dot");
     eq.input_names.push_back(joint.name + "_tau");
-    if (!joint.is_prescribed()) {
+    if (joint.is_prescribed()) {
+      add_prescribed_speed(d, joint, r);
+    } else {
       eq.q0.push_back(joint.q0);
       eq.u0.push_back(joint.u0);
-      continue;
     }
-    PrescribedSpeed prescribed;
-    prescribed.speed = r;
-    for (std::size_t p = 0; p < joint.prescribed.size(); ++p) {
-      const model::PrescribedPiece& piece = joint.prescribed[p];
-      const ex motion = vars.time_expression(piece.q, piece.where);
-      prescribed.pieces.push_back({motion.diff(vars.t, 2), piece.has_until, piece.until});
-      if (p == 0) {  // the initial state: in the parameters, and at their defaults
-        prescribed.position0 = motion.subs(vars.t == 0);
-        prescribed.speed0 = motion.diff(vars.t).subs(vars.t == 0);
-        eq.q0.push_back(vars.at_defaults(motion, 0.0));
-        eq.u0.push_back(vars.at_defaults(motion.diff(vars.t), 0.0));
-      }
-    }
-    eq.prescribed.push_back(std::move(prescribed));
   }
+}
+
+/// The elastic coordinates, after the joints': rates, names, a rest state.
+void elastic_coordinates(Derivation& d) {
+  const model::Model& model = d.model;
+  Equations& eq = d.eq;
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     if (!model.bodies[b].flexible) continue;
-    const std::vector<std::string>& names = flexible.at(static_cast<int>(b)).reduced.names;
-    for (int k = 0; k < vars.elastic_count[b]; ++k) {
-      eq.coordinate_rates.push_back(vars.u[vars.elastic_first[b] + k]);
+    const std::vector<std::string>& names = d.flexible.at(static_cast<int>(b)).reduced.names;
+    for (int k = 0; k < d.vars.elastic_count[b]; ++k) {
+      eq.coordinate_rates.push_back(d.vars.u[d.vars.elastic_first[b] + k]);
       eq.coordinate_names.push_back(model.bodies[b].name + "." + names[k]);
       eq.speed_names.push_back(model.bodies[b].name + "." + names[k] + "_dot");
       eq.q0.push_back(0.0);
       eq.u0.push_back(0.0);
     }
   }
+}
 
-  eq.loops = derive_loop_constraints(model, vars, program, tree, flexible);
-  eq.coordinate_role.assign(eq.nq, 0);
-  for (std::size_t k = 0; k < model.joints.size(); ++k) {
-    const int r = tree.joints()[k].speed;
-    if (r >= 0)
-      eq.coordinate_role[r] = model.joints[k].is_prescribed() ? 2 : model.joints[k].independent ? 1 : 0;
+/// Per coordinate: free, independent (kept by assembly) or prescribed.
+void coordinate_roles(Derivation& d) {
+  d.eq.coordinate_role.assign(d.eq.nq, 0);
+  for (std::size_t k = 0; k < d.model.joints.size(); ++k) {
+    const int r = d.tree.joints()[k].speed;
+    const model::Joint& joint = d.model.joints[k];
+    if (r >= 0) d.eq.coordinate_role[r] = joint.is_prescribed() ? 2 : joint.independent ? 1 : 0;
   }
+}
 
+/// The named outputs, each expanded into its columns.
+void expand_outputs(Derivation& d) {
+  const model::Model& model = d.model;
+  const symbolic::Variables& vars = d.vars;
+  Program& program = d.program;
+  const FlexibleBodies& flexible = d.flexible;
+  const kinematics::TreeKinematics& tree = d.tree;
+  Equations& eq = d.eq;
   for (const model::Output& out : model.outputs) {
     if (out.node >= 0) {
       const int body = tree.bodies()[tree.state_of(out.body)].body;
@@ -421,6 +520,43 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
     eq.output_names.push_back(column.name);
   if (eq.output_names.size() != eq.outputs.size())
     throw std::logic_error("derive_equations: the outputs' values do not match their columns");
+}
+
+}  // namespace
+
+Equations derive_equations(const model::Model& model, const symbolic::Variables& vars,
+                           symbolic::Program& program, MassMatrixMethod method,
+                           const FlexibleBodies& flexible) {
+  const std::map<int, kinematics::NodeAttachment> attachments = node_attachments(model, vars, flexible);
+  // The world-axes sum of M does not know the nodes' partial velocities.
+  if (!attachments.empty()) method = MassMatrixMethod::body_frames;
+  const Vec3 gravity = vec(vars, model.gravity);
+  // The ground accelerates at -g: every rest acceleration then carries gravity.
+  const kinematics::TreeKinematics tree(model, vars, program, zero_vec() - gravity, attachments);
+  Equations eq;
+  eq.nq = eq.nu = static_cast<int>(vars.q.size());
+  eq.mass_matrix.assign(eq.nu * eq.nu, 0);
+  eq.forcing.assign(eq.nu, 0);
+  eq.kinetic_energy = eq.potential_energy = 0;
+  Derivation d{model, vars, program, flexible, tree, method, gravity, eq};
+
+  const std::size_t count = tree.bodies().size();
+  BodySums sums{std::vector<SpatialInertia>(count), std::vector<Wrench>(count), {}};
+  for (std::size_t i = 0; i < count; ++i) {
+    add_rigid_body(d, sums, i);
+    if (model.bodies[tree.bodies()[i].body].flexible) add_flexible_body(d, sums, i);
+  }
+  add_springs(d, sums);
+  composite_bodies(d, sums);
+  MassRows rows(d);
+  joint_rows(d, sums, rows);
+  elastic_rows(d, sums, rows);
+
+  joint_coordinates(d);
+  elastic_coordinates(d);
+  eq.loops = derive_loop_constraints(model, vars, program, tree, flexible);
+  coordinate_roles(d);
+  expand_outputs(d);
   return eq;
 }
 

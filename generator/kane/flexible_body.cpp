@@ -123,167 +123,229 @@ ex add_axial_strain(const std::vector<fem::AxialStrainElement>& elements, const 
   return energy;
 }
 
+/// The steps of flexible_terms, in their order: they share the body's
+/// cleaned invariants, its coordinates and the integrals D.
+class FlexibleBuilder {
+ public:
+  FlexibleBuilder(const fem::ModelBeam& beam, const kinematics::BodyState& b, const std::vector<ex>& eta,
+                  const std::vector<ex>& eta_dot, Program& program)
+      : beam_(beam),
+        inv_(beam.reduced.invariants),
+        b_(b),
+        eta_(eta),
+        eta_dot_(eta_dot),
+        program_(program),
+        n_(inv_.n),
+        shortens_(beam.foreshortening.has_value()) {
+    if (shortens_) fs_ = shortening_terms(*beam.foreshortening, eta, program);
+    S_ = cleaned(inv_.S);
+    S_r_ = cleaned(inv_.S_r);
+    J_Nrot_ = cleaned(inv_.J_Nrot);
+    for (int k = 0; k < 9; ++k) S_nn_[k] = cleaned(inv_.S_nn[k]);
+    for (int i = 0; i < 9; ++i) J_[i] = number(inv_.J(i / 3, i % 3));
+  }
+
+  FlexibleTerms build() {
+    second_moment_integrals();
+    body_inertia();
+    elastic_momenta();
+    const Vec3 force = rest_force();
+    const Vec3 moment = rest_moment();
+    out_.force = zero_vec() - force;
+    out_.moment = zero_vec() - moment;
+    elastic_equations();
+    energies();
+    return out_;
+  }
+
+ private:
+  /// The rows of m times x, a vector.
+  Vec3 rows(const Eigen::MatrixXd& m, const std::vector<ex>& x) const {
+    Vec3 v;
+    for (int a = 0; a < 3; ++a) v[a] = linear_combination(m.row(a).transpose(), x);
+    return v;
+  }
+
+  void second_moment_integrals() {
+    // D[3a+b][k] = int rho p_a N_bk = S_r[3a+b]_k + (S_nn[3a+b]^T eta)_k, with p = r + N eta.
+    for (int ab = 0; ab < 9; ++ab) {
+      D_[ab].resize(n_);
+      for (int k = 0; k < n_; ++k)
+        D_[ab][k] = program_.define(number(S_r_(ab, k)) + linear_combination(S_nn_[ab].col(k), eta_));
+    }
+    // P[3a+b] = int rho p_a p_b = second_ab + S_r[3b+a] eta + D[3a+b] eta (+ int rho (r_a f_b + f_a r_b)).
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) {
+        ex sum = number(inv_.second_moment(a, c)) + linear_combination(S_r_.row(3 * c + a).transpose(), eta_);
+        for (int k = 0; k < n_; ++k) sum += D_[3 * a + c][k] * eta_[k];
+        if (shortens_) sum += fs_.moment_of(fs_.z[3 * c + a], eta_) + fs_.moment_of(fs_.z[3 * a + c], eta_);
+        P_[3 * a + c] = sum;
+      }
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < a; ++c) P_[3 * a + c] = P_[3 * c + a];  // symmetric: one definition each
+    P_ = named(program_, P_);
+  }
+
+  /// The deformed body's mass, first and second moment about the link origin.
+  void body_inertia() {
+    out_.mass = number(inv_.mass);
+    Vec3 first{number(inv_.first_moment[0]), number(inv_.first_moment[1]), number(inv_.first_moment[2])};
+    first = first + rows(S_, eta_);
+    if (shortens_)
+      for (int a = 0; a < 3; ++a) first[a] += fs_.moment_of(fs_.y[a], eta_);
+    out_.first_moment = named(program_, first);
+    const ex trace = P_[0] + P_[4] + P_[8];
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c)
+        out_.second_moment[3 * a + c] = (a == c ? trace : ex(0)) - P_[3 * a + c] + J_[3 * a + c];
+    out_.second_moment = named(program_, out_.second_moment);
+  }
+
+  /// Momentum of eta_dot_k = 1: P_k = S_k (+ int rho D_k), L_k = int rho p x N_k + J_Nrot_k (+ int rho r x
+  /// D_k). Q(a, b) = int rho D_k,a r_b.
+  void elastic_momenta() {
+    for (int k = 0; k < n_; ++k) {
+      Vec3 linear{number(S_(0, k)), number(S_(1, k)), number(S_(2, k))};
+      Vec3 angular{D_[3 * 1 + 2][k] - D_[3 * 2 + 1][k] + number(J_Nrot_(0, k)),
+                   D_[3 * 2 + 0][k] - D_[3 * 0 + 2][k] + number(J_Nrot_(1, k)),
+                   D_[3 * 0 + 1][k] - D_[3 * 1 + 0][k] + number(J_Nrot_(2, k))};
+      if (shortens_) {
+        const auto Q = [&](int a, int c) { return fs_.at(fs_.z[3 * a + c], k); };
+        for (int a = 0; a < 3; ++a) linear[a] += fs_.at(fs_.y[a], k);
+        angular = angular + Vec3{Q(2, 1) - Q(1, 2), Q(0, 2) - Q(2, 0), Q(1, 0) - Q(0, 1)};
+      }
+      out_.linear_momentum.push_back(named(program_, linear));
+      out_.angular_momentum.push_back(named(program_, angular));
+    }
+  }
+
+  /// int rho a_p dV with u_dot = 0: a_p = a0 + alpha x p + w x (w x p) + 2 w x p' + p'',
+  /// p' = (N + D) eta_dot and p'' = D' eta_dot (D_a' eta_dot = -eta_dot^T H_a eta_dot).
+  Vec3 rest_force() {
+    const Vec3& w = b_.omega;
+    const Vec3& s_p = out_.first_moment;
+    s_rate_ = rows(S_, eta_dot_);  // int rho p'
+    Vec3 s_accel = zero_vec();     // int rho p''
+    if (shortens_)
+      for (int a = 0; a < 3; ++a) {
+        if (fs_.y[a].empty()) continue;
+        for (int k = 0; k < n_; ++k) s_rate_[a] -= fs_.y[a][k] * eta_dot_[k];
+        s_accel[a] = -quadratic(fs_.mass[a], eta_dot_, program_);
+      }
+    s_rate_ = named(program_, s_rate_);
+    return named(program_, out_.mass * b_.accel_rest + cross(b_.alpha_rest, s_p) + cross(w, cross(w, s_p)) +
+                               2 * cross(w, s_rate_) + s_accel);
+  }
+
+  /// int rho p x a_p dV with u_dot = 0, about the link origin.
+  Vec3 rest_moment() {
+    const Vec3& w = b_.omega;
+    // Dw[3a+b] = int rho (p')_a p_b = sum_k eta_dot_k D[3b+a][k] (- eta_dot . z_ab).
+    Mat3 Dw;
+    for (int a = 0; a < 3; ++a)
+      for (int c = 0; c < 3; ++c) {
+        ex sum = 0;
+        for (int k = 0; k < n_; ++k) sum += eta_dot_[k] * D_[3 * c + a][k];
+        if (shortens_)
+          for (std::size_t k = 0; k < fs_.z[3 * a + c].size(); ++k) sum -= eta_dot_[k] * fs_.z[3 * a + c][k];
+        Dw[3 * a + c] = sum;
+      }
+    Dw = named(program_, Dw);
+    spin_ = named(program_, mul(out_.second_moment, w));
+    const Vec3 j_rate = named(program_, rows(J_Nrot_, eta_dot_));
+    const ex dw_trace = Dw[0] + Dw[4] + Dw[8];
+    const Vec3 coriolis_moment = dw_trace * w - mul(Dw, w);
+    // int rho r x p'': its entries int rho r_b (p'')_a = -eta_dot^T Fr_ab eta_dot.
+    Vec3 accel_moment = zero_vec();
+    if (shortens_) {
+      Mat3 psi;
+      for (int ab = 0; ab < 9; ++ab)
+        psi[ab] = fs_.z[ab].empty() ? ex(0) : ex(-quadratic(fs_.moment[ab], eta_dot_, program_));
+      accel_moment = Vec3{psi[3 * 2 + 1] - psi[3 * 1 + 2], psi[3 * 0 + 2] - psi[3 * 2 + 0],
+                          psi[3 * 1 + 0] - psi[3 * 0 + 1]};
+    }
+    return named(program_, cross(out_.first_moment, b_.accel_rest) + mul(out_.second_moment, b_.alpha_rest) +
+                               cross(w, spin_) + cross(w, j_rate) + 2 * coriolis_moment + accel_moment);
+  }
+
+  /// The elastic equations: forcing, constant mass block, nonlinear axial strain.
+  void elastic_equations() {
+    const Vec3& w = b_.omega;
+    const Vec3& a0 = b_.accel_rest;
+    K_ = cleaned(beam_.reduced.stiffness);
+    const Eigen::MatrixXd C = cleaned(beam_.damping);
+    std::array<Eigen::MatrixXd, 3> coriolis;
+    for (int c = 0; c < 3; ++c) coriolis[c] = cleaned(inv_.coriolis(c));
+    const ex w2 = program_.define(dot(w, w));
+    Mat3 ww;  // w_a w_b
+    for (int i = 0; i < 9; ++i) ww[i] = w[i / 3] * w[i % 3];
+    ww = named(program_, ww);
+    for (int k = 0; k < n_; ++k) {
+      // int rho (N_k + D_k)^T a_p: P_k . a0 + L_k . alpha + int rho (N_k + D_k)^T W^2 p + 2 sum_c w_c C_c
+      // eta_dot.
+      ex inertia = out_.linear_momentum[k][0] * a0[0] + out_.linear_momentum[k][1] * a0[1] +
+                   out_.linear_momentum[k][2] * a0[2] + dot(out_.angular_momentum[k], b_.alpha_rest);
+      for (int a = 0; a < 3; ++a) {
+        inertia -= w2 * D_[3 * a + a][k];
+        for (int c = 0; c < 3; ++c) inertia += ww[3 * a + c] * D_[3 * c + a][k];
+        if (shortens_)  // int rho D_k . W^2 r = sum_ab (w_a w_b - w^2 delta_ab) int rho D_k,a r_b
+          for (int c = 0; c < 3; ++c)
+            inertia += (ww[3 * a + c] - (a == c ? w2 : ex(0))) * fs_.at(fs_.z[3 * a + c], k);
+      }
+      for (int c = 0; c < 3; ++c)
+        inertia += 2 * w[c] * linear_combination(coriolis[c].row(k).transpose(), eta_dot_);
+      const ex elastic = -linear_combination(K_.row(k).transpose(), eta_) -
+                         linear_combination(C.row(k).transpose(), eta_dot_);
+      out_.elastic_forcing.push_back(program_.define(elastic - inertia));
+    }
+    M_ = cleaned(inv_.elastic_mass());
+    for (int k = 0; k < n_; ++k)
+      for (int l = 0; l < n_; ++l) out_.elastic_mass.push_back(number(M_(k, l)));
+    nonlinear_strain_ = add_axial_strain(beam_.axial_strain, eta_, out_.elastic_forcing, program_);
+  }
+
+  /// T = 1/2 (m v0^2 + 2 v0.(w x s_p) + w.I w) + v0.(int rho p') + w.(L eta_dot) + 1/2 eta_dot^T M eta_dot:
+  /// 1/2 u^T M u with the mass matrix these terms give. The strain energy.
+  void energies() {
+    const Vec3& v0 = b_.velocity;
+    const Vec3& w = b_.omega;
+    ex elastic_kinetic = 0;
+    for (int k = 0; k < n_; ++k)
+      elastic_kinetic += eta_dot_[k] * linear_combination(M_.row(k).transpose(), eta_dot_);
+    Vec3 l_rate = zero_vec();
+    for (int k = 0; k < n_; ++k) l_rate = l_rate + eta_dot_[k] * out_.angular_momentum[k];
+    out_.kinetic_energy =
+        (out_.mass * dot(v0, v0) + 2 * dot(v0, cross(w, out_.first_moment)) + dot(w, spin_)) / 2 +
+        dot(v0, s_rate_) + dot(w, l_rate) + elastic_kinetic / 2;
+    ex strain = 0;
+    for (int k = 0; k < n_; ++k) strain += eta_[k] * linear_combination(K_.row(k).transpose(), eta_);
+    out_.strain_energy = strain / 2 + nonlinear_strain_;
+  }
+
+  const fem::ModelBeam& beam_;
+  const fem::InertiaInvariants& inv_;
+  const kinematics::BodyState& b_;
+  const std::vector<ex>& eta_;
+  const std::vector<ex>& eta_dot_;
+  Program& program_;
+  const int n_;
+  const bool shortens_;
+  Shortening fs_;
+  Eigen::MatrixXd S_, S_r_, J_Nrot_, K_, M_;
+  std::array<Eigen::MatrixXd, 9> S_nn_;
+  Mat3 J_;
+  std::array<std::vector<ex>, 9> D_;  ///< int rho p_a N_bk, [3a+b][k]
+  Mat3 P_;                            ///< int rho p_a p_b, [3a+b]
+  Vec3 s_rate_, spin_;                ///< int rho p', and I w
+  ex nonlinear_strain_;
+  FlexibleTerms out_;
+};
+
 }  // namespace
 
 FlexibleTerms flexible_terms(const fem::ModelBeam& beam, const kinematics::BodyState& b,
                              const std::vector<ex>& eta, const std::vector<ex>& eta_dot, Program& program) {
-  const fem::ReducedBody& body = beam.reduced;
-  const fem::InertiaInvariants& inv = body.invariants;
-  const int n = inv.n;
-  FlexibleTerms out;
-  const bool shortens = beam.foreshortening.has_value();
-  const Shortening fs = shortens ? shortening_terms(*beam.foreshortening, eta, program) : Shortening{};
-
-  const Eigen::MatrixXd S = cleaned(inv.S), S_r = cleaned(inv.S_r), J_Nrot = cleaned(inv.J_Nrot);
-  std::array<Eigen::MatrixXd, 9> S_nn;
-  for (int k = 0; k < 9; ++k) S_nn[k] = cleaned(inv.S_nn[k]);
-  Mat3 J;
-  for (int i = 0; i < 9; ++i) J[i] = number(inv.J(i / 3, i % 3));
-  const auto rows = [&](const Eigen::MatrixXd& m, const std::vector<ex>& x) {
-    Vec3 v;
-    for (int a = 0; a < 3; ++a) v[a] = linear_combination(m.row(a).transpose(), x);
-    return v;
-  };
-
-  // D[3a+b][k] = int rho p_a N_bk = S_r[3a+b]_k + (S_nn[3a+b]^T eta)_k, with p = r + N eta.
-  std::array<std::vector<ex>, 9> D;
-  for (int ab = 0; ab < 9; ++ab) {
-    D[ab].resize(n);
-    for (int k = 0; k < n; ++k)
-      D[ab][k] = program.define(number(S_r(ab, k)) + linear_combination(S_nn[ab].col(k), eta));
-  }
-  // P[3a+b] = int rho p_a p_b = second_ab + S_r[3b+a] eta + D[3a+b] eta (+ int rho (r_a f_b + f_a r_b)).
-  Mat3 P;
-  for (int a = 0; a < 3; ++a)
-    for (int c = 0; c < 3; ++c) {
-      ex sum = number(inv.second_moment(a, c)) + linear_combination(S_r.row(3 * c + a).transpose(), eta);
-      for (int k = 0; k < n; ++k) sum += D[3 * a + c][k] * eta[k];
-      if (shortens) sum += fs.moment_of(fs.z[3 * c + a], eta) + fs.moment_of(fs.z[3 * a + c], eta);
-      P[3 * a + c] = sum;
-    }
-  for (int a = 0; a < 3; ++a)
-    for (int c = 0; c < a; ++c) P[3 * a + c] = P[3 * c + a];  // symmetric: one definition each
-  P = named(program, P);
-
-  out.mass = number(inv.mass);
-  Vec3 first{number(inv.first_moment[0]), number(inv.first_moment[1]), number(inv.first_moment[2])};
-  first = first + rows(S, eta);
-  if (shortens)
-    for (int a = 0; a < 3; ++a) first[a] += fs.moment_of(fs.y[a], eta);
-  out.first_moment = named(program, first);
-  const ex trace = P[0] + P[4] + P[8];
-  for (int a = 0; a < 3; ++a)
-    for (int c = 0; c < 3; ++c)
-      out.second_moment[3 * a + c] = (a == c ? trace : ex(0)) - P[3 * a + c] + J[3 * a + c];
-  out.second_moment = named(program, out.second_moment);
-
-  // Momentum of eta_dot_k = 1: P_k = S_k (+ int rho D_k), L_k = int rho p x N_k + J_Nrot_k (+ int rho r x
-  // D_k). Q(a, b) = int rho D_k,a r_b.
-  for (int k = 0; k < n; ++k) {
-    Vec3 linear{number(S(0, k)), number(S(1, k)), number(S(2, k))};
-    Vec3 angular{D[3 * 1 + 2][k] - D[3 * 2 + 1][k] + number(J_Nrot(0, k)),
-                 D[3 * 2 + 0][k] - D[3 * 0 + 2][k] + number(J_Nrot(1, k)),
-                 D[3 * 0 + 1][k] - D[3 * 1 + 0][k] + number(J_Nrot(2, k))};
-    if (shortens) {
-      const auto Q = [&](int a, int c) { return fs.at(fs.z[3 * a + c], k); };
-      for (int a = 0; a < 3; ++a) linear[a] += fs.at(fs.y[a], k);
-      angular = angular + Vec3{Q(2, 1) - Q(1, 2), Q(0, 2) - Q(2, 0), Q(1, 0) - Q(0, 1)};
-    }
-    out.linear_momentum.push_back(named(program, linear));
-    out.angular_momentum.push_back(named(program, angular));
-  }
-
-  // Rest accelerations (u_dot = 0): a_p = a0 + alpha x p + w x (w x p) + 2 w x p' + p'',
-  // p' = (N + D) eta_dot and p'' = D' eta_dot (D_a' eta_dot = -eta_dot^T H_a eta_dot).
-  const Vec3& w = b.omega;
-  const Vec3& a0 = b.accel_rest;
-  const Vec3& alpha = b.alpha_rest;
-  const Vec3 s_p = out.first_moment;
-  Vec3 s_rate = rows(S, eta_dot);  // int rho p'
-  Vec3 s_accel = zero_vec();       // int rho p''
-  if (shortens)
-    for (int a = 0; a < 3; ++a) {
-      if (fs.y[a].empty()) continue;
-      for (int k = 0; k < n; ++k) s_rate[a] -= fs.y[a][k] * eta_dot[k];
-      s_accel[a] = -quadratic(fs.mass[a], eta_dot, program);
-    }
-  s_rate = named(program, s_rate);
-  const Vec3 force = named(
-      program, out.mass * a0 + cross(alpha, s_p) + cross(w, cross(w, s_p)) + 2 * cross(w, s_rate) + s_accel);
-  // Dw[3a+b] = int rho (p')_a p_b = sum_k eta_dot_k D[3b+a][k] (- eta_dot . z_ab).
-  Mat3 Dw;
-  for (int a = 0; a < 3; ++a)
-    for (int c = 0; c < 3; ++c) {
-      ex sum = 0;
-      for (int k = 0; k < n; ++k) sum += eta_dot[k] * D[3 * c + a][k];
-      if (shortens)
-        for (std::size_t k = 0; k < fs.z[3 * a + c].size(); ++k) sum -= eta_dot[k] * fs.z[3 * a + c][k];
-      Dw[3 * a + c] = sum;
-    }
-  Dw = named(program, Dw);
-  const Vec3 spin = named(program, mul(out.second_moment, w));
-  const Vec3 j_rate = named(program, rows(J_Nrot, eta_dot));
-  const ex dw_trace = Dw[0] + Dw[4] + Dw[8];
-  const Vec3 coriolis_moment = dw_trace * w - mul(Dw, w);
-  // int rho r x p'': its entries int rho r_b (p'')_a = -eta_dot^T Fr_ab eta_dot.
-  Vec3 accel_moment = zero_vec();
-  if (shortens) {
-    Mat3 psi;
-    for (int ab = 0; ab < 9; ++ab)
-      psi[ab] = fs.z[ab].empty() ? ex(0) : ex(-quadratic(fs.moment[ab], eta_dot, program));
-    accel_moment = Vec3{psi[3 * 2 + 1] - psi[3 * 1 + 2], psi[3 * 0 + 2] - psi[3 * 2 + 0],
-                        psi[3 * 1 + 0] - psi[3 * 0 + 1]};
-  }
-  const Vec3 moment = named(program, cross(s_p, a0) + mul(out.second_moment, alpha) + cross(w, spin) +
-                                         cross(w, j_rate) + 2 * coriolis_moment + accel_moment);
-  out.force = zero_vec() - force;
-  out.moment = zero_vec() - moment;
-
-  // Elastic equations.
-  const Eigen::MatrixXd K = cleaned(body.stiffness), C = cleaned(beam.damping);
-  std::array<Eigen::MatrixXd, 3> coriolis;
-  for (int c = 0; c < 3; ++c) coriolis[c] = cleaned(inv.coriolis(c));
-  const ex w2 = program.define(dot(w, w));
-  Mat3 ww;  // w_a w_b
-  for (int i = 0; i < 9; ++i) ww[i] = w[i / 3] * w[i % 3];
-  ww = named(program, ww);
-  for (int k = 0; k < n; ++k) {
-    // int rho (N_k + D_k)^T a_p: P_k . a0 + L_k . alpha + int rho (N_k + D_k)^T W^2 p + 2 sum_c w_c C_c
-    // eta_dot.
-    ex inertia = out.linear_momentum[k][0] * a0[0] + out.linear_momentum[k][1] * a0[1] +
-                 out.linear_momentum[k][2] * a0[2] + dot(out.angular_momentum[k], alpha);
-    for (int a = 0; a < 3; ++a) {
-      inertia -= w2 * D[3 * a + a][k];
-      for (int c = 0; c < 3; ++c) inertia += ww[3 * a + c] * D[3 * c + a][k];
-      if (shortens)  // int rho D_k . W^2 r = sum_ab (w_a w_b - w^2 delta_ab) int rho D_k,a r_b
-        for (int c = 0; c < 3; ++c)
-          inertia += (ww[3 * a + c] - (a == c ? w2 : ex(0))) * fs.at(fs.z[3 * a + c], k);
-    }
-    for (int c = 0; c < 3; ++c)
-      inertia += 2 * w[c] * linear_combination(coriolis[c].row(k).transpose(), eta_dot);
-    const ex elastic =
-        -linear_combination(K.row(k).transpose(), eta) - linear_combination(C.row(k).transpose(), eta_dot);
-    out.elastic_forcing.push_back(program.define(elastic - inertia));
-  }
-  const Eigen::MatrixXd M = cleaned(inv.elastic_mass());
-  for (int k = 0; k < n; ++k)
-    for (int l = 0; l < n; ++l) out.elastic_mass.push_back(number(M(k, l)));
-  const ex nonlinear_strain = add_axial_strain(beam.axial_strain, eta, out.elastic_forcing, program);
-
-  // T = 1/2 (m v0^2 + 2 v0.(w x s_p) + w.I w) + v0.(int rho p') + w.(L eta_dot) + 1/2 eta_dot^T M eta_dot:
-  // 1/2 u^T M u with the mass matrix these terms give.
-  const Vec3& v0 = b.velocity;
-  ex elastic_kinetic = 0;
-  for (int k = 0; k < n; ++k)
-    elastic_kinetic += eta_dot[k] * linear_combination(M.row(k).transpose(), eta_dot);
-  Vec3 l_rate = zero_vec();
-  for (int k = 0; k < n; ++k) l_rate = l_rate + eta_dot[k] * out.angular_momentum[k];
-  out.kinetic_energy = (out.mass * dot(v0, v0) + 2 * dot(v0, cross(w, s_p)) + dot(w, spin)) / 2 +
-                       dot(v0, s_rate) + dot(w, l_rate) + elastic_kinetic / 2;
-  ex strain = 0;
-  for (int k = 0; k < n; ++k) strain += eta[k] * linear_combination(K.row(k).transpose(), eta);
-  out.strain_energy = strain / 2 + nonlinear_strain;
-  return out;
+  return FlexibleBuilder(beam, b, eta, eta_dot, program).build();
 }
 
 }  // namespace kanegen::kane

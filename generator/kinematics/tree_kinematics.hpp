@@ -84,6 +84,11 @@ class TreeKinematics {
   Vec3 world_point(const BodyState& b, const Vec3& local) const;
 
  private:
+  /// Joint k's child body from its parent's state p: its frame, velocities
+  /// and rest accelerations; sets joint k's frame.
+  BodyState place(std::size_t k, int parent, const BodyState& p, const symbolic::Variables& vars,
+                  const NodeAttachment* attachment);
+
   const model::Model& model_;
   symbolic::Program& program_;
   std::vector<BodyState> bodies_;
