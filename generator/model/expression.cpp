@@ -96,7 +96,7 @@ double fold(const std::vector<Node>& nodes, const Node& n) {
 }
 
 /// Sets `varies` from the operands and, for a node that does not vary, its value.
-void settle(std::vector<Node>& nodes, Node& n) {
+void settle(const std::vector<Node>& nodes, Node& n) {
   const auto varies = [&](int i) { return i >= 0 && nodes[static_cast<std::size_t>(i)].varies; };
   if (n.op != Op::name) n.varies = varies(n.a) || varies(n.b);
   if (!n.varies && n.op != Op::number) n.value = fold(nodes, n);
@@ -322,12 +322,12 @@ class Parser {
         fail(peek().pos, "'" + t.text + "' is not a function",
              "insert '*' for a product: " + t.text + "*(...)");
       Node n;
-      if (known) {
+      if (is_constant(t.text)) {
+        n.value = 3.14159265358979323846;  // pi, the one constant (before any parameter so named)
+      } else {
         n.op = Op::name;
         n.name = t.text;
         n.varies = true;  // until bind_expression gives it a value
-      } else {
-        n.value = 3.14159265358979323846;  // pi, the one constant: GiNaC's Pi as a double
       }
       return add(std::move(n));
     }
