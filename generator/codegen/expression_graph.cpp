@@ -6,6 +6,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "model/fnv1a.hpp"
+
 namespace kanegen::codegen {
 namespace {
 
@@ -18,12 +20,6 @@ std::uint64_t bits(double v) {
   std::uint64_t b;
   std::memcpy(&b, &v, sizeof b);
   return b;
-}
-
-std::uint64_t hash_text(const std::string& s) {
-  std::uint64_t h = 0xcbf29ce484222325ULL;
-  for (unsigned char c : s) h = (h ^ c) * 0x100000001b3ULL;
-  return h;
 }
 
 }  // namespace
@@ -66,7 +62,7 @@ int ExpressionGraph::intern(Node node) {
     });
   }
   std::uint64_t key = mix(static_cast<std::uint64_t>(node.op) + 1, bits(node.value));
-  key = mix(key, hash_text(node.name));
+  key = mix(key, model::fnv1a(node.name));
   for (int a : node.args) key = mix(key, nodes_[a].key);
   node.key = key;
   auto index_key = std::make_tuple(static_cast<int>(node.op), bits(node.value), node.name, node.args);

@@ -1,20 +1,17 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // Numeric value of a model Scalar at given parameter values, without GiNaC:
 // for the independent numeric derivation (kanegen verify), which must not
-// share code with the symbolic path beyond the parsed model. The language is
-// the one expression_check accepts, with GiNaC's meaning (a leading sign
-// applies to the first term, '^' binds tighter than a sign: -a^2 = -(a^2)).
+// share code with the symbolic path beyond the parsed model. The parser is
+// the load-time check's (expression.hpp), with GiNaC's meaning (a leading
+// sign applies to the first term, '^' binds tighter than a sign: -a^2 = -(a^2)).
 #pragma once
 
-#include <map>
 #include <string>
 
+#include "model/expression.hpp"
 #include "model/model.hpp"
 
 namespace kanegen::model {
-
-/// Parameter name -> value.
-using ParameterValues = std::map<std::string, double>;
 
 /// The defaults of the model's parameters.
 ParameterValues default_parameter_values(const Model& model);

@@ -5,7 +5,7 @@
 #include <cctype>
 #include <set>
 
-#include "model/expression_check.hpp"
+#include "model/expression.hpp"
 
 namespace kanegen::model {
 

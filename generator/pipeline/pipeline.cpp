@@ -10,6 +10,7 @@
 
 #include "codegen/emitter.hpp"
 #include "kane/equations.hpp"
+#include "model/fnv1a.hpp"
 #include "symbolic/program.hpp"
 #include "symbolic/variables.hpp"
 
@@ -23,10 +24,8 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 }  // namespace
 
 std::string digest(const std::string& bytes) {
-  std::uint64_t h = 0xcbf29ce484222325ULL;
-  for (unsigned char c : bytes) h = (h ^ c) * 0x100000001b3ULL;
   char text[17];
-  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(model::fnv1a(bytes)));
   return text;
 }
 

@@ -5,8 +5,8 @@
 # may include fem/model_beam.hpp, and use from it only the basis of the
 # elastic coordinates, fem::build_model_beam(...).reduced.basis.
 # Run as cmake -DDIR=<generator> -P.
-file(GLOB files ${DIR}/numeric/*.hpp ${DIR}/numeric/*.cpp ${DIR}/model/expression_eval.hpp
-     ${DIR}/model/expression_eval.cpp)
+file(GLOB files ${DIR}/numeric/*.hpp ${DIR}/numeric/*.cpp ${DIR}/model/expression.hpp ${DIR}/model/expression.cpp
+     ${DIR}/model/expression_eval.hpp ${DIR}/model/expression_eval.cpp)
 if(NOT files)
   message(FATAL_ERROR "no sources found under ${DIR}/numeric")
 endif()
