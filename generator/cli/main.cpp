@@ -3,14 +3,17 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli/modes.hpp"
 #include "cli/runner_build.hpp"
 #include "cli/verify.hpp"
 #include "codegen/emitter.hpp"
+#include "kanegen/runtime/options.hpp"
 #include "model/model_error.hpp"
 #include "pipeline/pipeline.hpp"
 
@@ -21,7 +24,6 @@ using kanegen::cli::BuildOptions;
 /// The options every subcommand has.
 struct RunOptions {
   std::string model;
-  std::vector<std::string> sets;
   bool quiet = false;
   std::vector<double> gravity;
 };
@@ -46,11 +48,49 @@ BuildOptions build_options(const RunOptions& options) {
   return b;
 }
 
-void append_pairs(std::vector<std::string>& args, const char* flag, const std::vector<std::string>& pairs) {
-  for (const std::string& p : pairs) {
-    args.push_back(flag);
-    args.push_back(p);
+/// The options `simulate` and `eval` pass on to the runner, registered from
+/// the runner's own table (kanegen/runtime/options.hpp), so that names, help
+/// and defaults are the runner's. Only what the user gave is passed on; the
+/// runner applies the defaults.
+struct ForwardedOptions {
+  std::vector<std::pair<const kanegen::runtime::OptionSpec*, CLI::Option*>> options;
+  std::map<std::string, std::vector<std::string>> values;  ///< by long name
+};
+
+void add_forwarded(CLI::App* command, const char* runner_command, ForwardedOptions& f) {
+  using kanegen::runtime::ValueKind;
+  for (const kanegen::runtime::OptionSpec& o : *kanegen::runtime::command_options(runner_command)) {
+    const std::string names = *o.short_name != '\0' ? std::string(o.short_name) + "," + o.name : o.name;
+    const std::string help = kanegen::runtime::option_help(o);  // with the default, as the runner shows it
+    CLI::Option* option = nullptr;
+    if (o.kind == ValueKind::kFlag) {
+      option = command->add_flag(names, help);
+    } else {
+      option = command->add_option(names, f.values[o.name], help)->type_name(o.value);
+      // One value per occurrence; a repeated single option is kept for the runner's parser to refuse.
+      if (!o.repeatable) option->expected(1)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+      if (o.required) option->required();
+    }
+    f.options.emplace_back(&o, option);
   }
+}
+
+/// The runner's command line: the command, then each option given, in table
+/// order. Checked here by the runner's own parser, so that a bad value is
+/// refused with the runner's message (a UsageError) before the runner is built.
+std::vector<std::string> forwarded_args(const char* runner_command, const ForwardedOptions& f) {
+  std::vector<std::string> args{runner_command};
+  for (const auto& [spec, option] : f.options) {
+    if (option->count() == 0) continue;
+    if (spec->kind == kanegen::runtime::ValueKind::kFlag) {
+      args.emplace_back(spec->name);
+      continue;
+    }
+    for (const std::string& value : f.values.at(spec->name)) args.insert(args.end(), {spec->name, value});
+  }
+  const auto* table = kanegen::runtime::command_options(runner_command);
+  kanegen::runtime::parse_options(*table, args, 1, std::string("kanegen ") + runner_command);
+  return args;
 }
 
 // Each subcommand: its options (which CLI11 fills in place, so they stay
@@ -87,73 +127,38 @@ int run_generate(const GenerateCommand& c) {
 struct SimulateCommand {
   CLI::App* command = nullptr;
   RunOptions run;
-  std::string t_end, dt = "0.01", rtol = "1e-8", atol = "1e-10";
-  std::string integrator = "dopri5", csv, max_steps = "10000000";
-  std::vector<std::string> q0, u0;
-  bool stats = false;
+  ForwardedOptions forwarded;
 };
 
 void add_simulate(CLI::App& app, SimulateCommand& c) {
-  CLI::App* sim = c.command =
-      app.add_subcommand("simulate", "generate (cached), compile and integrate the model; write CSV");
-  add_common(sim, c.run);
-  sim->add_option("--t-end", c.t_end, "end time in s")->required()->check(CLI::Number);
-  sim->add_option("--dt", c.dt, "output interval, and the step of rk4, in s")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  sim->add_option("--integrator", c.integrator, "rk4 (fixed step) or dopri5 (adaptive)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"rk4", "dopri5"}));
-  sim->add_option("--rtol", c.rtol, "dopri5 relative tolerance")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  sim->add_option("--atol", c.atol, "dopri5 absolute tolerance")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  sim->add_option("--max-steps", c.max_steps, "fail after this many integrator steps")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  sim->add_option("--set", c.run.sets, "parameter value NAME=VALUE (repeatable)");
-  sim->add_option("--q0", c.q0, "initial coordinate NAME=VALUE (repeatable)");
-  sim->add_option("--u0", c.u0, "initial speed NAME=VALUE (repeatable)");
-  sim->add_option("-o,--output", c.csv, "CSV file (default: standard output)");
-  sim->add_flag("--stats", c.stats, "print integrator statistics on stderr");
+  c.command = app.add_subcommand("simulate", "generate (cached), compile and integrate the model; write CSV");
+  add_common(c.command, c.run);
+  add_forwarded(c.command, "simulate", c.forwarded);
 }
 
 /// The runner's own simulate, with the options passed on.
 int run_simulate(const SimulateCommand& c) {
+  const std::vector<std::string> args = forwarded_args("simulate", c.forwarded);
   const std::string runner = kanegen::cli::build_runner(c.run.model, build_options(c.run));
-  std::vector<std::string> args{"simulate",     "--t-end",     c.t_end,    "--dt", c.dt,
-                                "--integrator", c.integrator,  "--rtol",   c.rtol, "--atol",
-                                c.atol,         "--max-steps", c.max_steps};
-  append_pairs(args, "--set", c.run.sets);
-  append_pairs(args, "--q0", c.q0);
-  append_pairs(args, "--u0", c.u0);
-  if (!c.csv.empty()) args.insert(args.end(), {"-o", c.csv});
-  if (c.stats) args.push_back("--stats");
   return kanegen::cli::run_program(runner, args);
 }
 
 struct EvalCommand {
   CLI::App* command = nullptr;
   RunOptions run;
-  std::string q_values, u_values, time = "0";
+  ForwardedOptions forwarded;
 };
 
 void add_eval(CLI::App& app, EvalCommand& c) {
   c.command = app.add_subcommand("eval", "print M, f, udot and the energies at one state, as JSON");
   add_common(c.command, c.run);
-  c.command->add_option("--q", c.q_values, "coordinates v1,v2,... (model order)")->required();
-  c.command->add_option("--u", c.u_values, "speeds v1,v2,... (model order)")->required();
-  c.command->add_option("--t", c.time, "time in s")->capture_default_str()->check(CLI::Number);
-  c.command->add_option("--set", c.run.sets, "parameter value NAME=VALUE (repeatable)");
+  add_forwarded(c.command, "eval", c.forwarded);
 }
 
 /// The runner's own eval, with the options passed on.
 int run_eval(const EvalCommand& c) {
+  const std::vector<std::string> args = forwarded_args("eval", c.forwarded);
   const std::string runner = kanegen::cli::build_runner(c.run.model, build_options(c.run));
-  std::vector<std::string> args{"eval", "--q", c.q_values, "--u", c.u_values, "--t", c.time};
-  append_pairs(args, "--set", c.run.sets);
   return kanegen::cli::run_program(runner, args);
 }
 
@@ -272,6 +277,9 @@ int main(int argc, char** argv) {
     if (*verify.command) return run_verify(verify);
     if (*modes.command) return run_modes(modes);
   } catch (const kanegen::model::ModelError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  } catch (const kanegen::runtime::UsageError& e) {  // a forwarded option, as the runner would say it
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;
   } catch (const std::exception& e) {

@@ -6,24 +6,19 @@
 #include <algorithm>
 #include <csignal>
 #include <memory>
-#include <optional>
-#include <set>
 #include <stdexcept>
-#include <utility>
 
 #include "batch.hpp"
 #include "kanegen/runtime/csv.hpp"
 #include "kanegen/runtime/integrators.hpp"
 #include "kanegen/runtime/loops.hpp"
+#include "kanegen/runtime/options.hpp"
 #include "kanegen/runtime/text.hpp"
 
 namespace kanegen::runtime {
 namespace {
 
-// A bad command line (exit code 2) or a failure while running (exit code 1).
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
+// A failure while running (exit code 1); a bad command line is a UsageError (options.hpp, exit code 2).
 struct RunError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
@@ -41,28 +36,13 @@ commands:
 'PROG <command> --help' describes a command's options.
 )";
 
+// The heads of the commands' help; the "options:" block follows from the table.
 constexpr const char* kSimulateUsage = R"(usage: PROG simulate --t-end T [options]
 
 Integrates x = [q; u] from t = 0 with all inputs zero (qdot from the
 kinematic equations, udot from the forward dynamics) and writes the CSV
 columns t, coordinates, speeds, outputs at t = 0, dt, 2 dt, ..., T.
 
-options:
-  --t-end T            final time (required)
-  --dt H               output interval, also the rk4 step (default 0.01)
-  --integrator NAME    dopri5 (adaptive, default) or rk4 (fixed step dt)
-  --rtol R             dopri5 relative tolerance (default 1e-8)
-  --atol A             dopri5 absolute tolerance (default 1e-10)
-  --h0 H               dopri5 initial step (default: estimated)
-  --h-min H            dopri5: fail if the step must go below H (default: round-off limit)
-  --h-max H            dopri5 largest step (default: T)
-  --max-steps N        fail after N attempted steps (default 100000)
-  --set NAME=VALUE     set a parameter (repeatable)
-  --q0 NAME=VALUE      initial coordinate (repeatable; default: the model's q0)
-  --u0 NAME=VALUE      initial speed (repeatable; default: the model's u0)
-  -o, --output FILE    write the CSV to FILE instead of stdout
-  --stats              print step statistics on stderr
-  -h, --help           show this help
 )";
 
 constexpr const char* kEvalUsage =
@@ -72,12 +52,6 @@ Evaluates the equations of motion at one state, inputs zero, and prints
 {"coordinates": [names], "mass_matrix": [[...]], "forcing": [...], "udot": [...],
  "kinetic_energy": x, "potential_energy": y}
 
-options:
-  --q v1,v2,...        coordinates, one per coordinate (default: the model's q0)
-  --u v1,v2,...        speeds, one per speed (default: the model's u0)
-  --t T                time (default 0)
-  --set NAME=VALUE     set a parameter (repeatable)
-  -h, --help           show this help
 )";
 
 constexpr const char* kInfoUsage = R"(usage: PROG info
@@ -90,73 +64,6 @@ std::string replace_all(std::string text, const std::string& from, const std::st
     text.replace(at, from.size(), to);
   }
   return text;
-}
-
-// Walks the arguments; "--name=value" is split into option and value.
-class ArgScanner {
- public:
-  ArgScanner(const std::vector<std::string>& args, size_t first, std::string command)
-      : args_(args), next_(first), command_(std::move(command)) {}
-
-  bool done() const { return next_ >= args_.size(); }
-
-  std::string next_option() {
-    std::string arg = args_[next_++];
-    inline_value_.reset();
-    if (arg.rfind("--", 0) == 0) {
-      if (const size_t eq = arg.find('='); eq != std::string::npos) {
-        inline_value_ = arg.substr(eq + 1);
-        arg.resize(eq);
-      }
-    }
-    if (arg.empty() || arg[0] != '-') throw UsageError("unexpected argument '" + arg + "' for " + command_);
-    return arg;
-  }
-
-  std::string value(const std::string& option) {
-    if (inline_value_) return *std::exchange(inline_value_, std::nullopt);
-    if (done()) throw UsageError("option " + option + " needs a value");
-    return args_[next_++];
-  }
-
-  // For flags: "--stats=1" is an error, not silently ignored.
-  void no_value(const std::string& option) const {
-    if (inline_value_) throw UsageError("option " + option + " takes no value");
-  }
-
-  // Single-valued options may be given once.
-  void once(const std::string& option) {
-    if (!seen_.insert(option).second) throw UsageError("option " + option + " given more than once");
-  }
-
-  [[noreturn]] void unknown(const std::string& option) const {
-    throw UsageError("unknown option '" + option + "' for " + command_ + " (see '" + command_ + " --help')");
-  }
-
- private:
-  const std::vector<std::string>& args_;
-  size_t next_;
-  std::string command_;
-  std::optional<std::string> inline_value_;
-  std::set<std::string> seen_;
-};
-
-double number_arg(const std::string& option, const std::string& text) {
-  double v = 0;
-  if (!parse_number(text, &v)) throw UsageError("invalid number '" + text + "' for " + option);
-  return v;
-}
-
-struct Assignment {
-  std::string name;
-  double value;
-};
-
-Assignment assignment_arg(const std::string& option, const std::string& text) {
-  const size_t eq = text.find('=');
-  if (eq == std::string::npos || eq == 0)
-    throw UsageError(option + " expects NAME=VALUE, got '" + text + "'");
-  return {text.substr(0, eq), number_arg(option, text.substr(eq + 1))};
 }
 
 std::string known(const char* what, const char* const* names, int n) {
@@ -225,10 +132,14 @@ extern "C" void request_stop(int signal_number) { g_stop_signal = signal_number;
 
 const char* signal_name(int signal_number) {
   switch (signal_number) {
-    case SIGINT: return "SIGINT";
-    case SIGTERM: return "SIGTERM";
-    case SIGHUP: return "SIGHUP";
-    default: return "a signal";
+    case SIGINT:
+      return "SIGINT";
+    case SIGTERM:
+      return "SIGTERM";
+    case SIGHUP:
+      return "SIGHUP";
+    default:
+      return "a signal";
   }
 }
 
@@ -255,66 +166,32 @@ class StopOnSignal {
 struct SimulateArgs {
   IntegrationOptions opt;
   Method method = Method::kDopri5;
-  bool t_end_given = false;
   std::vector<Assignment> sets, q0, u0;
   std::string output;
   bool stats = false;
 };
 
-// Parses one simulate option; false if it is not one.
-bool parse_simulate_option(ArgScanner& args, const std::string& o, SimulateArgs& a) {
-  IntegrationOptions& opt = a.opt;
-  const auto num = [&]() {
-    args.once(o);
-    return number_arg(o, args.value(o));
-  };
-  if (o == "--t-end") {
-    opt.t_end = num();
-    a.t_end_given = true;
-  } else if (o == "--dt") {
-    opt.dt = num();
-  } else if (o == "--rtol") {
-    opt.rtol = num();
-  } else if (o == "--atol") {
-    opt.atol = num();
-  } else if (o == "--h0") {
-    opt.h0 = num();
-  } else if (o == "--h-min") {
-    opt.h_min = num();
-  } else if (o == "--h-max") {
-    opt.h_max = num();
-  } else if (o == "--max-steps") {
-    args.once(o);
-    const std::string v = args.value(o);
-    if (!parse_integer(v, &opt.max_steps) || opt.max_steps <= 0)
-      throw UsageError("--max-steps needs a positive integer, got '" + v + "'");
-  } else if (o == "--integrator") {
-    args.once(o);
-    const std::string v = args.value(o);
-    if (!parse_method(v, &a.method)) throw UsageError("unknown integrator '" + v + "'; known: rk4, dopri5");
-  } else if (o == "--set" || o == "--q0" || o == "--u0") {
-    auto& list = o == "--set" ? a.sets : o == "--q0" ? a.q0 : a.u0;
-    list.push_back(assignment_arg(o, args.value(o)));
-  } else if (o == "-o" || o == "--output") {
-    args.once("--output");
-    a.output = args.value(o);
-  } else if (o == "--stats") {
-    args.no_value(o);
-    a.stats = true;
-  } else {
-    return false;
-  }
-  return true;
-}
-
-void check_simulate_args(const SimulateArgs& a) {
-  const IntegrationOptions& o = a.opt;
-  if (!a.t_end_given) throw UsageError("simulate needs --t-end");
-  if (o.t_end < 0) throw UsageError("--t-end must be >= 0");
-  if (o.dt <= 0) throw UsageError("--dt must be positive");
-  if (o.rtol < 0 || o.atol < 0) throw UsageError("--rtol and --atol must be >= 0");
+// The simulate options, values checked one by one by the parser (defaults
+// from the table), and the one rule that ties two of them.
+SimulateArgs simulate_args(const ParsedOptions& p) {
+  SimulateArgs a;
+  IntegrationOptions& o = a.opt;
+  o.t_end = p.number("--t-end");
+  o.dt = p.number("--dt");
+  o.rtol = p.number("--rtol");
+  o.atol = p.number("--atol");
+  o.h0 = p.number("--h0");
+  o.h_min = p.number("--h-min");
+  o.h_max = p.number("--h-max");
+  o.max_steps = p.integer("--max-steps");
+  parse_method(p.text("--integrator"), &a.method);  // one of the table's choices
+  a.sets = p.assignments("--set");
+  a.q0 = p.assignments("--q0");
+  a.u0 = p.assignments("--u0");
+  a.output = p.text("--output");
+  a.stats = p.flag("--stats");
   if (o.rtol == 0 && o.atol == 0) throw UsageError("--rtol and --atol cannot both be zero");
-  if (o.h0 < 0 || o.h_min < 0 || o.h_max < 0) throw UsageError("--h0, --h-min and --h-max must be >= 0");
+  return a;
 }
 
 std::vector<std::string> state_names(const ModelInfo& info) {
@@ -347,7 +224,7 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
   }
   std::vector<double> projected(static_cast<size_t>(std::max(n, 1)));
 
-  const bool to_stdout = a.output.empty() || a.output == "-";
+  const bool to_stdout = a.output == "-";
   auto csv = to_stdout ? std::make_unique<CsvWriter>(out) : std::make_unique<CsvWriter>(a.output);
   if (!csv->ok()) throw RunError(csv->error());
   std::vector<std::string> header = {"t"};
@@ -396,9 +273,10 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
   const bool closed = csv->close();
   if (g_stop_signal != 0) {
     const int signal_number = g_stop_signal;
-    print(err, std::string("error: interrupted by ") + signal_name(signal_number) + "; " + std::to_string(rows) +
-                   " rows written" + (to_stdout ? "" : " to " + a.output) + ", up to t=" + format_double(t_last_row) +
-                   " of t_end=" + format_double(a.opt.t_end) + "\n");
+    print(err, std::string("error: interrupted by ") + signal_name(signal_number) + "; " +
+                   std::to_string(rows) + " rows written" + (to_stdout ? "" : " to " + a.output) +
+                   ", up to t=" + format_double(t_last_row) + " of t_end=" + format_double(a.opt.t_end) +
+                   "\n");
     return 128 + signal_number;
   }
   if (r.status == Status::kInvalidArgument) throw UsageError(r.message);
@@ -408,26 +286,18 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
   return 0;
 }
 
-int simulate_command(Model& model, ArgScanner& args, std::FILE* out, std::FILE* err) {
-  SimulateArgs a;
-  while (!args.done()) {
-    const std::string o = args.next_option();
-    if (o == "-h" || o == "--help") return -1;
-    if (!parse_simulate_option(args, o, a)) args.unknown(o);
-  }
-  check_simulate_args(a);
-  return simulate(model, a, out, err);
+int simulate_command(Model& model, const ParsedOptions& options, std::FILE* out, std::FILE* err) {
+  return simulate(model, simulate_args(options), out, err);
 }
 
 // ---------------------------------------------------------------- eval
 
-// The values of --q or --u, checked against the model's count.
-std::vector<double> state_list(const std::string& option, const std::string& text, const char* what,
-                               const char* const* names, int n) {
-  std::vector<double> v;
-  if (!parse_number_list(text, &v)) {
-    throw UsageError("invalid list '" + text + "' for " + option + " (expected comma-separated numbers)");
-  }
+// The values of --q or --u (the model's q0 or u0 if not given), checked
+// against the model's count.
+std::vector<double> state_list(const ParsedOptions& options, const std::string& option, const double* initial,
+                               const char* what, const char* const* names, int n) {
+  if (!options.given(option)) return std::vector<double>(initial, initial + n);
+  std::vector<double> v = options.numbers(option);
   if (static_cast<int>(v.size()) != n) {
     throw UsageError(option + " expects " + std::to_string(n) + " value(s), got " + std::to_string(v.size()) +
                      "; " + known(what, names, n));
@@ -435,29 +305,12 @@ std::vector<double> state_list(const std::string& option, const std::string& tex
   return v;
 }
 
-int eval_command(Model& model, ArgScanner& args, std::FILE* out) {
+int eval_command(Model& model, const ParsedOptions& options, std::FILE* out) {
   const ModelInfo& info = model.info();
-  std::vector<double> q(info.q0, info.q0 + info.nq), u(info.u0, info.u0 + info.nu);
-  double t = 0.0;
-  std::vector<Assignment> sets;
-  while (!args.done()) {
-    const std::string o = args.next_option();
-    if (o == "-h" || o == "--help") return -1;
-    if (o == "--q") {
-      args.once(o);
-      q = state_list(o, args.value(o), "coordinates", info.coordinate_names, info.nq);
-    } else if (o == "--u") {
-      args.once(o);
-      u = state_list(o, args.value(o), "speeds", info.speed_names, info.nu);
-    } else if (o == "--t") {
-      args.once(o);
-      t = number_arg(o, args.value(o));
-    } else if (o == "--set") {
-      sets.push_back(assignment_arg(o, args.value(o)));
-    } else {
-      args.unknown(o);
-    }
-  }
+  std::vector<double> q = state_list(options, "--q", info.q0, "coordinates", info.coordinate_names, info.nq);
+  std::vector<double> u = state_list(options, "--u", info.u0, "speeds", info.speed_names, info.nu);
+  const double t = options.number("--t");
+  const std::vector<Assignment> sets = options.assignments("--set");
   apply_parameters(model, sets);
   const int nu = info.nu;
   const size_t m = static_cast<size_t>(std::max(nu, 1));
@@ -482,12 +335,7 @@ int eval_command(Model& model, ArgScanner& args, std::FILE* out) {
 
 // ---------------------------------------------------------------- info
 
-int info_command(const Model& model, ArgScanner& args, std::FILE* out) {
-  while (!args.done()) {
-    const std::string o = args.next_option();
-    if (o == "-h" || o == "--help") return -1;
-    args.unknown(o);
-  }
+int info_command(const Model& model, std::FILE* out) {
   const ModelInfo& i = model.info();
   std::vector<double> defaults(static_cast<size_t>(std::max(i.np, 1)));
   for (int k = 0; k < i.np; ++k) defaults[k] = model.parameter(k);
@@ -508,30 +356,21 @@ int info_command(const Model& model, ArgScanner& args, std::FILE* out) {
 
 // ---------------------------------------------------------------- batch
 
-int batch_command(Model& model, ArgScanner& args, std::FILE* in, std::FILE* out) {
-  while (!args.done()) {
-    const std::string o = args.next_option();
-    if (o == "-h" || o == "--help") return -1;
-    args.unknown(o);
-  }
+// ---------------------------------------------------------------- dispatch
+
+// Runs the command, its options parsed.
+int dispatch(Model& model, const std::string& command, const ParsedOptions& options, std::FILE* in,
+             std::FILE* out, std::FILE* err) {
+  if (command == "simulate") return simulate_command(model, options, out, err);
+  if (command == "eval") return eval_command(model, options, out);
+  if (command == "info") return info_command(model, out);
   return run_batch(model, in, out);
 }
 
-// ---------------------------------------------------------------- dispatch
-
-// Runs the command; -1 means "print the command's help".
-int dispatch(Model& model, const std::string& command, ArgScanner& args, std::FILE* in, std::FILE* out,
-             std::FILE* err) {
-  if (command == "simulate") return simulate_command(model, args, out, err);
-  if (command == "eval") return eval_command(model, args, out);
-  if (command == "info") return info_command(model, args, out);
-  if (command == "batch") return batch_command(model, args, in, out);
-  throw UsageError("unknown command '" + command + "'; commands: simulate, eval, info, batch (see --help)");
-}
-
-const char* usage_for(const std::string& command) {
-  if (command == "simulate") return kSimulateUsage;
-  if (command == "eval") return kEvalUsage;
+// A command's --help: its head, then the "options:" block of its table.
+std::string usage_for(const std::string& command) {
+  if (command == "simulate") return kSimulateUsage + options_usage(*command_options(command));
+  if (command == "eval") return kEvalUsage + options_usage(*command_options(command));
   if (command == "info") return kInfoUsage;
   if (command == "batch") return kBatchUsage;
   return kMainUsage;
@@ -566,10 +405,16 @@ int run_model(Model& model, const std::vector<std::string>& args, std::FILE* in,
       print(out, usage(""));
       return 0;
     }
-    ArgScanner scanner(args, 2, prog + " " + command);
-    const int code = dispatch(model, command, scanner, in, out, err);
-    if (code == -1) print(out, usage(command));
-    return code == -1 ? 0 : code;
+    const std::vector<OptionSpec>* table = command_options(command);
+    if (table == nullptr)
+      throw UsageError("unknown command '" + command +
+                       "'; commands: simulate, eval, info, batch (see --help)");
+    const ParsedOptions options = parse_options(*table, args, 2, prog + " " + command);
+    if (options.help) {
+      print(out, usage(command));
+      return 0;
+    }
+    return dispatch(model, command, options, in, out, err);
   } catch (const UsageError& e) {
     print(err, std::string("error: ") + e.what() + "\n");
     return 2;

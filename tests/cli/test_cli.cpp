@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // The kanegen command line as a user runs it: help, generate, eval, simulate,
-// and bad models. Expected values are analytic (simple pendulum).
+// and bad models. Expected values are analytic (simple pendulum). simulate
+// and eval against the runner they build: the same options and defaults.
 #define CATCH_CONFIG_MAIN
-#include <catch2/catch.hpp>
-
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -14,6 +15,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "../support/run_kanegen.hpp"
 
@@ -74,7 +77,8 @@ TEST_CASE("eval of the simple pendulum matches the closed form", "[cli]") {
   CHECK(j["potential_energy"].get<double>() == Approx(-m * g * l * std::cos(q)).epsilon(1e-14));
 
   // Parameters are symbolic in the kernels: --set changes them at run time.
-  const Result r2 = kanegen("eval " + model("simple_pendulum.json") + " --q 0.7 --u 0 --set l=2 --set m=3 --quiet");
+  const Result r2 =
+      kanegen("eval " + model("simple_pendulum.json") + " --q 0.7 --u 0 --set l=2 --set m=3 --quiet");
   REQUIRE(r2.status == 0);
   const auto j2 = nlohmann::json::parse(r2.out);
   CHECK(j2["mass_matrix"][0][0].get<double>() == Approx(3.0 * 4.0).epsilon(1e-14));
@@ -82,7 +86,8 @@ TEST_CASE("eval of the simple pendulum matches the closed form", "[cli]") {
 }
 
 TEST_CASE("eval works on a URDF model and M udot = f", "[cli]") {
-  const Result r = kanegen("eval " + model("arm7.urdf") + " --q 0.1,0.2,0.3,0.4,0.5,0.6,0.7 --u 1,-1,1,-1,1,-1,1 --quiet");
+  const Result r =
+      kanegen("eval " + model("arm7.urdf") + " --q 0.1,0.2,0.3,0.4,0.5,0.6,0.7 --u 1,-1,1,-1,1,-1,1 --quiet");
   REQUIRE(r.status == 0);
   const auto j = nlohmann::json::parse(r.out);
   REQUIRE(j["mass_matrix"].size() == 7);
@@ -95,7 +100,8 @@ TEST_CASE("eval works on a URDF model and M udot = f", "[cli]") {
 
 TEST_CASE("simulate writes the CSV with the documented header", "[cli]") {
   const fs::path csv = scratch() / "pendulum.csv";
-  const Result r = kanegen("simulate " + model("simple_pendulum.json") + " --t-end 1 --dt 0.1 --quiet -o " + csv.string());
+  const Result r =
+      kanegen("simulate " + model("simple_pendulum.json") + " --t-end 1 --dt 0.1 --quiet -o " + csv.string());
   REQUIRE(r.status == 0);
   std::istringstream lines(slurp(csv));
   std::string header, line;
@@ -111,7 +117,8 @@ TEST_CASE("simulate writes the CSV with the documented header", "[cli]") {
   CHECK(last_t == Approx(1.0).margin(1e-12));
 
   // Without -o the CSV goes to standard output; rk4 is available.
-  const Result s = kanegen("simulate " + model("simple_pendulum.json") + " --t-end 0.05 --dt 0.01 --integrator rk4 --quiet");
+  const Result s = kanegen("simulate " + model("simple_pendulum.json") +
+                           " --t-end 0.05 --dt 0.01 --integrator rk4 --quiet");
   REQUIRE(s.status == 0);
   CHECK(s.out.rfind("t,pivot,pivot_dot", 0) == 0);
 }
@@ -135,7 +142,8 @@ TEST_CASE("bad models end in one clear error and no output", "[cli]") {
 
 TEST_CASE("a failed regeneration leaves the previous files intact", "[cli]") {
   const fs::path dir = scratch() / "keep";
-  REQUIRE(kanegen("generate " + model("simple_pendulum.json") + " -o " + dir.string() + " --quiet").status == 0);
+  REQUIRE(kanegen("generate " + model("simple_pendulum.json") + " -o " + dir.string() + " --quiet").status ==
+          0);
   const std::string before = slurp(dir / "simple_pendulum.cpp");
   // A model with the same name but an error: nothing may be written.
   const fs::path broken = scratch() / "simple_pendulum_broken.json";
@@ -144,4 +152,108 @@ TEST_CASE("a failed regeneration leaves the previous files intact", "[cli]") {
   std::ofstream(broken) << text;
   CHECK(kanegen("generate " + broken.string() + " -o " + dir.string()).status != 0);
   CHECK(slurp(dir / "simple_pendulum.cpp") == before);
+}
+
+namespace {
+
+/// kanegen with its own, fresh runner cache, which then holds one runner.
+Result kanegen_fresh_cache(const fs::path& cache, const std::string& args) {
+  return kanegen_test::run_kanegen(KANEGEN_EXE, cache.string(), scratch(), args);
+}
+
+/// The runner kanegen built into `cache`.
+fs::path runner_in(const fs::path& cache) {
+  for (const auto& entry : fs::recursive_directory_iterator(cache))
+    if (entry.path().filename() == "runner") return entry.path();
+  FAIL("no runner in " << cache);
+  return {};
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+/// The runner's "options:" block as (long name, help with default) pairs.
+std::vector<std::pair<std::string, std::string>> runner_options(const std::string& help) {
+  std::vector<std::pair<std::string, std::string>> options;
+  const std::vector<std::string> lines = lines_of(help);
+  auto line = std::find(lines.begin(), lines.end(), "options:");
+  for (++line; line < lines.end() && line->rfind("  -", 0) == 0; ++line) {
+    const size_t gap = line->find("  ", 2);
+    const std::string left = line->substr(2, gap - 2);
+    const size_t dashes = left.find("--");
+    const std::string name = left.substr(dashes, left.find(' ', dashes) - dashes);
+    if (name != "--help") options.emplace_back(name, line->substr(line->find_first_not_of(' ', gap)));
+  }
+  return options;
+}
+
+}  // namespace
+
+TEST_CASE("simulate and eval show the runner's options with the runner's defaults", "[cli]") {
+  const fs::path cache = scratch() / "help_cache";
+  REQUIRE(kanegen_fresh_cache(cache, "eval " + model("simple_pendulum.json") + " --quiet").status == 0);
+  const std::string runner = runner_in(cache).string();
+  for (const char* command : {"simulate", "eval"}) {
+    INFO(command);
+    const Result ours = kanegen(std::string(command) + " --help");
+    const Result theirs =
+        kanegen_test::run_kanegen(runner, cache.string(), scratch(), std::string(command) + " --help");
+    REQUIRE(ours.status == 0);
+    REQUIRE(theirs.status == 0);
+    const auto options = runner_options(theirs.out);
+    CHECK(options.size() >= (std::string(command) == "simulate" ? 14u : 4u));
+    for (const auto& [name, help] : options) {
+      INFO(name << ": " << help);
+      const std::vector<std::string> lines = lines_of(ours.out);
+      CHECK(std::any_of(lines.begin(), lines.end(), [&, &name = name, &help = help](const std::string& l) {
+        return l.find(name + " ") != std::string::npos && l.size() > help.size() &&
+               l.compare(l.size() - help.size(), help.size(), help) == 0;
+      }));
+    }
+  }
+  CHECK(kanegen("simulate --help").out.find("(default 10000000)") != std::string::npos);
+}
+
+TEST_CASE("simulate and eval leave the defaults to the runner", "[cli]") {
+  const fs::path cache = scratch() / "default_cache";
+  const std::string pendulum = model("simple_pendulum.json");
+  const Result eval =
+      kanegen_fresh_cache(cache, "eval " + pendulum + " --quiet");  // q0, u0: no --q, --u needed
+  REQUIRE(eval.status == 0);
+  const std::string runner = runner_in(cache).string();
+  const auto run_runner = [&](const std::string& args) {
+    return kanegen_test::run_kanegen(runner, cache.string(), scratch(), args);
+  };
+  CHECK(eval.out == run_runner("eval").out);
+  const Result sim = kanegen_fresh_cache(cache, "simulate " + pendulum + " --t-end 0.3 --stats --quiet");
+  REQUIRE(sim.status == 0);
+  const Result direct = run_runner("simulate --t-end 0.3 --stats");
+  CHECK(sim.out == direct.out);
+  CHECK(sim.err == direct.err);  // the same steps: the same dt, tolerances and integrator
+}
+
+TEST_CASE("simulate refuses what the runner refuses, as the runner says it, before building it", "[cli]") {
+  const fs::path cache = scratch() / "refused_cache";
+  const std::string pendulum = model("simple_pendulum.json");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--max-steps 1.5", "--max-steps needs a positive integer, got '1.5'"},
+      {"--dt 0", "--dt must be positive"},
+      {"--dt 0.1 --dt=0.2", "option --dt given more than once"},
+      {"--integrator euler", "unknown integrator 'euler'; known: rk4, dopri5"},
+      {"--set m", "--set expects NAME=VALUE, got 'm'"},
+  };
+  for (const auto& [args, message] : cases) {
+    INFO(args);
+    const Result r = kanegen_fresh_cache(cache, "simulate " + pendulum + " --t-end 1 " + args);
+    CHECK(r.status == 2);
+    CHECK(r.err == "error: " + message + "\n");
+    CHECK(!fs::exists(cache));
+  }
+  // The runner's rules, not stricter ones: a pure absolute tolerance is fine.
+  CHECK(kanegen_fresh_cache(cache, "simulate " + pendulum + " --t-end 0.1 --rtol 0 --atol 1e-9 --quiet")
+            .status == 0);
 }

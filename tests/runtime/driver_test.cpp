@@ -114,7 +114,9 @@ struct System {
     t.output_names = output_names(), t.parameter_names = parameter_names(), t.q0 = q0(), t.u0 = u0();
     t.parameters_size = sizeof(Params);
     t.default_parameters = [](void* p) { new (p) Params(); };
-    t.set_parameter = [](void* p, const char* n, double v) { return set_parameter(*static_cast<Params*>(p), n, v); };
+    t.set_parameter = [](void* p, const char* n, double v) {
+      return set_parameter(*static_cast<Params*>(p), n, v);
+    };
     t.get_parameter = [](const void* p, int i) { return get_parameter(*static_cast<const Params*>(p), i); };
     t.initial_state = [](const void* p, double* q, double* u) {
       initial_state(*static_cast<const Params*>(p), q, u);
@@ -348,6 +350,10 @@ TEST_CASE("Command-line errors name what is expected", "[driver]") {
       {{"simulate", "--t-end", "1", "--set", "m"}, "--set expects NAME=VALUE"},
       {{"simulate"}, "simulate needs --t-end"},
       {{"simulate", "--t-end", "1", "--dt", "0"}, "--dt must be positive"},
+      {{"simulate", "--t-end", "1", "--rtol", "-1"}, "--rtol must be >= 0"},
+      {{"simulate", "--t-end", "1", "--rtol", "0", "--atol", "0"}, "--rtol and --atol cannot both be zero"},
+      {{"simulate", "--t-end", "1", "--h-min", "-1"}, "--h-min must be >= 0"},
+      {{"simulate", "--t-end", "1", "--stats=yes"}, "option --stats takes no value"},
       {{"simulate", "--t-end", "1", "--t-end", "2"}, "--t-end given more than once"},
       {{"simulate", "--t-end", "1", "--integrator", "euler"},
        "unknown integrator 'euler'; known: rk4, dopri5"},

@@ -4,7 +4,8 @@
 find_package(nlohmann_json REQUIRED)
 set(KANEGEN_RUNTIME_TEST_DIR ${CMAKE_CURRENT_LIST_DIR})
 add_executable(test_runtime ${KANEGEN_RUNTIME_TEST_DIR}/main.cpp ${KANEGEN_RUNTIME_TEST_DIR}/integrators_test.cpp
-                            ${KANEGEN_RUNTIME_TEST_DIR}/text_csv_test.cpp ${KANEGEN_RUNTIME_TEST_DIR}/driver_test.cpp)
+                            ${KANEGEN_RUNTIME_TEST_DIR}/text_csv_test.cpp ${KANEGEN_RUNTIME_TEST_DIR}/driver_test.cpp
+                            ${KANEGEN_RUNTIME_TEST_DIR}/options_test.cpp)
 target_compile_options(test_runtime PRIVATE ${KANEGEN_WARNINGS})
 # The embedded RK4 header must compile without exceptions, RTTI or the C++ library.
 target_sources(test_runtime PRIVATE ${KANEGEN_RUNTIME_TEST_DIR}/embedded_rk4.cpp)

@@ -37,7 +37,7 @@ struct IntegrationOptions {
   double h0 = 0.0;                         ///< DOPRI5 initial step; 0: estimated (Hairer's hinit)
   double h_min = 0.0;                      ///< DOPRI5: give up below this step; 0: 16 ulps of t
   double h_max = 0.0;                      ///< DOPRI5: largest step; 0: t_end - t0
-  long max_steps = 100000;                 ///< attempted steps (accepted + rejected) before giving up
+  long max_steps = 10000000;               ///< attempted steps (accepted + rejected) before giving up
   double safety = 0.9;                     ///< step-size controller safety factor
   double min_factor = 0.2;                 ///< smallest step change per step
   double max_factor = 10.0;                ///< largest step change per step
