@@ -28,9 +28,10 @@ class TimeFunction {
  public:
   TimeFunction() = default;
   /// Throws std::invalid_argument (naming the expression) on a syntax error
-  /// or an unknown name. `t` is the time; other names are parameters.
-  TimeFunction(const std::string& text, const model::ParameterValues& parameters)
-      : text_(text), parameters_(&parameters) {
+  /// or an unknown name. `variable` is the argument (the time, or x along a
+  /// beam for an assumed mode); other names are parameters.
+  TimeFunction(const std::string& text, const model::ParameterValues& parameters, const std::string& variable = "t")
+      : text_(text), variable_(variable), parameters_(&parameters) {
     root_ = expression();
     skip_space();
     if (at_ < text_.size()) fail("unexpected '" + std::string(1, text_[at_]) + "'");
@@ -142,8 +143,8 @@ class TimeFunction {
   }
 
   [[noreturn]] void fail(const std::string& what) const {
-    throw std::invalid_argument("cannot read prescribed motion '" + text_ + "' at column " + std::to_string(at_) +
-                                ": " + what);
+    throw std::invalid_argument("cannot read " + std::string(variable_ == "t" ? "prescribed motion" : "expression") +
+                                " '" + text_ + "' at column " + std::to_string(at_) + ": " + what);
   }
   void skip_space() {
     while (at_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[at_]))) ++at_;
@@ -230,7 +231,7 @@ class TimeFunction {
       if (op == Op::number) fail("unknown function '" + word + "'");
       return add(op, x);
     }
-    if (word == "t") return add(Op::time);
+    if (word == variable_) return add(Op::time);
     if (word == "pi") return add(Op::number, -1, -1, 3.14159265358979323846);
     const auto found = parameters_->find(word);
     if (found == parameters_->end()) fail("unknown name '" + word + "'");
@@ -238,6 +239,7 @@ class TimeFunction {
   }
 
   std::string text_;
+  std::string variable_;
   const model::ParameterValues* parameters_ = nullptr;  ///< while parsing only
   std::size_t at_ = 0;
   std::vector<Node> nodes_;
