@@ -8,7 +8,7 @@
 
 namespace kanegen::fem {
 
-ModelBeam build_model_beam(const model::Body& body, const std::string& file) {
+ModelBeam build_model_beam(const model::Body& body, const std::string& file, const ShapeSampler& shapes) {
   const model::FlexibleBeam& f = body.beam;
   const bool planar = f.formulation == model::BeamFormulation::planar;
   BeamProperties properties;
@@ -36,7 +36,7 @@ ModelBeam build_model_beam(const model::Body& body, const std::string& file) {
     out.body.add_point_mass(last, f.tip_mass, inertia);
   }
   if (!f.assumed_modes.empty()) {
-    out.reduced = reduce_assumed(out.body, assumed_mode_basis(out.body, f, file));
+    out.reduced = reduce_assumed(out.body, assumed_mode_basis(out.body, f, file, shapes));
     // check_model has made the sampled shapes independent; this guards the
     // exact basis (a shape independent only through its finite-difference slope).
     if (out.reduced.mass.llt().info() != Eigen::Success)

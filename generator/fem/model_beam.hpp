@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "fem/assumed_modes.hpp"
 #include "fem/axial_strain.hpp"
 #include "fem/beam_element.hpp"
 #include "fem/body.hpp"
@@ -36,7 +37,8 @@ struct ModelBeam {
 };
 
 /// Builds the body; throws model::ModelError (naming the body's place) when
-/// the beam cannot be built.
-ModelBeam build_model_beam(const model::Body& body, const std::string& file);
+/// the beam cannot be built. `shapes` samples the assumed modes, if any
+/// (fem/assumed_modes.hpp: each derivation brings its own).
+ModelBeam build_model_beam(const model::Body& body, const std::string& file, const ShapeSampler& shapes);
 
 }  // namespace kanegen::fem

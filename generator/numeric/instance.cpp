@@ -11,6 +11,7 @@
 // stiffness, geometric stiffness and every integral are computed here
 // independently (docs/verify.md).
 #include "fem/model_beam.hpp"
+#include "numeric/shape_function.hpp"
 
 namespace kanegen::numeric {
 namespace {
@@ -80,7 +81,7 @@ std::shared_ptr<const FlexibleData> beam_data(const model::Body& body, const std
   }
   d->stiffening = f.geometric_stiffening;
 
-  const Eigen::MatrixXd basis = fem::build_model_beam(body, file).reduced.basis;
+  const Eigen::MatrixXd basis = fem::build_model_beam(body, file, sample_shape).reduced.basis;
   if (basis.rows() != d->num_dofs())
     throw std::invalid_argument("the basis of body '" + body.name + "' has " + std::to_string(basis.rows()) +
                                 " rows for " + std::to_string(d->num_dofs()) + " dofs");

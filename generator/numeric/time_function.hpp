@@ -20,9 +20,11 @@ class TimeFunction {
  public:
   TimeFunction() = default;
   /// Throws std::invalid_argument (naming the expression) on a syntax error
-  /// or an unknown name. `t` is the time; other names are parameters.
-  TimeFunction(const std::string& text, const model::ParameterValues& parameters)
-      : tree_(parse(text, parameters)) {}
+  /// or an unknown name. `variable` is the argument (the time, or x along a
+  /// beam for an assumed mode); other names are parameters.
+  TimeFunction(const std::string& text, const model::ParameterValues& parameters,
+               const std::string& variable = "t")
+      : tree_(parse(text, parameters, variable)) {}
 
   template <class S>
   S operator()(const S& t) const {
@@ -30,14 +32,16 @@ class TimeFunction {
   }
 
  private:
-  static model::ExpressionTree parse(const std::string& text, const model::ParameterValues& parameters) {
-    std::vector<std::string> names{"t"};
+  static model::ExpressionTree parse(const std::string& text, const model::ParameterValues& parameters,
+                                     const std::string& variable) {
+    std::vector<std::string> names{variable};
     for (const auto& entry : parameters) names.push_back(entry.first);
     model::ParsedExpression parsed = model::parse_expression(text, names);
     if (parsed.issue)
-      throw std::invalid_argument("cannot read prescribed motion '" + text + "' at column " +
-                                  std::to_string(parsed.issue->column) + ": " + parsed.issue->problem);
-    return model::bind_expression(std::move(parsed.tree), parameters, "t");
+      throw std::invalid_argument(
+          "cannot read " + std::string(variable == "t" ? "prescribed motion" : "expression") + " '" + text +
+          "' at column " + std::to_string(parsed.issue->column) + ": " + parsed.issue->problem);
+    return model::bind_expression(std::move(parsed.tree), parameters, variable);
   }
 
   model::ExpressionTree tree_;  ///< bound: only the nodes that depend on t vary

@@ -12,6 +12,7 @@
 #include "kane/equations.hpp"
 #include "model/fnv1a.hpp"
 #include "symbolic/program.hpp"
+#include "symbolic/shape_function.hpp"
 #include "symbolic/variables.hpp"
 
 namespace kanegen::pipeline {
@@ -49,7 +50,7 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
   std::vector<int> elastic_counts(model.bodies.size(), 0);
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     if (!model.bodies[b].flexible) continue;
-    fem::ModelBeam beam = fem::build_model_beam(model.bodies[b], model.source_file);
+    fem::ModelBeam beam = fem::build_model_beam(model.bodies[b], model.source_file, symbolic::sample_shape);
     elastic_counts[b] = static_cast<int>(beam.reduced.names.size());
     flexible.emplace(static_cast<int>(b), std::move(beam));
   }

@@ -6,5 +6,6 @@ add_executable(test_model ${KANEGEN_MODEL_TEST_SOURCES})
 target_compile_options(test_model PRIVATE ${KANEGEN_WARNINGS})
 target_compile_definitions(test_model PRIVATE KANEGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
                                               KANEGEN_MODEL_TEST_DATA="${CMAKE_CURRENT_LIST_DIR}/data")
-target_link_libraries(test_model PRIVATE kanegen_generator Catch2::Catch2)
+# kanegen_symbolic for GiNaC: expression_check_test compares its reading with GiNaC's.
+target_link_libraries(test_model PRIVATE kanegen_model kanegen_symbolic Catch2::Catch2)
 catch_discover_tests(test_model TEST_PREFIX "model: ")

@@ -14,7 +14,8 @@ target_compile_definitions(test_reliability_model
                            PRIVATE KANEGEN_FUZZ_REGRESSIONS="${PROJECT_SOURCE_DIR}/tests/data/fuzz_regressions"
                                    KANEGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
                                    KANEGEN_MODEL_TEST_DATA="${PROJECT_SOURCE_DIR}/tests/model/data")
-target_link_libraries(test_reliability_model PRIVATE kanegen_generator Catch2::Catch2)
+# The harness names parameters as the symbolic stage does (symbolic/variables.hpp).
+target_link_libraries(test_reliability_model PRIVATE kanegen_model kanegen_symbolic Catch2::Catch2)
 catch_discover_tests(test_reliability_model TEST_PREFIX "reliability: ")
 
 # The command line on bad models and on runs that fail, as a user sees it.

@@ -17,6 +17,7 @@
 #include "numeric/beam.hpp"
 #include "numeric/dynamics.hpp"
 #include "numeric/instance.hpp"
+#include "numeric/shape_function.hpp"
 #include "numeric/time_function.hpp"
 
 namespace {
@@ -124,7 +125,7 @@ TEST_CASE(
   const int n = instance.coordinates();
   REQUIRE(n == 4);
   const double omega = 3.0;
-  const kanegen::fem::ModelBeam beam = kanegen::fem::build_model_beam(model.bodies[0], "");
+  const kanegen::fem::ModelBeam beam = kanegen::fem::build_model_beam(model.bodies[0], "", kanegen::numeric::sample_shape);
   const Eigen::MatrixXd kl = beam.reduced.geometric->linear;  // K_G for a = x, in the modes
   // f(eta) - f(0) at u = (Omega, 0...): -K eta - Omega^2 Kl eta + the centrifugal force on N eta.
   std::mt19937 rng(5);
@@ -156,7 +157,7 @@ TEST_CASE("nodal beam under tension: the nonlinear axial strain gives the FEM la
   const auto instance = kanegen::numeric::instantiate(model, {});
   const int n = instance.coordinates();
   REQUIRE(n == 12);
-  const kanegen::fem::ModelBeam beam = kanegen::fem::build_model_beam(model.bodies[0], "");
+  const kanegen::fem::ModelBeam beam = kanegen::fem::build_model_beam(model.bodies[0], "", kanegen::numeric::sample_shape);
   const Eigen::MatrixXd& B = beam.reduced.basis;
   const int tip = beam.body.num_nodes() - 1;
   const Eigen::MatrixXd k_tip =
