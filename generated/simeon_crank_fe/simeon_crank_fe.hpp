@@ -18,7 +18,8 @@
 // allocates, throws or keeps state.
 #pragma once
 
-#include <new>  // kernel_table(): the Params of a table are placed in the caller's storage
+#include <new>          // kernel_table(): the Params of a table are placed in the caller's storage
+#include <type_traits>  // and must be plain doubles for that
 
 namespace kanegen_models {
 namespace simeon_crank_fe {
@@ -113,6 +114,8 @@ int constrained_dynamics(const Params& p, double t, const double* q, const doubl
 /// members these are. The parameters travel as `const void*` to a Params.
 template <class Table>
 Table kernel_table() {
+  static_assert(std::is_trivially_copyable<Params>::value && alignof(Params) <= alignof(double),
+                "the runtime keeps Params in storage of doubles");
   Table table{};
   table.name = "simeon_crank_fe";
   table.nq = NQ;

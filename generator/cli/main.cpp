@@ -83,7 +83,7 @@ std::vector<std::string> forwarded_args(const char* runner_command, const Forwar
   for (const auto& [spec, option] : f.options) {
     if (option->count() == 0) continue;
     if (spec->kind == kanegen::runtime::ValueKind::kFlag) {
-      args.emplace_back(spec->name);
+      if (option->as<bool>()) args.emplace_back(spec->name);  // not for --stats=false
       continue;
     }
     for (const std::string& value : f.values.at(spec->name)) args.insert(args.end(), {spec->name, value});

@@ -19,7 +19,6 @@
 #include "codegen/emitter.hpp"
 #include "pipeline/pipeline.hpp"
 
-
 namespace kanegen::cli {
 namespace fs = std::filesystem;
 namespace {
@@ -58,7 +57,8 @@ fs::path cache_root() {
 
 /// Everything that changes the runner: the model, the generator, the
 /// templates, the runtime (headers and library) and the compiler.
-std::string cache_key(const std::string& model_path, const RuntimeLocation& runtime, const BuildOptions& options) {
+std::string cache_key(const std::string& model_path, const RuntimeLocation& runtime,
+                      const BuildOptions& options) {
   std::string bytes = pipeline::read_file(model_path);
   for (double g : options.load.urdf_gravity) bytes += codegen::format_double(g) + ",";
   bytes += KANEGEN_VERSION;

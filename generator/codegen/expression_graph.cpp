@@ -37,15 +37,24 @@ double ExpressionGraph::fold(const Node& n) const {
       for (std::size_t i = 0; i < n.args.size(); ++i) p *= arg(i);
       return p;
     }
-    case Op::power: return std::pow(arg(0), n.value);
-    case Op::sqrt: return std::sqrt(arg(0));
-    case Op::sin: return std::sin(arg(0));
-    case Op::cos: return std::cos(arg(0));
-    case Op::tan: return std::tan(arg(0));
-    case Op::exp: return std::exp(arg(0));
-    case Op::log: return std::log(arg(0));
-    case Op::abs: return std::abs(arg(0));
-    default: return n.value;
+    case Op::power:
+      return std::pow(arg(0), n.value);
+    case Op::sqrt:
+      return std::sqrt(arg(0));
+    case Op::sin:
+      return std::sin(arg(0));
+    case Op::cos:
+      return std::cos(arg(0));
+    case Op::tan:
+      return std::tan(arg(0));
+    case Op::exp:
+      return std::exp(arg(0));
+    case Op::log:
+      return std::log(arg(0));
+    case Op::abs:
+      return std::abs(arg(0));
+    default:
+      return n.value;
   }
 }
 
@@ -146,8 +155,9 @@ int ExpressionGraph::make_add(std::vector<int> terms) {
     else
       merged.push_back(t);
   }
-  merged.erase(std::remove_if(merged.begin(), merged.end(), [](const Term& t) { return t.coefficient == 0.0; }),
-               merged.end());
+  merged.erase(
+      std::remove_if(merged.begin(), merged.end(), [](const Term& t) { return t.coefficient == 0.0; }),
+      merged.end());
   if (merged.empty()) return number(0.0);
   auto term_node = [this](double c, int base) {
     if (base < 0) return number(c);

@@ -41,8 +41,8 @@ struct KernelArgument {
 
 struct KernelSignature {
   Kernel kernel;
-  const char* name;     ///< the C++ function name
-  const char* returns;  ///< "void", "int", "double" or "bool"
+  const char* name;       ///< the C++ function name
+  const char* returns;    ///< "void", "int", "double" or "bool"
   const char* arguments;  ///< "const Params& p, const double* q, double* M"
   const char* doc;        ///< the declaration's comment, "///" lines without the final newline
   Presence presence;

@@ -20,7 +20,8 @@ struct Component {
 };
 
 /// `v`, finite, or a ModelError at `place`.
-double finite(double v, double x, const std::string& file, const std::string& place, const std::string& what) {
+double finite(double v, double x, const std::string& file, const std::string& place,
+              const std::string& what) {
   if (std::isfinite(v)) return v;
   std::ostringstream at;
   at << x;
@@ -51,7 +52,8 @@ Eigen::MatrixXd assumed_mode_basis(const Body& body, const model::FlexibleBeam& 
       try {
         sample(*c.text, parameters, xs, value, slope);
       } catch (const std::exception& e) {
-        throw model::ModelError(file, place, "cannot read shape function '" + *c.text + "' (" + e.what() + ")",
+        throw model::ModelError(file, place,
+                                "cannot read shape function '" + *c.text + "' (" + e.what() + ")",
                                 "use numbers, x, L, parameter names, + - * / ^, parentheses and sin cos tan "
                                 "sqrt exp log");
       }

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "numeric/shape_function.hpp"
 
+#include <cmath>
+
 #include "numeric/dual.hpp"
 #include "numeric/time_function.hpp"
 
@@ -11,10 +13,15 @@ void sample_shape(const std::string& text, const std::map<std::string, double>& 
   const TimeFunction shape(text, parameters, "x");
   value.resize(x.size());
   slope.resize(x.size());
+  const double middle = x.empty() ? 0.0 : (x.front() + x.back()) / 2;
   for (std::size_t i = 0; i < x.size(); ++i) {
     const Dual<double> s = shape(Dual<double>(x[i], 1.0));
     value[i] = s.v;
     slope[i] = s.d;
+    // A slope the chain rule cannot give at an end (x sqrt(x) at 0: 1*0 + 0*inf)
+    // is its one-sided limit, as GiNaC's simplified derivative gives it: the
+    // slope at the next double inward.
+    if (!std::isfinite(slope[i])) slope[i] = shape(Dual<double>(std::nextafter(x[i], middle), 1.0)).d;
   }
 }
 

@@ -60,7 +60,8 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
   codegen::EmittedModel emitted;
   std::size_t intermediates = 0;
   int nq = 0, nu = 0;
-  for (kane::MassMatrixMethod method : {kane::MassMatrixMethod::body_frames, kane::MassMatrixMethod::world_projection}) {
+  for (kane::MassMatrixMethod method :
+       {kane::MassMatrixMethod::body_frames, kane::MassMatrixMethod::world_projection}) {
     start = std::chrono::steady_clock::now();
     symbolic::Program program;
     const kane::Equations equations = kane::derive_equations(model, vars, program, method, flexible);
@@ -69,7 +70,7 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
     codegen::EmittedModel candidate = codegen::emit_model(model, equations, vars, program, hash);
     out.seconds.emit += seconds_since(start);
     if (emitted.files.empty() || candidate.operations.at(codegen::Kernel::forward_dynamics) <
-                                       emitted.operations.at(codegen::Kernel::forward_dynamics)) {
+                                     emitted.operations.at(codegen::Kernel::forward_dynamics)) {
       emitted = std::move(candidate);
       intermediates = program.size();
       nq = equations.nq;

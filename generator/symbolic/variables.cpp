@@ -62,8 +62,9 @@ GiNaC::ex Variables::scalar(const model::Scalar& s) const {
   try {
     return reader(s.text);
   } catch (const std::exception& e) {
-    throw model::ModelError(source_file_, s.where, "cannot read expression '" + s.text + "' (" + e.what() + ")",
-                            "use numbers, parameter names, + - * / ^, parentheses and sin cos tan sqrt exp log");
+    throw model::ModelError(
+        source_file_, s.where, "cannot read expression '" + s.text + "' (" + e.what() + ")",
+        "use numbers, parameter names, + - * / ^, parentheses and sin cos tan sqrt exp log");
   }
 }
 
@@ -74,8 +75,9 @@ GiNaC::ex Variables::time_expression(const std::string& text, const std::string&
   try {
     return reader(text);
   } catch (const std::exception& e) {
-    throw model::ModelError(source_file_, where, "cannot read expression '" + text + "' (" + e.what() + ")",
-                            "use numbers, t, parameter names, + - * / ^, parentheses and sin cos tan sqrt exp log");
+    throw model::ModelError(
+        source_file_, where, "cannot read expression '" + text + "' (" + e.what() + ")",
+        "use numbers, t, parameter names, + - * / ^, parentheses and sin cos tan sqrt exp log");
   }
 }
 

@@ -31,9 +31,9 @@ class Variables {
 
   GiNaC::symbol t{"t"};
   std::vector<GiNaC::symbol> q, u, tau, params;
-  int joint_coordinates = 0;        ///< q[0 .. joint_coordinates) belong to joints
-  std::vector<int> elastic_first;   ///< per body: index in q of its first elastic coordinate, or -1
-  std::vector<int> elastic_count;   ///< per body: its number of elastic coordinates
+  int joint_coordinates = 0;       ///< q[0 .. joint_coordinates) belong to joints
+  std::vector<int> elastic_first;  ///< per body: index in q of its first elastic coordinate, or -1
+  std::vector<int> elastic_count;  ///< per body: its number of elastic coordinates
   /// Per prescribed speed index: the symbol of its given acceleration (a
   /// local of the emitted forward dynamics, "ap<index>").
   std::map<int, GiNaC::symbol> prescribed_acceleration;

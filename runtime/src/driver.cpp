@@ -224,7 +224,7 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
   }
   std::vector<double> projected(static_cast<size_t>(std::max(n, 1)));
 
-  const bool to_stdout = a.output == "-";
+  const bool to_stdout = a.output.empty() || a.output == "-";
   auto csv = to_stdout ? std::make_unique<CsvWriter>(out) : std::make_unique<CsvWriter>(a.output);
   if (!csv->ok()) throw RunError(csv->error());
   std::vector<std::string> header = {"t"};

@@ -61,10 +61,12 @@ TEST_CASE("assumed modes: a shape that cannot be read or is not finite is the mo
     value.assign(x.size(), 0.0);
     slope.assign(x.size(), 0.0);
   };
-  CHECK_THROWS_WITH(assumed_mode_basis(body, one_mode(), "m.json", unreadable),
-                    Contains("/assumed_modes/0/v") && Contains("cannot read shape function 'x^2/L' (no such function)"));
+  CHECK_THROWS_WITH(
+      assumed_mode_basis(body, one_mode(), "m.json", unreadable),
+      Contains("/assumed_modes/0/v") && Contains("cannot read shape function 'x^2/L' (no such function)"));
   const ShapeSampler pole = [](const std::string& text, const std::map<std::string, double>& parameters,
-                               const std::vector<double>& x, std::vector<double>& value, std::vector<double>& slope) {
+                               const std::vector<double>& x, std::vector<double>& value,
+                               std::vector<double>& slope) {
     parabola(text, parameters, x, value, slope);
     if (text != "0") slope[0] = NAN;
   };

@@ -14,6 +14,7 @@ foreach(model ${KANEGEN_SHIPPED_MODELS})
     get_filename_component(cxx_name ${cxx} NAME)
     add_test(NAME strict_${cxx_name}_${stem}
              COMMAND ${CMAKE_COMMAND} -DCXX=${cxx} -DDIR=${PROJECT_SOURCE_DIR}/generated/${stem} -DNAME=${stem}
+                     -DRUNTIME_INCLUDE=${PROJECT_SOURCE_DIR}/runtime/include
                      -P ${CMAKE_CURRENT_LIST_DIR}/compile_strict.cmake)
   endforeach()
 endforeach()

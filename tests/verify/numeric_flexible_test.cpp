@@ -125,7 +125,8 @@ TEST_CASE(
   const int n = instance.coordinates();
   REQUIRE(n == 4);
   const double omega = 3.0;
-  const kanegen::fem::ModelBeam beam = kanegen::fem::build_model_beam(model.bodies[0], "", kanegen::numeric::sample_shape);
+  const kanegen::fem::ModelBeam beam =
+      kanegen::fem::build_model_beam(model.bodies[0], "", kanegen::numeric::sample_shape);
   const Eigen::MatrixXd kl = beam.reduced.geometric->linear;  // K_G for a = x, in the modes
   // f(eta) - f(0) at u = (Omega, 0...): -K eta - Omega^2 Kl eta + the centrifugal force on N eta.
   std::mt19937 rng(5);
@@ -157,7 +158,8 @@ TEST_CASE("nodal beam under tension: the nonlinear axial strain gives the FEM la
   const auto instance = kanegen::numeric::instantiate(model, {});
   const int n = instance.coordinates();
   REQUIRE(n == 12);
-  const kanegen::fem::ModelBeam beam = kanegen::fem::build_model_beam(model.bodies[0], "", kanegen::numeric::sample_shape);
+  const kanegen::fem::ModelBeam beam =
+      kanegen::fem::build_model_beam(model.bodies[0], "", kanegen::numeric::sample_shape);
   const Eigen::MatrixXd& B = beam.reduced.basis;
   const int tip = beam.body.num_nodes() - 1;
   const Eigen::MatrixXd k_tip =
@@ -276,4 +278,13 @@ TEST_CASE("flexible models: M is the Hessian of T, d(T + V)/dt = P_nc along the 
             Approx(e.nonconservative_power).epsilon(1e-10).margin(1e-12 * scale));
     }
   }
+}
+
+TEST_CASE("an assumed-mode slope the chain rule cannot give at an end is its one-sided limit", "[numeric]") {
+  std::vector<double> value, slope;
+  kanegen::numeric::sample_shape("(x/L)*sqrt(x/L)", {{"L", 2.0}}, {0.0, 1.0, 2.0}, value, slope);
+  CHECK(value[0] == 0.0);
+  CHECK(std::abs(slope[0]) < 1e-100);  // d/dx (x/L)^1.5 = 1.5 sqrt(x/L)/L -> 0
+  CHECK(slope[1] == Approx(1.5 * std::sqrt(0.5) / 2.0));
+  CHECK(slope[2] == Approx(0.75));
 }

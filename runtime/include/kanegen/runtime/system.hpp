@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
-// What the runtime expects of a generated model. Every generated header
-// defines, in namespace kanegen_models::<model>, a `struct System` of this
-// shape; the integrators and the driver are templates over it, so the
-// runtime never depends on a particular model.
+// The uniform face of a generated model. Every generated header defines, in
+// namespace kanegen_models::<model>, a `struct System` of this shape, for
+// code that is a template over the model (examples/, the tests, RK4 loops on
+// a controller). The runtime's driver needs only its kernel_table (below):
+// it calls the kernels through function pointers, so the runtime library
+// never depends on a particular model.
 //
 //   struct System {
 //     using Params = <model>::Params;            // plain struct, one double per parameter
@@ -17,6 +19,7 @@
 //     static const double* u0();                     // nu initial speeds
 //     static bool set_parameter(Params& p, const char* name, double value);  // false if unknown
 //     static double get_parameter(const Params& p, int index);
+//     static void initial_state(const Params& p, double* q, double* u);  // q0, u0, prescribed at t = 0
 //     // M: nu*nu, row-major, symmetric
 //     static void mass_matrix(const Params& p, const double* q, double* M);
 //     // f: nu; M udot = f + (inputs), f includes gravity, velocity terms, springs, dampers, point forces, tau
@@ -28,8 +31,9 @@
 //     static double kinetic_energy(const Params& p, const double* q, const double* u);
 //     static double potential_energy(const Params& p, const double* q);
 //     static void outputs(const Params& p, double t, const double* q, const double* u, double* y);  // ny
-//     // Only models with closed loops (docs/closed-loops.md) have these; the
-//     // runtime treats a System without `nc` as an open tree:
+//     static void generalized_momentum(const Params& p, const double* q, const double* u, double* h);  // M u
+//     // Only models with closed loops (docs/closed-loops.md) have these (their
+//     // kernel_table leaves the loop entries null, nc 0, for an open tree):
 //     static constexpr int nc;                          // loop-closure equations
 //     static const char* const* constraint_names();     // nc entries
 //     static const int* coordinate_roles();             // nq: 0 free, 1 marked independent, 2 prescribed
