@@ -20,8 +20,11 @@ void sample_shape(const std::string& text, const std::map<std::string, double>& 
     slope[i] = s.d;
     // A slope the chain rule cannot give at an end (x sqrt(x) at 0: 1*0 + 0*inf)
     // is its one-sided limit, as GiNaC's simplified derivative gives it: the
-    // slope at the next double inward.
-    if (!std::isfinite(slope[i])) slope[i] = shape(Dual<double>(std::nextafter(x[i], middle), 1.0)).d;
+    // slope a hair inward (not a subnormal step, which x/L would round to 0).
+    if (!std::isfinite(slope[i])) {
+      const double inward = x[i] == 0.0 ? middle * 1e-300 : std::nextafter(x[i], middle);
+      slope[i] = shape(Dual<double>(inward, 1.0)).d;
+    }
   }
 }
 
