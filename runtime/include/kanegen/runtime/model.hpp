@@ -81,6 +81,26 @@ class Model {
     return table_.constrained_dynamics(params(), t, q, u, tau, udot, lambda);
   }
 
+  // Jacobians for implicit integration (see model_table.hpp); present only
+  // in models generated with them (has_jacobians()).
+  bool has_jacobians() const {
+    return table_.forcing_jacobian && table_.mass_matrix_product_jacobian &&
+           (table_.nc == 0 || table_.constraint_force_jacobian);
+  }
+  /// dfdq: nu*nq, dfdu: nu*nu, row-major.
+  void forcing_jacobian(double t, const double* q, const double* u, const double* tau, double* dfdq,
+                        double* dfdu) const {
+    table_.forcing_jacobian(params(), t, q, u, tau, dfdq, dfdu);
+  }
+  /// dMa_dq: nu*nq, d(M(q) a)/dq.
+  void mass_matrix_product_jacobian(const double* q, const double* a, double* dMa_dq) const {
+    table_.mass_matrix_product_jacobian(params(), q, a, dMa_dq);
+  }
+  /// dCl_dq: nu*nq, d(C(q)^T lambda)/dq (closed loops).
+  void constraint_force_jacobian(const double* q, const double* lambda, double* dCl_dq) const {
+    table_.constraint_force_jacobian(params(), q, lambda, dCl_dq);
+  }
+
  private:
   const void* params() const { return parameters_.data(); }
 

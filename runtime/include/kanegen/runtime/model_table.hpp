@@ -49,6 +49,17 @@ struct ModelTable {
   void (*constraint_bias)(const void* p, const double* q, const double* u, double* gamma) = nullptr;
   int (*constrained_dynamics)(const void* p, double t, const double* q, const double* u, const double* tau,
                               double* udot, double* lambda) = nullptr;
+  // Jacobians for implicit integration (models generated with jacobians;
+  // null otherwise). Row-major; q_dot = u in every generated model.
+  /// dfdq: nu*nq, dfdu: nu*nu, the partial derivatives of forcing.
+  void (*forcing_jacobian)(const void* p, double t, const double* q, const double* u, const double* tau,
+                           double* dfdq, double* dfdu) = nullptr;
+  /// dMa_dq: nu*nq, d(M(q) a)/dq for a fixed vector a (nu).
+  void (*mass_matrix_product_jacobian)(const void* p, const double* q, const double* a,
+                                       double* dMa_dq) = nullptr;
+  /// dCl_dq: nu*nq, d(C(q)^T lambda)/dq for fixed lambda (nc); closed loops only.
+  void (*constraint_force_jacobian)(const void* p, const double* q, const double* lambda,
+                                    double* dCl_dq) = nullptr;
 };
 
 }  // namespace kanegen::runtime
