@@ -14,9 +14,13 @@ using Vector = std::vector<double>;
 
 constexpr double kEpsilon = 2.2e-16;
 /// The differences' round-off is taken as this many eps of the magnitude of
-/// the differenced row over the step: the Richardson step triples it, and
-/// the magnitude is itself a sum of terms that partly cancel.
-constexpr double kNoiseFactor = 100;
+/// the differenced row over the step: the Richardson step triples it, the
+/// magnitude is itself a sum of terms that partly cancel, and with
+/// foreshortening in modes the numeric M and f are a weighted sum of five
+/// evaluations (numeric/dynamics.cpp, truncation_samples), whose round-off
+/// is larger again (free_strip_modal: 1.3e-10 in d(M a)/dq, where 100 eps
+/// allowed as much).
+constexpr double kNoiseFactor = 1000;
 
 /// The numeric quantities that are differenced, stacked: f (n), M a (n) and
 /// C^T lambda (n), with the magnitude of the terms summed into each row.
