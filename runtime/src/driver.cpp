@@ -13,6 +13,7 @@
 #include "kanegen/runtime/integrators.hpp"
 #include "kanegen/runtime/loops.hpp"
 #include "kanegen/runtime/options.hpp"
+#include "kanegen/runtime/state_jacobian.hpp"
 #include "kanegen/runtime/text.hpp"
 
 namespace kanegen::runtime {
@@ -169,6 +170,7 @@ struct SimulateArgs {
   std::vector<Assignment> sets, q0, u0;
   std::string output;
   bool stats = false;
+  double rho_inf = 0.8;  ///< genalpha
 };
 
 // The simulate options, values checked one by one by the parser (defaults
@@ -190,7 +192,9 @@ SimulateArgs simulate_args(const ParsedOptions& p) {
   a.u0 = p.assignments("--u0");
   a.output = p.text("--output");
   a.stats = p.flag("--stats");
+  a.rho_inf = p.number("--rho-inf");
   if (o.rtol == 0 && o.atol == 0) throw UsageError("--rtol and --atol cannot both be zero");
+  if (a.rho_inf > 1) throw UsageError("--rho-inf must be in [0, 1]");
   return a;
 }
 
@@ -200,8 +204,47 @@ std::vector<std::string> state_names(const ModelInfo& info) {
   return names;
 }
 
+bool is_implicit(Method method) { return method == Method::kImplicit || method == Method::kGenAlpha; }
+
+// --stats: the counters of every method, and the Newton counters of the implicit ones.
+void print_stats(std::FILE* err, Method method, const IntegrationResult& r) {
+  const StepStats& s = r.stats;
+  std::string line = std::string("stats: integrator=") + method_name(method) +
+                     " accepted=" + std::to_string(s.accepted) + " rejected=" + std::to_string(s.rejected) +
+                     " rhs_evals=" + std::to_string(s.rhs_evals);
+  if (is_implicit(method))
+    line += " newton_iterations=" + std::to_string(s.newton_iterations) +
+            " newton_failures=" + std::to_string(s.newton_failures) +
+            " jacobian_evals=" + std::to_string(s.jacobian_evaluations) +
+            " lu_factorizations=" + std::to_string(s.factorizations) +
+            (s.projections > 0 ? " projections=" + std::to_string(s.projections) : "");
+  print(err, line + " t=" + format_double(r.t) + "\n");
+}
+
+// The fixed-step methods that integrate the Model itself (genalpha.hpp):
+// not in this build yet.
+IntegrationResult run_fixed_step_model(Method method) {
+  throw UsageError(std::string("--integrator ") + method_name(method) + " is not available in this runtime");
+}
+
+// Integrates with the chosen method: the ODE methods on rhs, the implicit one
+// with the model's exact Jacobian.
+IntegrationResult run_method(const Model& model, const SimulateArgs& a, const Rhs& rhs, double* x,
+                             const IntegrationOptions& opt, const Observer& observer, const double* tau) {
+  const int n = model.info().nq + model.info().nu;
+  if (a.method == Method::kGenAlpha) return run_fixed_step_model(a.method);
+  if (a.method != Method::kImplicit) return integrate(a.method, rhs, 0.0, x, n, opt, observer);
+  StateJacobian jacobian(model);
+  const Jacobian jac = [&](double t, const double* xs, double* J) {
+    return jacobian.evaluate(t, xs, tau, J);
+  };
+  return integrate(a.method, rhs, 0.0, x, n, opt, observer, jac);
+}
+
 int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err) {
   const ModelInfo& info = model.info();
+  // Before anything is written: a model without Jacobians cannot run implicitly.
+  if (is_implicit(a.method) && !model.has_jacobians()) throw UsageError(missing_jacobians_message(info));
   const int nq = info.nq, n = info.nq + info.nu;
   apply_parameters(model, a.sets);
   std::vector<double> x(static_cast<size_t>(std::max(n, 1)), 0.0);
@@ -264,12 +307,8 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
   opt.state_names = names;
   if (loops.active())
     opt.project = [&](double, double* xs, std::string* why) { return loops.project(xs, xs + nq, why); };
-  const IntegrationResult r = integrate(a.method, rhs, 0.0, x.data(), n, opt, observer);
-  if (a.stats) {
-    std::fprintf(err, "stats: integrator=%s accepted=%ld rejected=%ld rhs_evals=%ld t=%s\n",
-                 method_name(a.method), r.stats.accepted, r.stats.rejected, r.stats.rhs_evals,
-                 format_double(r.t).c_str());
-  }
+  const IntegrationResult r = run_method(model, a, rhs, x.data(), opt, observer, tau.data());
+  if (a.stats) print_stats(err, a.method, r);
   const bool closed = csv->close();
   if (g_stop_signal != 0) {
     const int signal_number = g_stop_signal;
