@@ -116,6 +116,12 @@ std::string number(double v) {
   return buf;
 }
 
+/// *reason = text; false.
+bool refuse(std::string* reason, const char* text) {
+  *reason = text;
+  return false;
+}
+
 bool all_finite(const std::vector<double>& v) {
   for (double x : v)
     if (!std::isfinite(x)) return false;
@@ -329,10 +335,8 @@ bool GenAlpha::correct_speeds(const double* q, double* u, std::string* reason) {
   model_.constraint_jacobian(q, C_.data());
   for (int i = 0; i < m; ++i)
     for (int j = 0; j <= i; ++j) chol_[i * m + j] = M_[free_[i] * n + free_[j]];
-  if (!cholesky(chol_.data(), m, nullptr, 0.0)) {
-    *reason = "the mass matrix of the free coordinates is not positive definite";
-    return false;
-  }
+  if (!cholesky(chol_.data(), m, nullptr, 0.0))
+    return refuse(reason, "the mass matrix of the free coordinates is not positive definite");
   // w_k = M_ff^-1 C_kf^T, G = C_f M_ff^-1 C_f^T, y = G^-1 (C u): the change
   // -M_ff^-1 C_f^T y of least kinetic energy with C u = 0. Dependent rows
   // of G (redundant loop equations) are dropped.
@@ -356,39 +360,27 @@ bool GenAlpha::correct_speeds(const double* q, double* u, std::string* reason) {
   return true;
 }
 
-bool GenAlpha::step(const double* tau, std::string* why) {
-  if (!started_) return fail("genalpha: step() before a successful start()", why);
-  const double t1 = t0_ + static_cast<double>(n_ + 1) * opt_.h;
-  predict(t1, tau);
+bool GenAlpha::newton(double t1, const double* tau, std::string* reason) {
   bool stale = factored_ && opt_.reuse_jacobian && !refresh_next_;
   bool refresh_now = !stale;
-  // The first iteration's error estimate needs a contraction rate: the
-  // first one of the last step, at least kMinRate (Hairer's RADAU5 takes
-  // the last one, which quadratic convergence makes too optimistic here).
+  // The first iteration's error estimate needs a contraction rate: that of
+  // the last step's first iteration, at least kMinRate (RADAU5 takes the
+  // last one, which quadratic convergence makes too optimistic here).
   const double eta_start = std::max(eta_, kMinRate);
-  double eta = eta_start, previous = 0.0, theta = 0.0, theta_first = -1.0, theta_max = 0.0;
+  double eta = eta_start, previous = -1.0, theta = 0.0, theta_first = -1.0, theta_max = 0.0;
   double norm = 0.0, worst = 0.0;
-  bool converged = false;
-  auto failure = [&](const std::string& reason) {
-    ++stats_.rejected;
-    return fail("genalpha: step from t = " + number(t()) + " to " + number(t1) + " failed: " + reason +
-                    "; the state at t = " + number(t()) + " is " + state(),
-                why);
-  };
-  int iterations = 0;
-  while (!converged && iterations < opt_.max_newton) {
+  for (int iteration = 0; iteration < opt_.max_newton; ++iteration) {
     residual(t1, tau);
-    if (!all_finite(rhs_)) return failure("the residual is not finite");
+    if (!all_finite(rhs_)) return refuse(reason, "the residual is not finite");
     if (refresh_now) {
-      if (!refresh(t1, tau)) return failure("the iteration matrix is singular");
+      if (!refresh(t1, tau)) return refuse(reason, "the iteration matrix is singular");
       refresh_now = stale = false;
     }
     lu_solve(lu_.data(), dim_, pivots_.data(), rhs_.data());
     norm = apply_increment();
-    ++iterations;
     ++stats_.newton_iterations;
-    if (!std::isfinite(norm)) return failure("the Newton increment is not finite");
-    if (iterations > 1) {
+    if (!std::isfinite(norm)) return refuse(reason, "the Newton increment is not finite");
+    if (previous >= 0.0) {
       theta = norm / previous;
       eta = theta < 1.0 ? theta / (1.0 - theta) : INFINITY;
       if (theta_first < 0.0) theta_first = theta;
@@ -396,26 +388,51 @@ bool GenAlpha::step(const double* tau, std::string* why) {
     }
     previous = norm;
     worst = constraint_residual(q1_.data());
-    converged = eta * norm <= 1.0 && worst <= opt_.constraint_tolerance;
-    if (!converged && stale && theta > kRefreshNow) refresh_now = true;  // slow with an old matrix
+    if (eta * norm <= 1.0 && worst <= opt_.constraint_tolerance) {
+      if (theta_first >= 0.0) eta_ = theta_first < 1.0 ? theta_first / (1.0 - theta_first) : 1.0;
+      refresh_next_ = theta_max > kRefreshNext;
+      return true;
+    }
+    // Slow with an old matrix, or half the iterations spent: fresh Jacobians at this iterate,
+    if (stale && (theta > kRefreshNow || iteration + 1 >= opt_.max_newton / 2)) {
+      refresh_now = true;
+      if (theta >= 1.0) {  // or, if it diverged, at the predictor again
+        predict(t1, tau);
+        previous = -1.0;
+        eta = eta_start;
+      }
+    }
   }
-  if (!converged)
-    return failure("Newton did not converge in " + std::to_string(opt_.max_newton) +
-                   " iterations (last increment " + number(norm * opt_.tolerance) +
-                   " relative, contraction " + number(theta) + ", max |Phi| " + number(worst) +
-                   "); a smaller step h may help");
+  refresh_next_ = true;
+  *reason = "Newton did not converge in " + std::to_string(opt_.max_newton) + " iterations (last increment " +
+            number(norm * opt_.tolerance) + " relative, contraction " + number(theta) + ", max |Phi| " +
+            number(worst) + "); a smaller step h may help";
+  return false;
+}
+
+bool GenAlpha::step(const double* tau, std::string* why) {
+  if (!started_) return fail("genalpha: step() before a successful start()", why);
+  const double t1 = t0_ + static_cast<double>(n_ + 1) * opt_.h;
+  predict(t1, tau);
   std::string reason;
-  if (!correct_speeds(q1_.data(), u1_.data(), &reason)) return failure(reason);
-  if (!all_finite(q1_) || !all_finite(u1_)) return failure("the state is not finite");
-  q_.swap(q1_);
+  bool ok = newton(t1, tau, &reason) && correct_speeds(q1_.data(), u1_.data(), &reason);
+  if (ok && (!all_finite(q1_) || !all_finite(u1_))) {
+    reason = "the state is not finite";
+    ok = false;
+  }
+  if (!ok) {
+    ++stats_.rejected;
+    return fail("genalpha: step from t = " + number(t()) + " to " + number(t1) + " failed: " + reason +
+                    "; the state at t = " + number(t()) + " is " + state(),
+                why);
+  }
+  q_.swap(q1_);  // commit
   u_.swap(u1_);
   vd_.swap(vd1_);
   a_.swap(a1_);
   lam_.swap(lam1_);
   ++n_;
   ++stats_.steps;
-  if (theta_first >= 0.0) eta_ = theta_first < 1.0 ? theta_first / (1.0 - theta_first) : 1.0;
-  refresh_next_ = theta_max > kRefreshNext;
   return true;
 }
 

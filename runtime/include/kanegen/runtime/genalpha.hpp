@@ -100,6 +100,8 @@ class GenAlpha {
   void residual(double t1, const double* tau);
   /// Jacobians at the trial state, the iteration matrix, its LU factors.
   bool refresh(double t1, const double* tau);
+  /// Newton on the trial state; false, with the reason, if it fails.
+  bool newton(double t1, const double* tau, std::string* reason);
   /// The Newton update from the solution in rhs_; returns its weighted norm.
   double apply_increment();
   /// Largest |Phi_i(q)| (NaN if one is NaN); 0 for an open tree.
