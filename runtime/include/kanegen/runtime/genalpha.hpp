@@ -32,7 +32,8 @@ struct GenAlphaOptions {
   double constraint_tolerance = 1e-11;
   /// Simplified Newton: keep the factored iteration matrix from step to
   /// step, re-evaluating the Jacobians only when Newton contracts slowly
-  /// (rate above 0.5 within a step, or above 0.1 in the previous step).
+  /// (rate above 0.5 or half of max_newton spent within a step, or a rate
+  /// above 0.1 in the previous step).
   /// false: fresh Jacobians and a new factorization at every step.
   bool reuse_jacobian = true;
 };
