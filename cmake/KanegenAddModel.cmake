@@ -1,15 +1,17 @@
 # SPDX-License-Identifier: MIT
-# kanegen_add_model(<target> <model file> [NAME <model name>] [RUNNER])
+# kanegen_add_model(<target> <model file> [NAME <model name>] [RUNNER] [JACOBIANS])
 #
 # Generates the model's kernels at build time (again whenever the model file
 # or the kanegen generator changes) and makes <target> a static library with
 # them: include "<model name>.hpp" and call kanegen_models::<model name>::...
 # With RUNNER, also builds <target>_runner, the simulate/eval/info program.
+# With JACOBIANS, the model also has the Jacobian kernels of implicit
+# integration (kanegen generate --jacobians).
 #
 # The model name is read from the file (JSON "name", URDF <robot name>, made
 # a C++ identifier as kanegen does); NAME overrides it if your file is unusual.
 function(kanegen_add_model target model)
-  cmake_parse_arguments(ARG "RUNNER" "NAME" "" ${ARGN})
+  cmake_parse_arguments(ARG "RUNNER;JACOBIANS" "NAME" "" ${ARGN})
   get_filename_component(model_path ${model} ABSOLUTE)
   if(NOT EXISTS ${model_path})
     message(FATAL_ERROR "kanegen_add_model(${target}): model file ${model_path} does not exist")
@@ -37,9 +39,13 @@ function(kanegen_add_model target model)
   endif()
 
   set(out ${CMAKE_CURRENT_BINARY_DIR}/kanegen_generated/${target})
+  set(options)
+  if(ARG_JACOBIANS)
+    set(options --jacobians)
+  endif()
   add_custom_command(
     OUTPUT ${out}/${name}.hpp ${out}/${name}.cpp ${out}/${name}_runner.cpp
-    COMMAND ${KANEGEN_EXECUTABLE} generate ${model_path} -o ${out} --quiet
+    COMMAND ${KANEGEN_EXECUTABLE} generate ${model_path} -o ${out} --quiet ${options}
     DEPENDS ${model_path} ${KANEGEN_EXECUTABLE}
     COMMENT "kanegen: generating ${name} from ${model}"
     VERBATIM)

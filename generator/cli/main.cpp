@@ -100,24 +100,32 @@ struct GenerateCommand {
   CLI::App* command = nullptr;
   RunOptions run;
   std::string out_dir;
+  bool jacobians = false;
 };
+
+constexpr const char* kJacobiansHelp =
+    "also emit the Jacobian kernels of implicit integration (forcing_jacobian, "
+    "mass_matrix_product_jacobian, constraint_force_jacobian); they add generation and compile time";
 
 void add_generate(CLI::App& app, GenerateCommand& c) {
   c.command =
       app.add_subcommand("generate", "write the model's C++ kernels (header, source, runner) to a directory");
   add_common(c.command, c.run);
   c.command->add_option("-o,--output", c.out_dir, "output directory (created if needed)")->required();
+  c.command->add_flag("--jacobians", c.jacobians, kJacobiansHelp);
 }
 
 int run_generate(const GenerateCommand& c) {
   const BuildOptions b = build_options(c.run);
-  const kanegen::pipeline::GeneratedModel g = kanegen::pipeline::generate(c.run.model, b.load);
+  const kanegen::pipeline::GeneratedModel g = kanegen::pipeline::generate(c.run.model, b.load, {c.jacobians});
   kanegen::codegen::write_files_atomically(c.out_dir, g.files);
   if (!c.run.quiet) {
-    std::printf("%s: %d coordinates, %zu intermediates; load %.3f s, derive %.3f s, emit %.3f s\n",
+    std::printf("%s: %d coordinates, %zu intermediates; load %.3f s, derive %.3f s, emit %.3f s",
                 g.name.c_str(), g.nq, g.intermediates, g.seconds.load, g.seconds.derive, g.seconds.emit);
+    if (c.jacobians) std::printf(", emit with jacobians %.3f s", g.seconds.jacobians);
+    std::printf("\n");
     for (const auto& [kernel, count] : g.operations)
-      std::printf("  %-18s %8ld operations\n", kanegen::codegen::signature(kernel).name, count);
+      std::printf("  %-28s %8ld operations\n", kanegen::codegen::signature(kernel).name, count);
     for (const auto& [file, content] : g.files)
       std::printf("  wrote %s\n", (std::filesystem::path(c.out_dir) / file).c_str());
   }
@@ -136,10 +144,21 @@ void add_simulate(CLI::App& app, SimulateCommand& c) {
   add_forwarded(c.command, "simulate", c.forwarded);
 }
 
-/// The runner's own simulate, with the options passed on.
+/// The --integrator value forwarded to the runner's simulate, or "" if none was given.
+std::string forwarded_integrator(const ForwardedOptions& f) {
+  for (const auto& [spec, option] : f.options)
+    if (std::string(spec->name) == "--integrator" && option->count() > 0 && !f.values.at(spec->name).empty())
+      return f.values.at(spec->name).back();
+  return "";
+}
+
+/// The runner's own simulate, with the options passed on; the Jacobian
+/// kernels are generated when the chosen integrator needs them.
 int run_simulate(const SimulateCommand& c) {
   const std::vector<std::string> args = forwarded_args("simulate", c.forwarded);
-  const std::string runner = kanegen::cli::build_runner(c.run.model, build_options(c.run));
+  BuildOptions b = build_options(c.run);
+  b.jacobians = kanegen::cli::integrator_needs_jacobians(forwarded_integrator(c.forwarded));
+  const std::string runner = kanegen::cli::build_runner(c.run.model, b);
   return kanegen::cli::run_program(runner, args);
 }
 
@@ -166,6 +185,7 @@ struct VerifyCommand {
   CLI::App* command = nullptr;
   RunOptions run;
   kanegen::cli::VerifyOptions options;
+  bool jacobians = false;
 };
 
 void add_verify(CLI::App& app, VerifyCommand& c) {
@@ -201,11 +221,15 @@ void add_verify(CLI::App& app, VerifyCommand& c) {
          "generating the kernels afresh")
       ->check(CLI::ExistingDirectory);
   ver->add_flag("--json", o.json, "print the report as JSON on stdout");
+  ver->add_flag("--jacobians", c.jacobians,
+                "generate the Jacobian kernels too and check them against central differences of the numeric "
+                "path (with --kernels: checked when the files have them)");
 }
 
 int run_verify(VerifyCommand& c) {
   c.options.model = c.run.model;
   c.options.build = build_options(c.run);
+  c.options.build.jacobians = c.jacobians;
   return kanegen::cli::verify(c.options);
 }
 

@@ -55,12 +55,13 @@ fs::path cache_root() {
   return fs::temp_directory_path() / "kanegen-cache";
 }
 
-/// Everything that changes the runner: the model, the generator, the
-/// templates, the runtime (headers and library) and the compiler.
+/// Everything that changes the runner: the model, the generation options,
+/// the generator, the templates, the runtime (headers and library) and the compiler.
 std::string cache_key(const std::string& model_path, const RuntimeLocation& runtime,
                       const BuildOptions& options) {
   std::string bytes = pipeline::read_file(model_path);
   for (double g : options.load.urdf_gravity) bytes += codegen::format_double(g) + ",";
+  if (options.jacobians) bytes += "jacobians\n";  // absent otherwise: the keys of existing caches stay
   bytes += KANEGEN_VERSION;
   // The generator itself: a rebuilt kanegen of the same version may emit other code.
   std::error_code error;
@@ -74,6 +75,10 @@ std::string cache_key(const std::string& model_path, const RuntimeLocation& runt
 }
 
 }  // namespace
+
+bool integrator_needs_jacobians(const std::string& integrator) {
+  return integrator == "implicit" || integrator == "genalpha";
+}
 
 namespace {
 
@@ -154,7 +159,8 @@ std::string build_runner(const std::string& model_path, const BuildOptions& opti
 
   const auto start = std::chrono::steady_clock::now();
   if (options.verbose) std::fprintf(stderr, "kanegen: generating %s ...\n", model_path.c_str());
-  const pipeline::GeneratedModel generated = pipeline::generate(model_path, options.load);
+  const pipeline::GeneratedModel generated =
+      pipeline::generate(model_path, options.load, {options.jacobians});
   codegen::write_files_atomically(dir.string(), generated.files);
 
   if (options.verbose)

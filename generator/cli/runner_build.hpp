@@ -14,7 +14,13 @@ namespace kanegen::cli {
 struct BuildOptions {
   bool verbose = true;  ///< progress lines on stderr
   model::LoadOptions load;
+  /// The Jacobian kernels too (pipeline::GenerateOptions::jacobians); part of the cache key.
+  bool jacobians = false;
 };
+
+/// Whether the runner's `simulate --integrator VALUE` needs the Jacobian
+/// kernels: the implicit integrators ("implicit", "genalpha") do.
+bool integrator_needs_jacobians(const std::string& integrator);
 
 /// Returns the path of the runner for `model_path`, generating and compiling
 /// it if the cache has none. Throws model::ModelError or std::runtime_error.

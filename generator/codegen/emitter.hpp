@@ -19,10 +19,17 @@ struct EmittedModel {
   std::map<Kernel, long> operations;         ///< operation count of each counted kernel
 };
 
+/// What a model's code holds beyond the kernels every model has.
+struct EmitOptions {
+  /// The Jacobian kernels of implicit integration (forcing_jacobian, ...):
+  /// optional because they can take longer to compile than the rest.
+  bool jacobians = false;
+};
+
 /// model_hash: a digest of the model file, quoted in the header comment.
 EmittedModel emit_model(const model::Model& model, const kane::Equations& equations,
                         const symbolic::Variables& vars, const symbolic::Program& program,
-                        const std::string& model_hash);
+                        const std::string& model_hash, const EmitOptions& options = {});
 
 /// Replaces every {{KEY}} of `text`; throws std::logic_error on a key left over.
 std::string fill_template(const std::string& text, const std::map<std::string, std::string>& values);

@@ -225,15 +225,36 @@ int ExpressionGraph::convert(const GiNaC::ex& e) {
   } else {
     throw std::logic_error("expression graph: unsupported expression");
   }
-  // Constant subexpressions (e.g. sqrt(3)/2) fold to one number.
-  const Node& made = nodes_[id];
-  if (made.op != Op::number && made.op != Op::input) {
-    bool constant = true;
-    for (int a : made.args) constant = constant && nodes_[a].op == Op::number;
-    if (constant) id = number(fold(made));
-  }
+  id = folded(id);
   converted_.emplace(e, id);
   return id;
+}
+
+// Constant subexpressions (e.g. sqrt(3)/2) fold to one number.
+int ExpressionGraph::folded(int id) {
+  const Node& made = nodes_[id];
+  if (made.op == Op::number || made.op == Op::input) return id;
+  for (int a : made.args)
+    if (nodes_[a].op != Op::number) return id;
+  return number(fold(made));
+}
+
+int ExpressionGraph::input(const std::string& cpp_name) {
+  Node n;
+  n.op = Op::input;
+  n.name = cpp_name;
+  return intern(std::move(n));
+}
+
+int ExpressionGraph::apply(Op op, int arg, double value) {
+  if (op == Op::power && value == 0.0) return number(1.0);
+  if (op == Op::power && value == 1.0) return arg;
+  if (op == Op::power && value == 0.5) return apply(Op::sqrt, arg);
+  Node n;
+  n.op = op;
+  n.value = op == Op::power ? value : 0.0;
+  n.args.push_back(arg);
+  return folded(intern(std::move(n)));
 }
 
 }  // namespace kanegen::codegen

@@ -39,6 +39,19 @@ class ExpressionGraph {
   const Node& node(int id) const { return nodes_[id]; }
   std::size_t size() const { return nodes_.size(); }
 
+  // Building nodes directly, in the same canonical form as add() makes them
+  // (for derivatives and for kernels that combine equations with arguments).
+  /// A number.
+  int constant(double v) { return number(v); }
+  /// An input that no symbol stands for, e.g. the kernel argument "a[3]".
+  int input(const std::string& cpp_name);
+  /// The sum and the product of nodes.
+  int sum(std::vector<int> terms) { return make_add(std::move(terms)); }
+  int product(std::vector<int> factors) { return make_mul(std::move(factors)); }
+  /// A function of one node (sqrt, sin, ... ; power with exponent `value`):
+  /// an exponent of 0 or 1 and constant arguments fold.
+  int apply(Op op, int arg, double value = 0.0);
+
  private:
   /// A node as coefficient * base; base -1 stands for the number 1.
   struct Term {
@@ -52,6 +65,7 @@ class ExpressionGraph {
   int number(double v);
   int convert(const GiNaC::ex& e);
   double fold(const Node& n) const;
+  int folded(int id);
 
   const symbolic::Variables& vars_;
   const symbolic::Program& program_;

@@ -66,12 +66,41 @@ const std::vector<KernelSignature> kTable = {
    "/// is not positive; -k when the loop equations are dependent at q (a\n"
    "/// singular configuration: the k-th pivot of C M^-1 C^T vanished).",
    Presence::with_loops, false, true},
+  {Kernel::forcing_jacobian, "forcing_jacobian", "void",
+   "const Params& p, double t, const double* q, const double* u, const double* tau, double* dfdq, "
+   "double* dfdu",
+   "/// dfdq: NU*NQ and dfdu: NU*NU, row-major, the exact partial derivatives of\n"
+   "/// forcing (stiffness, damping, velocity terms, springs, prescribed motions),\n"
+   "/// for implicit integration (generated with --jacobians).",
+   Presence::with_jacobians, true, true},
+  {Kernel::mass_matrix_product_jacobian, "mass_matrix_product_jacobian", "void",
+   "const Params& p, const double* q, const double* a, double* dMa_dq",
+   "/// dMa_dq: NU*NQ, row-major, d(M(q) a)/dq for a fixed a (NU).",
+   Presence::with_jacobians, true, true},
+  {Kernel::constraint_force_jacobian, "constraint_force_jacobian", "void",
+   "const Params& p, const double* q, const double* lambda, double* dCl_dq",
+   "/// dCl_dq: NU*NQ, row-major, d(C(q)^T lambda)/dq for a fixed lambda (NC).",
+   Presence::with_loops_and_jacobians, true, true},
 };
 // clang-format on
 
 }  // namespace
 
 const std::vector<KernelSignature>& kernel_table() { return kTable; }
+
+bool present(Presence presence, bool loops, bool jacobians) {
+  switch (presence) {
+    case Presence::always:
+      return true;
+    case Presence::with_loops:
+      return loops;
+    case Presence::with_jacobians:
+      return jacobians;
+    case Presence::with_loops_and_jacobians:
+      return loops && jacobians;
+  }
+  return false;
+}
 
 const KernelSignature& signature(Kernel kernel) {
   for (const KernelSignature& s : kTable)

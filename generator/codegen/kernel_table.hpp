@@ -29,10 +29,19 @@ enum class Kernel {
   constraint_jacobian,
   constraint_bias,
   constrained_dynamics,
+  forcing_jacobian,
+  mass_matrix_product_jacobian,
+  constraint_force_jacobian,
 };
 
-/// Which models have a kernel.
-enum class Presence { always, with_loops };
+/// Which models have a kernel: the Jacobians only those generated with
+/// them (an option, for implicit integration), and of those the loop one
+/// only closed loops.
+enum class Presence { always, with_loops, with_jacobians, with_loops_and_jacobians };
+
+/// Whether a model with (or without) loops, generated with (or without)
+/// Jacobians, has a kernel of this presence.
+bool present(Presence presence, bool loops, bool jacobians);
 
 struct KernelArgument {
   std::string type;  ///< e.g. "const double*"

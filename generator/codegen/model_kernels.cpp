@@ -5,6 +5,7 @@
 #include <string>
 
 #include "codegen/cpp_printer.hpp"
+#include "codegen/graph_derivative.hpp"
 #include "codegen/unrolled_ldlt.hpp"
 
 namespace kanegen::codegen {
@@ -254,10 +255,91 @@ KernelCode outputs_kernel(const Derivation& d) {
   return code;
 }
 
+/// The input node of each symbol (q or u).
+std::vector<int> input_nodes(ExpressionGraph& graph, const std::vector<GiNaC::symbol>& symbols) {
+  std::vector<int> nodes;
+  for (const GiNaC::symbol& s : symbols) nodes.push_back(graph.add(s));
+  return nodes;
+}
+
+/// The Jacobian d rows / d variables into `target` (row-major): the
+/// assignments of the entries that are not zero by structure, and in `fill`
+/// a loop that zeroes the array first if any entry is (no code for those).
+/// One variable at a time, so that each derivative of a shared node is made
+/// once and reused by every row.
+std::vector<Assignment> jacobian_entries(ExpressionGraph& graph, const std::vector<int>& rows,
+                                         const std::vector<int>& variables, const std::string& target,
+                                         const std::string& size, std::string& fill) {
+  const std::size_t nv = variables.size();
+  std::vector<int> entry(rows.size() * nv, -1);
+  for (std::size_t j = 0; j < nv; ++j) {
+    GraphDerivative derivative(graph, variables[j]);
+    for (std::size_t i = 0; i < rows.size(); ++i) entry[i * nv + j] = derivative.of(rows[i]);
+  }
+  std::vector<Assignment> out;
+  for (std::size_t k = 0; k < entry.size(); ++k)
+    if (!is_zero(graph, entry[k])) out.push_back({target + "[" + str(static_cast<long>(k)) + "]", entry[k]});
+  if (out.size() < entry.size())
+    fill += "  for (int k = 0; k < " + size + "; ++k) " + target + "[k] = 0.0;\n";
+  return out;
+}
+
+/// df/dq and df/du: stiffness (elastic and geometric), damping, velocity
+/// terms, springs and the prescribed coordinates' terms, all through the
+/// graph's shared intermediates.
+KernelCode forcing_jacobian_kernel(const Derivation& d) {
+  std::vector<int> forcing;
+  for (int i = 0; i < d.n(); ++i) forcing.push_back(d.graph.add(d.eq.forcing[i]));
+  std::string fill;
+  std::vector<Assignment> entries =
+      jacobian_entries(d.graph, forcing, input_nodes(d.graph, d.vars.q), "dfdq", "NU * NQ", fill);
+  const std::vector<Assignment> by_speed =
+      jacobian_entries(d.graph, forcing, input_nodes(d.graph, d.vars.u), "dfdu", "NU * NU", fill);
+  entries.insert(entries.end(), by_speed.begin(), by_speed.end());
+  const PrintedKernel p = print_kernel(d.graph, entries);
+  return {Kernel::forcing_jacobian, fill + p.body, p.operations, ""};
+}
+
+/// d(M(q) a)/dq: the rows sum_s M_rs a_s, a the kernel's argument.
+KernelCode mass_matrix_product_jacobian_kernel(const Derivation& d) {
+  std::vector<int> products;
+  for (int r = 0; r < d.n(); ++r) {
+    std::vector<int> terms;
+    for (int s = 0; s < d.n(); ++s)
+      terms.push_back(d.graph.product(
+          {d.graph.add(d.eq.mass_matrix[r * d.n() + s]), d.graph.input("a[" + str(s) + "]")}));
+    products.push_back(d.graph.sum(std::move(terms)));
+  }
+  std::string fill;
+  const std::vector<Assignment> entries =
+      jacobian_entries(d.graph, products, input_nodes(d.graph, d.vars.q), "dMa_dq", "NU * NQ", fill);
+  const PrintedKernel p = print_kernel(d.graph, entries);
+  return {Kernel::mass_matrix_product_jacobian, fill + p.body, p.operations, ""};
+}
+
+/// d(C(q)^T lambda)/dq: the rows sum_c C_cr lambda_c, lambda the kernel's argument.
+KernelCode constraint_force_jacobian_kernel(const Derivation& d) {
+  const int nc = d.eq.loops.size();
+  std::vector<int> forces;
+  for (int r = 0; r < d.n(); ++r) {
+    std::vector<int> terms;
+    for (int c = 0; c < nc; ++c)
+      terms.push_back(d.graph.product(
+          {d.graph.add(d.eq.loops.jacobian[c * d.n() + r]), d.graph.input("lambda[" + str(c) + "]")}));
+    forces.push_back(d.graph.sum(std::move(terms)));
+  }
+  std::string fill;
+  const std::vector<Assignment> entries =
+      jacobian_entries(d.graph, forces, input_nodes(d.graph, d.vars.q), "dCl_dq", "NU * NQ", fill);
+  const PrintedKernel p = print_kernel(d.graph, entries);
+  return {Kernel::constraint_force_jacobian, fill + p.body, p.operations, ""};
+}
+
 }  // namespace
 
 std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Equations& eq,
-                                       const symbolic::Variables& vars, ExpressionGraph& graph) {
+                                       const symbolic::Variables& vars, ExpressionGraph& graph,
+                                       bool jacobians) {
   Derivation d{model, eq, vars, graph, {}, {}, {}};
   split_speeds(d);
   print_prescribed_accelerations(d);
@@ -275,6 +357,11 @@ std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Eq
     kernels.push_back(constraint_jacobian_kernel(d));
     kernels.push_back(constraint_bias_kernel(d));
     kernels.push_back(constrained);
+  }
+  if (jacobians) {
+    kernels.push_back(forcing_jacobian_kernel(d));
+    kernels.push_back(mass_matrix_product_jacobian_kernel(d));
+    if (d.loops()) kernels.push_back(constraint_force_jacobian_kernel(d));
   }
   return kernels;
 }

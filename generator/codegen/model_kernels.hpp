@@ -14,9 +14,10 @@
 
 namespace kanegen::codegen {
 
-/// In kernel-table order.
+/// In kernel-table order; the Jacobian kernels only with `jacobians`.
 std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Equations& equations,
-                                       const symbolic::Variables& vars, ExpressionGraph& graph);
+                                       const symbolic::Variables& vars, ExpressionGraph& graph,
+                                       bool jacobians = false);
 
 /// The code of `kernel` in `kernels`; throws std::logic_error if it is missing.
 const KernelCode& find_kernel(const std::vector<KernelCode>& kernels, Kernel kernel);

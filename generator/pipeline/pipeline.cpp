@@ -38,7 +38,8 @@ std::string read_file(const std::string& path) {
   return s.str();
 }
 
-GeneratedModel generate(const std::string& model_path, const model::LoadOptions& options) {
+GeneratedModel generate(const std::string& model_path, const model::LoadOptions& options,
+                        const GenerateOptions& generate_options) {
   GeneratedModel out;
   auto start = std::chrono::steady_clock::now();
   const model::Model model = model::load_model(model_path, options);
@@ -58,13 +59,13 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
   // Derive and emit with each way of summing M; keep the shorter code.
   const symbolic::Variables vars(model, elastic_counts);
   codegen::EmittedModel emitted;
-  std::size_t intermediates = 0;
-  int nq = 0, nu = 0;
+  symbolic::Program chosen_program;
+  kane::Equations chosen;
   for (kane::MassMatrixMethod method :
        {kane::MassMatrixMethod::body_frames, kane::MassMatrixMethod::world_projection}) {
     start = std::chrono::steady_clock::now();
     symbolic::Program program;
-    const kane::Equations equations = kane::derive_equations(model, vars, program, method, flexible);
+    kane::Equations equations = kane::derive_equations(model, vars, program, method, flexible);
     out.seconds.derive += seconds_since(start);
     start = std::chrono::steady_clock::now();
     codegen::EmittedModel candidate = codegen::emit_model(model, equations, vars, program, hash);
@@ -72,18 +73,24 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
     if (emitted.files.empty() || candidate.operations.at(codegen::Kernel::forward_dynamics) <
                                      emitted.operations.at(codegen::Kernel::forward_dynamics)) {
       emitted = std::move(candidate);
-      intermediates = program.size();
-      nq = equations.nq;
-      nu = equations.nu;
+      chosen_program = std::move(program);
+      chosen = std::move(equations);
     }
+  }
+  // The Jacobians only for the equations kept: differentiating both would
+  // double the cost of the option for code that is thrown away.
+  if (generate_options.jacobians) {
+    start = std::chrono::steady_clock::now();
+    emitted = codegen::emit_model(model, chosen, vars, chosen_program, hash, {true});
+    out.seconds.jacobians = seconds_since(start);
   }
 
   out.name = model.name;
   out.files = std::move(emitted.files);
   out.operations = std::move(emitted.operations);
-  out.intermediates = intermediates;
-  out.nq = nq;
-  out.nu = nu;
+  out.intermediates = chosen_program.size();
+  out.nq = chosen.nq;
+  out.nu = chosen.nu;
   return out;
 }
 

@@ -13,6 +13,7 @@ namespace kanegen::pipeline {
 
 struct StageTimes {
   double load = 0, derive = 0, emit = 0;  ///< seconds
+  double jacobians = 0;  ///< seconds: emitting again with the Jacobian kernels (0 without them)
 };
 
 struct GeneratedModel {
@@ -24,9 +25,17 @@ struct GeneratedModel {
   StageTimes seconds;
 };
 
+/// What to generate beyond the kernels every model has.
+struct GenerateOptions {
+  /// The Jacobian kernels of implicit integration (`kanegen generate
+  /// --jacobians`); off by default, since they can take longer to compile than the rest.
+  bool jacobians = false;
+};
+
 /// Runs every stage on the model file. Throws model::ModelError for a bad
 /// model; the caller writes the files (see codegen::write_files_atomically).
-GeneratedModel generate(const std::string& model_path, const model::LoadOptions& options = {});
+GeneratedModel generate(const std::string& model_path, const model::LoadOptions& options = {},
+                        const GenerateOptions& generate_options = {});
 
 /// Hex digest (64-bit FNV-1a) of a byte string; stable across machines.
 std::string digest(const std::string& bytes);

@@ -1,9 +1,10 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 # Regenerates MODEL with KANEGEN into a scratch directory and requires every
 # file to be byte-identical to the checked-in copy under EXPECTED_DIR.
-# Usage: cmake -DKANEGEN=... -DMODEL=... -DEXPECTED_DIR=... -DSCRATCH=... -P check_generated.cmake
+# Usage: cmake -DKANEGEN=... -DMODEL=... -DEXPECTED_DIR=... -DSCRATCH=... [-DOPTIONS=--jacobians]
+#              -P check_generated.cmake
 file(REMOVE_RECURSE ${SCRATCH})
-execute_process(COMMAND ${KANEGEN} generate ${MODEL} -o ${SCRATCH} --quiet RESULT_VARIABLE rc)
+execute_process(COMMAND ${KANEGEN} generate ${MODEL} -o ${SCRATCH} --quiet ${OPTIONS} RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "kanegen generate ${MODEL} failed (exit ${rc})")
 endif()
