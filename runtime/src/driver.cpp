@@ -15,6 +15,7 @@
 #include "kanegen/runtime/options.hpp"
 #include "kanegen/runtime/state_jacobian.hpp"
 #include "kanegen/runtime/text.hpp"
+#include "model_integrators.hpp"
 
 namespace kanegen::runtime {
 namespace {
@@ -195,6 +196,11 @@ SimulateArgs simulate_args(const ParsedOptions& p) {
   a.rho_inf = p.number("--rho-inf");
   if (o.rtol == 0 && o.atol == 0) throw UsageError("--rtol and --atol cannot both be zero");
   if (a.rho_inf > 1) throw UsageError("--rho-inf must be in [0, 1]");
+  if (a.method == Method::kGenAlpha) try {
+      detail::genalpha_steps(o);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
   return a;
 }
 
@@ -210,8 +216,9 @@ bool is_implicit(Method method) { return method == Method::kImplicit || method =
 void print_stats(std::FILE* err, Method method, const IntegrationResult& r) {
   const StepStats& s = r.stats;
   std::string line = std::string("stats: integrator=") + method_name(method) +
-                     " accepted=" + std::to_string(s.accepted) + " rejected=" + std::to_string(s.rejected) +
-                     " rhs_evals=" + std::to_string(s.rhs_evals);
+                     " accepted=" + std::to_string(s.accepted) + " rejected=" + std::to_string(s.rejected);
+  // genalpha evaluates residuals, not the right-hand side.
+  if (method != Method::kGenAlpha) line += " rhs_evals=" + std::to_string(s.rhs_evals);
   if (is_implicit(method))
     line += " newton_iterations=" + std::to_string(s.newton_iterations) +
             " newton_failures=" + std::to_string(s.newton_failures) +
@@ -221,24 +228,19 @@ void print_stats(std::FILE* err, Method method, const IntegrationResult& r) {
   print(err, line + " t=" + format_double(r.t) + "\n");
 }
 
-// The fixed-step methods that integrate the Model itself (genalpha.hpp):
-// not in this build yet.
-IntegrationResult run_fixed_step_model(Method method) {
-  throw UsageError(std::string("--integrator ") + method_name(method) + " is not available in this runtime");
-}
-
-// Integrates with the chosen method: the ODE methods on rhs, the implicit one
-// with the model's exact Jacobian.
+// Integrates with the chosen method: the explicit ones on rhs, the implicit
+// ones with the model's Jacobian kernels (model_integrators.hpp).
 IntegrationResult run_method(const Model& model, const SimulateArgs& a, const Rhs& rhs, double* x,
                              const IntegrationOptions& opt, const Observer& observer, const double* tau) {
   const int n = model.info().nq + model.info().nu;
-  if (a.method == Method::kGenAlpha) return run_fixed_step_model(a.method);
-  if (a.method != Method::kImplicit) return integrate(a.method, rhs, 0.0, x, n, opt, observer);
-  StateJacobian jacobian(model);
-  const Jacobian jac = [&](double t, const double* xs, double* J) {
-    return jacobian.evaluate(t, xs, tau, J);
-  };
-  return integrate(a.method, rhs, 0.0, x, n, opt, observer, jac);
+  try {
+    if (a.method == Method::kImplicit) return detail::integrate_implicit(model, rhs, tau, x, opt, observer);
+    if (a.method == Method::kGenAlpha)
+      return detail::integrate_genalpha(model, a.rho_inf, tau, x, opt, observer);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  return integrate(a.method, rhs, 0.0, x, n, opt, observer);
 }
 
 int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err) {

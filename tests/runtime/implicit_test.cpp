@@ -429,3 +429,33 @@ TEST_CASE("implicit: a model without Jacobian kernels is refused, saying how to 
   }
   CHECK_THROWS_WITH(StateJacobian(model), Catch::Contains("--jacobians"));
 }
+
+TEST_CASE("genalpha through the runner: a row per step, the slow mode, its statistics",
+          "[implicit][genalpha]") {
+  Model model(chain_table(true));
+  const Mode mode = slow_mode();
+  const Outcome o = run(model, {"simulate", "--t-end", "2", "--dt", "0.001", "--integrator", "genalpha",
+                                "--rho-inf", "0.8", "--stats"});
+  INFO(o.err);
+  REQUIRE(o.code == 0);
+  const auto table = rows(o.out);
+  REQUIRE(table.size() == 2001);
+  CHECK(table.back()[0] == Approx(2.0));
+  // Second order: the phase error after 2 s at omega h = 7e-4 is ~1e-7 of the amplitude.
+  for (const auto& row : table)
+    CHECK(row[1] == Approx(0.1 * std::cos(mode.omega * row[0]) * mode.v[0]).margin(1e-5));
+  CHECK(o.err.find("stats: integrator=genalpha accepted=2000 rejected=0") != std::string::npos);
+  CHECK(stat(o.err, "newton_iterations") >= 2000);
+  CHECK(stat(o.err, "lu_factorizations") > 0);
+}
+
+TEST_CASE("genalpha: t_end must be a whole number of steps; rho_inf in [0, 1]", "[implicit][genalpha]") {
+  Model model(chain_table(true));
+  Outcome o = run(model, {"simulate", "--t-end", "1.0005", "--dt", "0.001", "--integrator", "genalpha"});
+  CHECK(o.code == 2);
+  CHECK(o.out.empty());
+  CHECK(o.err.find("whole number of steps") != std::string::npos);
+  o = run(model, {"simulate", "--t-end", "1", "--integrator", "genalpha", "--rho-inf", "1.5"});
+  CHECK(o.code == 2);
+  CHECK(o.err.find("--rho-inf") != std::string::npos);
+}
