@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The adaptive implicit method: SUNDIALS CVODE's variable-order BDF (orders
-// 1 to 5, with its stability-limit detection for the lightly damped fast
-// modes of elastic links), Newton's iteration with a dense LU of I - gamma J
+// 1 to opt.max_order, 2 by default for the undamped fast modes of elastic
+// links: integrators.hpp), Newton's iteration with a dense LU of I - gamma J
 // and the caller's exact Jacobian. Closed loops are projected by CVODE's own
 // projection hook (CVodeSetProjFn) after each converged step and before its
 // error test, so that the Nordsieck history CVODE extrapolates from holds the
@@ -132,6 +132,7 @@ class Cvode {
         !check(CVodeSetStabLimDet(mem_, SUNTRUE), "CVodeSetStabLimDet") ||
         !check(CVodeSetMaxHnilWarns(mem_, -1), "CVodeSetMaxHnilWarns"))
       return false;
+    if (!check(CVodeSetMaxOrd(mem_, opt.max_order), "CVodeSetMaxOrd")) return false;
     if (opt.h0 > 0 && !check(CVodeSetInitStep(mem_, opt.h0), "CVodeSetInitStep")) return false;
     if (opt.h_min > 0 && !check(CVodeSetMinStep(mem_, opt.h_min), "CVodeSetMinStep")) return false;
     if (opt.h_max > 0 && !check(CVodeSetMaxStep(mem_, opt.h_max), "CVodeSetMaxStep")) return false;

@@ -187,6 +187,7 @@ SimulateArgs simulate_args(const ParsedOptions& p) {
   o.h_min = p.number("--h-min");
   o.h_max = p.number("--h-max");
   o.max_steps = p.integer("--max-steps");
+  o.max_order = static_cast<int>(std::min(p.integer("--max-order"), 6L));
   parse_method(p.text("--integrator"), &a.method);  // one of the table's choices
   a.sets = p.assignments("--set");
   a.q0 = p.assignments("--q0");
@@ -196,6 +197,7 @@ SimulateArgs simulate_args(const ParsedOptions& p) {
   a.rho_inf = p.number("--rho-inf");
   if (o.rtol == 0 && o.atol == 0) throw UsageError("--rtol and --atol cannot both be zero");
   if (a.rho_inf > 1) throw UsageError("--rho-inf must be in [0, 1]");
+  if (o.max_order > 5) throw UsageError("--max-order must be 1 to 5");
   if (a.method == Method::kGenAlpha) try {
       detail::genalpha_steps(o);
     } catch (const std::invalid_argument& e) {

@@ -58,6 +58,7 @@ std::string check_options(Method method, const IntegrationOptions& o, double t0,
   }
   if (!(o.h0 >= 0) || !(o.h_min >= 0) || !(o.h_max >= 0)) return "h0, h_min, h_max must be >= 0";
   if (o.max_steps <= 0) return "max_steps must be positive";
+  if (o.max_order < 1 || o.max_order > 5) return "max_order must be 1 to 5";
   if (!(o.safety > 0 && o.safety <= 1)) return "safety must be in (0, 1]";
   if (!(o.min_factor > 0 && o.min_factor <= 1) || !(o.max_factor >= 1))
     return "need 0 < min_factor <= 1 <= max_factor";

@@ -13,12 +13,36 @@ std::string missing_jacobians_message(const ModelInfo& info) {
          "'kanegen generate --jacobians' (kanegen simulate --integrator implicit|genalpha does it itself)";
 }
 
+std::vector<char> prescribed_coordinates(const Model& model) {
+  const ModelInfo& info = model.info();
+  std::vector<char> prescribed(static_cast<size_t>(std::max(info.nu, 0)), 0);
+  if (info.coordinate_roles) {
+    for (int i = 0; i < info.nu; ++i) prescribed[i] = info.coordinate_roles[i] == 2;
+    return prescribed;
+  }
+  const int m = info.nu;
+  std::vector<double> q(std::max(m, 1)), u(std::max(m, 1)), a(std::max(m, 1)), b(std::max(m, 1)),
+      tau(std::max(info.ntau, 1), 0.0);
+  model.initial_state(q.data(), u.data());
+  const double t = 0.1;
+  if (model.forward_dynamics(t, q.data(), u.data(), tau.data(), a.data()) != 0) return prescribed;
+  // Every component moved, by different amounts, so that no cancellation hides a dependence.
+  for (int i = 0; i < m; ++i) {
+    q[i] += 1e-3 * (1.0 + std::abs(q[i])) * (1.0 + 0.37 * i);
+    u[i] += 1e-2 * (1.0 + std::abs(u[i])) * (1.0 + 0.53 * i);
+  }
+  if (model.forward_dynamics(t, q.data(), u.data(), tau.data(), b.data()) != 0) return prescribed;
+  for (int i = 0; i < m; ++i) prescribed[i] = a[i] == b[i];
+  return prescribed;
+}
+
 StateJacobian::StateJacobian(const Model& model)
     : model_(model), m_(model.info().nu), nc_(model.info().nc), nf_(0) {
   if (!model.has_jacobians()) throw std::invalid_argument(missing_jacobians_message(model.info()));
   const ModelInfo& info = model.info();
+  const std::vector<char> prescribed = prescribed_coordinates(model);
   for (int i = 0; i < m_; ++i)
-    if (!info.coordinate_roles || info.coordinate_roles[i] != 2) free_.push_back(i);
+    if (!prescribed[i]) free_.push_back(i);
   nf_ = static_cast<int>(free_.size());
   const size_t m = static_cast<size_t>(std::max(m_, 1)), nc = static_cast<size_t>(std::max(nc_, 1));
   const size_t nf = static_cast<size_t>(std::max(nf_, 1));

@@ -16,12 +16,22 @@ namespace kanegen::runtime {
 /// Jacobian kernels), with what to do about it.
 std::string missing_jacobians_message(const ModelInfo& info);
 
+/// The coordinates whose acceleration is prescribed: info().coordinate_roles
+/// == 2 where the table has roles (closed loops). Generated open trees carry
+/// no roles, so there they are found by their defining property: an
+/// acceleration that forward_dynamics returns unchanged (bit for bit) when
+/// every coordinate and speed of the initial state is perturbed. A free
+/// coordinate whose acceleration truly never depends on the state is
+/// classified with them, which is harmless: its Jacobian row is zero either
+/// way, and the free block's rows stay exact. Empty vector: none.
+std::vector<char> prescribed_coordinates(const Model& model);
+
 /// J = d(x')/dx = [[0, I], [da/dq, da/du]], n = nq + nu (q' = u in every
 /// generated model, so nq == nu).
 ///
 ///  - Open trees: M a = f gives da/dq = M^-1 (df/dq - d(M a)/dq), da/du =
 ///    M^-1 df/du, exact.
-///  - Prescribed coordinates (role 2): their accelerations depend on t
+///  - Prescribed coordinates (prescribed_coordinates): their accelerations depend on t
 ///    only, so their rows are zero; the free rows use the free block M_FF
 ///    (the prescribed accelerations enter d(M a)/dq through a).
 ///  - Closed loops: M a = f + C^T lambda, C a = gamma. The rows are
