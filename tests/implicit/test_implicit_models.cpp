@@ -29,7 +29,7 @@ struct Run {
   IntegrationResult result;
   std::vector<double> t;
   std::vector<std::vector<double>> x;  ///< the rows, projected as the runner writes them
-  double worst_step_residual = 0.0;    ///< largest |Phi| of an accepted step (unprojected by the test)
+  double worst_step_residual = 0.0;    ///< largest |Phi| after a successful projection of a step
 };
 
 // Integrates `model` from its initial state (changed by `adjust`, then
@@ -50,8 +50,9 @@ Run simulate(Model& model, Method method, double t_end, double dt, double rtol,
   opt.atol = rtol * 1e-2;
   if (loops.active())
     opt.project = [&](double, double* s, std::string* why) {
+      // A failed projection makes CVODE retry the step, smaller: count the accepted ones.
       const bool ok = loops.project(s, s + nq, why);
-      run.worst_step_residual = std::max(run.worst_step_residual, loops.residual(s));
+      if (ok) run.worst_step_residual = std::max(run.worst_step_residual, loops.residual(s));
       return ok;
     };
   std::vector<double> tau(std::max(model.info().ntau, 1), 0.0);
@@ -136,7 +137,7 @@ TEST_CASE("implicit: Simeon's finite-element crank matches the IVP test set at t
     return a[2] * 4 * xi * (1 - xi) + a[3] * xi * (2 * xi - 1);
   };
   const int nq = model.info().nq;
-  const Run run = simulate(model, Method::kImplicit, 0.1, 0.01, 1e-7, [&](double* x) {
+  const Run run = simulate(model, Method::kImplicit, 0.1, 0.01, 1e-3, [&](double* x) {
     x[1] = q0[1] - q0[0];
     x[nq + 1] = u0[1] - u0[0];
     x[nq + 2] = u0[2];
@@ -153,7 +154,8 @@ TEST_CASE("implicit: Simeon's finite-element crank matches the IVP test set at t
   REQUIRE(run.t.back() == 0.1);
   const std::vector<double>& x = run.x.back();
   const double phi2 = x[0] + x[1], x3 = x[2];
-  INFO("phi2 " << phi2 << ", x3 " << x3 << "; " << run.result.stats.accepted << " steps");
+  WARN("implicit, Simeon FE: phi2 " << relative(phi2, phi2_ref) << ", x3 " << relative(x3, x3_ref) << "; "
+                                    << run.result.stats.accepted << " steps");
   CHECK(relative(phi2, phi2_ref) < 1e-4);
   CHECK(relative(x3, x3_ref) < 1e-4);
   CHECK(run.worst_step_residual < 1e-10);
