@@ -7,6 +7,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "kanegen/runtime/state_jacobian.hpp"
+
 namespace kanegen::runtime {
 namespace {
 
@@ -162,9 +164,10 @@ GenAlpha::GenAlpha(const Model& model, const GenAlphaOptions& options)
 
   const size_t n = static_cast<size_t>(n_dof_), nc = static_cast<size_t>(nc_),
                dim = static_cast<size_t>(dim_);
-  prescribed_.assign(n, 0);
+  // Open trees carry no coordinate_roles: prescribed_coordinates() finds
+  // their prescribed coordinates too (the spin-up beam's hub).
+  prescribed_ = prescribed_coordinates(model);
   for (int i = 0; i < n_dof_; ++i) {
-    prescribed_[i] = info.coordinate_roles && info.coordinate_roles[i] == 2;
     if (prescribed_[i])
       any_prescribed_ = true;
     else
