@@ -305,7 +305,7 @@ TEST_CASE("implicit: stiff scalar ODE against its exact solution, in few steps",
   CHECK(r.stats.factorizations >= r.stats.jacobian_evaluations);
 }
 
-TEST_CASE("implicit: needs a Jacobian; genalpha is not an ODE method", "[implicit]") {
+TEST_CASE("implicit: needs a Jacobian, and genalpha is not an ODE method", "[implicit]") {
   const Rhs rhs = [](double, const double* x, double* xdot) {
     xdot[0] = -x[0];
     return true;
@@ -325,7 +325,7 @@ TEST_CASE("implicit: needs a Jacobian; genalpha is not an ODE method", "[implici
   CHECK(std::string(method_name(Method::kImplicit)) == "implicit");
 }
 
-TEST_CASE("implicit: a failing step names the time and state; the observer's rows stay", "[implicit]") {
+TEST_CASE("implicit: a failing step names the time and state, and the rows before it stay", "[implicit]") {
   // x' = x^2 blows up at t = 1: the step size falls to its minimum there.
   const Rhs rhs = [](double, const double* x, double* xdot) {
     xdot[0] = x[0] * x[0];
@@ -451,7 +451,7 @@ TEST_CASE("genalpha through the runner: a row per step, the slow mode, its stati
   CHECK(stat(o.err, "lu_factorizations") > 0);
 }
 
-TEST_CASE("genalpha: t_end must be a whole number of steps; rho_inf in [0, 1]", "[implicit][genalpha]") {
+TEST_CASE("genalpha: t_end must be a whole number of steps, and rho_inf at most 1", "[implicit][genalpha]") {
   Model model(chain_table(true));
   Outcome o = run(model, {"simulate", "--t-end", "1.0005", "--dt", "0.001", "--integrator", "genalpha"});
   CHECK(o.code == 2);
