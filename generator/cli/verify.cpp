@@ -11,6 +11,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "cli/verify_jacobians.hpp"
 #include "cli/verify_power.hpp"
 #include "cli/verify_report.hpp"
 #include "cli/verify_runner.hpp"
@@ -738,15 +739,35 @@ Row power_balance_row(RunnerProcess& process, const std::vector<Sample>& samples
   return power;
 }
 
-/// Constraint Jacobians are compared with central differences of their
-/// functions (numeric/finite_difference.hpp) once the kernels emit any:
-/// one more row per Jacobian, evaluated through the batch protocol.
-Row jacobians_row(const Link& link, double rtol) {
-  Row jacobians("Jacobians", "finite differences", rtol);
-  jacobians.applicable = false;
-  jacobians.note = link.constraints.empty() ? "none emitted (tree)"
-                                            : "constraint_jacobian is compared with dual numbers above";
-  return jacobians;
+/// The Jacobian kernels are compared at this many of the samples (each
+/// costs 8 numeric evaluations per coordinate).
+constexpr int kJacobianSamples = 10;
+/// Their tolerance when --rtol is smaller: that of the differences they are
+/// compared with (the round-off of the differences is allowed for apart).
+constexpr double kJacobianTolerance = 1e-6;
+
+/// The Jacobian kernels against differences of the numeric path (verify_jacobians.hpp), if the kernels have
+/// them.
+void add_jacobian_rows(RunnerProcess& process, const json& info, const numeric::Instance& base,
+                       const Link& link, const std::vector<Sample>& samples, const VerifyOptions& o,
+                       std::vector<Row>& rows) {
+  if (!info.value("jacobians", false)) {
+    rows.push_back(jacobians_absent_row(o.build.jacobians));
+    return;
+  }
+  JacobianCheck check;
+  check.coordinates = link.coordinates;
+  check.size = elastic_scales(base);
+  check.joints = base.joint_coordinates();
+  for (int r = 0; r < check.joints; ++r) check.size[r] = 1.0;
+  check.tolerance = std::max(o.rtol, kJacobianTolerance);
+  check.seed = o.seed;
+  std::vector<JacobianPoint> points;
+  for (int i = 0; i < std::min(o.samples, kJacobianSamples); ++i)
+    points.push_back({&samples[i].instance, samples[i].state, samples[i].runner_tau, samples[i].runner_p, i});
+  progress(o, "the Jacobian kernels at " + std::to_string(points.size()) +
+                  " states against differences of the numeric path ...");
+  for (Row& r : jacobian_rows(process, points, check)) rows.push_back(std::move(r));
 }
 
 /// Each failed row's message, with the state it failed at.
@@ -799,7 +820,7 @@ int verify(const VerifyOptions& o) {
   rows.push_back(defaults_row(model, base, link, info, o.rtol));
   add_comparison_rows(Comparison(link, samples, o.rtol), link, rows);
   rows.push_back(power_balance_row(process, samples, o));
-  rows.push_back(jacobians_row(link, o.rtol));
+  add_jacobian_rows(process, info, base, link, samples, o, rows);
   process.finish();
 
   const std::vector<std::string> failures = failures_of(rows, model, samples);

@@ -359,6 +359,8 @@ std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Eq
     kernels.push_back(constrained);
   }
   if (jacobians) {
+    // d/dq of the kernels is the whole Jacobian only because q_dot = u.
+    if (eq.nq != eq.nu) throw std::logic_error("the Jacobian kernels need q_dot = u (nq == nu)");
     kernels.push_back(forcing_jacobian_kernel(d));
     kernels.push_back(mass_matrix_product_jacobian_kernel(d));
     if (d.loops()) kernels.push_back(constraint_force_jacobian_kernel(d));

@@ -138,6 +138,9 @@ struct Request {
   bool has_p = false;
   Selection selection = Selection::all;
   bool hessian = false;
+  /// The Jacobian kernels, with the fixed vectors of the products they differentiate.
+  bool jacobians = false;
+  std::vector<double> jacobian_a, jacobian_lambda;
 };
 
 std::vector<double> numbers(const std::map<std::string, Value>& m, const char* key, int n, bool required) {
@@ -154,14 +157,35 @@ std::vector<double> numbers(const std::map<std::string, Value>& m, const char* k
   return found->second.xs;
 }
 
+/// "jacobians": true asks for the Jacobian kernels, at the fixed vectors
+/// "jacobian_a" (nu, required) and "jacobian_lambda" (nc, required with loops).
+void parse_jacobians(const std::map<std::string, Value>& m, const ModelInfo& info, Request& r) {
+  if (const auto j = m.find("jacobians"); j != m.end()) {
+    if (j->second.kind != Value::boolean) throw std::invalid_argument("\"jacobians\" must be true or false");
+    r.jacobians = j->second.flag;
+  }
+  r.jacobian_a = numbers(m, "jacobian_a", info.nu, r.jacobians);
+  r.jacobian_lambda = numbers(m, "jacobian_lambda", info.nc, r.jacobians && info.nc > 0);
+}
+
 Request parse_request(const std::string& line, const ModelInfo& info) {
   const std::map<std::string, Value> m = RequestParser(line).object();
   for (const auto& member : m) {
     const std::string& key = member.first;
-    static const char* const known[] = {"t", "q", "u", "tau", "p", "eval", "kinetic_energy_hessian"};
+    static const char* const known[] = {"t",
+                                        "q",
+                                        "u",
+                                        "tau",
+                                        "p",
+                                        "eval",
+                                        "kinetic_energy_hessian",
+                                        "jacobians",
+                                        "jacobian_a",
+                                        "jacobian_lambda"};
     if (std::none_of(std::begin(known), std::end(known), [&](const char* k) { return key == k; }))
-      throw std::invalid_argument("unknown key \"" + key +
-                                  "\"; known: t, q, u, tau, p, eval, kinetic_energy_hessian");
+      throw std::invalid_argument(
+          "unknown key \"" + key +
+          "\"; known: t, q, u, tau, p, eval, kinetic_energy_hessian, jacobians, jacobian_a, jacobian_lambda");
   }
   Request r;
   if (const auto t = m.find("t"); t != m.end()) {
@@ -184,6 +208,7 @@ Request parse_request(const std::string& line, const ModelInfo& info) {
       throw std::invalid_argument("\"kinetic_energy_hessian\" must be true or false");
     r.hessian = h->second.flag;
   }
+  parse_jacobians(m, info, r);
   return r;
 }
 
@@ -220,6 +245,30 @@ std::vector<double> kinetic_hessian(const Model& model, const double* q, int n) 
     }
   }
   return h;
+}
+
+/// The Jacobian kernels' matrices (nu x nq, and nq = nu), or an error if the
+/// model was generated without them.
+template <class Field>
+void add_jacobians(const Model& model, const Request& r, const std::vector<double>& q,
+                   const std::vector<double>& u, const std::vector<double>& tau, const Field& field) {
+  if (!model.has_jacobians())
+    throw std::invalid_argument("the model has no Jacobian kernels; generate it with --jacobians");
+  const int n = model.info().nu;
+  const size_t m = static_cast<size_t>(std::max(n, 1));
+  std::vector<double> dfdq(m * m), dfdu(m * m), dMa(m * m), a = r.jacobian_a, lambda = r.jacobian_lambda;
+  a.resize(m);
+  lambda.resize(std::max<size_t>(lambda.size(), 1));
+  model.forcing_jacobian(r.t, q.data(), u.data(), tau.data(), dfdq.data(), dfdu.data());
+  model.mass_matrix_product_jacobian(q.data(), a.data(), dMa.data());
+  field("forcing_jacobian_q", matrix_json(dfdq, n));
+  field("forcing_jacobian_u", matrix_json(dfdu, n));
+  field("mass_matrix_product_jacobian", matrix_json(dMa, n));
+  if (model.info().nc > 0) {
+    std::vector<double> dCl(m * m);
+    model.constraint_force_jacobian(q.data(), lambda.data(), dCl.data());
+    field("constraint_force_jacobian", matrix_json(dCl, n));
+  }
 }
 
 std::string respond(Model& model, const Request& r, const std::vector<double>& defaults) {
@@ -273,6 +322,7 @@ std::string respond(Model& model, const Request& r, const std::vector<double>& d
     field("potential_energy", json_number(model.potential_energy(q.data())));
   }
   if (r.hessian) field("kinetic_energy_hessian", matrix_json(kinetic_hessian(model, q.data(), n), n));
+  if (r.jacobians) add_jacobians(model, r, q, u, tau, field);
   return out + "}\n";
 }
 

@@ -393,7 +393,8 @@ int info_command(const Model& model, std::FILE* out) {
                  ", \"parameters\": " + json_names(i.parameter_names, i.np) +
                  ", \"parameter_defaults\": " + json_numbers(defaults.data(), i.np) +
                  ", \"q0\": " + json_numbers(i.q0, i.nq) + ", \"u0\": " + json_numbers(i.u0, i.nu) + ", " +
-                 size("nc", i.nc) + ", \"constraints\": " + json_names(i.constraint_names, i.nc) + "}\n");
+                 size("nc", i.nc) + ", \"constraints\": " + json_names(i.constraint_names, i.nc) +
+                 ", \"jacobians\": " + (model.has_jacobians() ? "true" : "false") + "}\n");
   return 0;
 }
 

@@ -65,6 +65,23 @@ TEST_CASE("generate writes a header, a source and a runner", "[cli]") {
   CHECK(slurp(dir / "double_pendulum.hpp").find("struct Params") != std::string::npos);
 }
 
+TEST_CASE("generate --jacobians adds the Jacobian kernels, and only then", "[cli][jacobians]") {
+  const fs::path plain = scratch() / "gen_plain", with = scratch() / "gen_jacobians";
+  REQUIRE(kanegen("generate " + model("four_bar.json") + " -o " + plain.string() + " --quiet").status == 0);
+  const Result r = kanegen("generate " + model("four_bar.json") + " -o " + with.string() + " --jacobians");
+  REQUIRE(r.status == 0);
+  for (const char* kernel :
+       {"forcing_jacobian", "mass_matrix_product_jacobian", "constraint_force_jacobian"}) {
+    INFO(kernel);
+    CHECK(r.out.find(kernel) != std::string::npos);  // its operation count
+    CHECK(slurp(with / "four_bar.hpp").find(std::string("void ") + kernel) != std::string::npos);
+    CHECK(slurp(with / "four_bar.hpp").find(std::string("table.") + kernel) != std::string::npos);
+    CHECK(slurp(plain / "four_bar.hpp").find(kernel) == std::string::npos);
+  }
+  CHECK(kanegen("generate --help").out.find("--jacobians") != std::string::npos);
+  CHECK(kanegen("verify --help").out.find("--jacobians") != std::string::npos);
+}
+
 TEST_CASE("eval of the simple pendulum matches the closed form", "[cli]") {
   const double q = 0.7, u = 1.3, m = 1.0, l = 1.0, g = 9.81;
   const Result r = kanegen("eval " + model("simple_pendulum.json") + " --q 0.7 --u 1.3 --quiet");

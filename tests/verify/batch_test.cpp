@@ -96,6 +96,9 @@ TEST_CASE("batch: a bad line gives an error answer, the others are still answere
       "[1, 2]",                                       // not an object
       "{\"q\": [0.3], \"u\": [1]} trailing",
       "{\"q\": [0.3], \"q\": [0.3], \"u\": [1]}",  // duplicate key
+      // Jacobians of a model generated without them (and without the fixed vector a)
+      "{\"q\": [0.3], \"u\": [1], \"jacobians\": true, \"jacobian_a\": [1]}",
+      "{\"q\": [0.3], \"u\": [1], \"jacobians\": true}",
   };
   for (const char* line : bad) {
     INFO(line);

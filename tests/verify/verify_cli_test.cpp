@@ -443,3 +443,79 @@ TEST_CASE("corruption: a term of constraint_bias off by 1e-4 fails, naming it",
   CHECK(contains(r.err, "error: constraint_bias"));
   CHECK_FALSE(contains(r.err, "error: constraint_jacobian"));
 }
+
+namespace {
+
+/// Generates the model's kernels with the Jacobian kernels into a fresh scratch directory.
+fs::path generate_with_jacobians(const std::string& model, const std::string& name) {
+  const fs::path dir = scratch() / name;
+  fs::remove_all(dir);
+  const Result r = kanegen("generate " + source(model) + " -o " + dir.string() + " --quiet --jacobians");
+  REQUIRE(r.status == 0);
+  return dir;
+}
+
+const char* const kJacobianRows[] = {"forcing_jacobian df/dq", "forcing_jacobian df/du", "d(M a)/dq",
+                                     "d(C^T lambda)/dq"};
+
+}  // namespace
+
+TEST_CASE("verify --jacobians compares the Jacobian kernels with the numeric path", "[verify][jacobians]") {
+  // Closed loop with a prescribed crank: every Jacobian kernel.
+  const Result r =
+      kanegen("verify " + source("models/slider_crank.json") + " --jacobians --samples 12 --json");
+  INFO(r.out << r.err);
+  REQUIRE(r.status == 0);
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  CHECK(j["passed"].get<bool>());
+  for (const char* row : kJacobianRows) {
+    bool found = false;
+    for (const auto& q : j["quantities"]) {
+      if (q["quantity"] != row) continue;
+      found = true;
+      CHECK(q["applicable"].get<bool>());
+      CHECK(q["compared"] == 10);  // at the first 10 samples
+    }
+    INFO(row);
+    CHECK(found);
+  }
+}
+
+TEST_CASE("verify without --jacobians says the Jacobians are not generated", "[verify][jacobians]") {
+  const Result r = kanegen("verify " + source("models/simple_pendulum.json") + " --samples 5 --quiet");
+  REQUIRE(r.status == 0);
+  CHECK(contains(r.out, "not generated (kanegen verify --jacobians checks them)"));
+}
+
+TEST_CASE("corruption: a stiffness literal of forcing_jacobian off by 1e-4 fails, naming it",
+          "[verify][corruption][jacobians]") {
+  const std::string model = "tests/data/models/flex_hub_planar.json";
+  const fs::path dir = generate_with_jacobians(model, "jacobian_stiffness");
+  scale_literal(dir / "flex_hub_planar.cpp", "void forcing_jacobian", "", 1000.0, 1 + 1e-4);
+  const Result r =
+      kanegen("verify " + source(model) + " --kernels " + dir.string() + " --samples 20 --quiet");
+  INFO(r.out << r.err);
+  CHECK(r.status == 1);
+  CHECK(contains(r.err, "error: forcing_jacobian df/d"));
+  CHECK_FALSE(contains(r.err, "error: forcing ["));  // forcing itself is a separate kernel
+}
+
+TEST_CASE("corruption: a sign in d(M a)/dq or d(C^T lambda)/dq fails, naming it",
+          "[verify][corruption][jacobians]") {
+  const std::string model = "models/slider_crank.json";
+  const fs::path dir = generate_with_jacobians(model, "jacobian_sign");
+  const std::string kernels[] = {"mass_matrix_product_jacobian", "constraint_force_jacobian"};
+  const std::string rows[] = {"d(M a)/dq", "d(C^T lambda)/dq"};
+  for (int k = 0; k < 2; ++k) {
+    const fs::path copy = scratch() / ("jacobian_sign_" + std::to_string(k));
+    fs::remove_all(copy);
+    fs::copy(dir, copy);
+    // The first entry the kernel assigns, negated.
+    corrupt(copy / "slider_crank.cpp", "void " + kernels[k], "\\[[0-9]+\\] = ", "$&-1.0*");
+    const Result r =
+        kanegen("verify " + source(model) + " --kernels " + copy.string() + " --samples 12 --quiet");
+    INFO(kernels[k] << "\n" << r.out << r.err);
+    CHECK(r.status == 1);
+    CHECK(contains(r.err, "error: " + rows[k]));
+  }
+}
