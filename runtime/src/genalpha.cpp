@@ -162,17 +162,21 @@ GenAlpha::GenAlpha(const Model& model, const GenAlphaOptions& options)
 
   const size_t n = static_cast<size_t>(n_dof_), nc = static_cast<size_t>(nc_),
                dim = static_cast<size_t>(dim_);
+  for (auto* v : {&q_, &u_, &vd_, &a_, &q1_, &u1_, &vd1_, &a1_, &f_, &given_}) v->assign(n, 0.0);
+  for (auto* v : {&lam_, &lam1_, &phi_, &given_lambda_, &y_}) v->assign(std::max<size_t>(nc, 1), 0.0);
+  for (auto* v : {&M_, &dfdq_, &dfdu_, &dMa_, &dCl_, &chol_}) v->assign(n * n, 0.0);
   prescribed_.assign(n, 0);
+  if (info.coordinate_roles) {
+    for (int i = 0; i < n_dof_; ++i) prescribed_[i] = info.coordinate_roles[i] == 2;
+  } else if (nc_ == 0) {  // generated models with loops always have roles
+    detect_prescribed();
+  }
   for (int i = 0; i < n_dof_; ++i) {
-    prescribed_[i] = info.coordinate_roles && info.coordinate_roles[i] == 2;
     if (prescribed_[i])
       any_prescribed_ = true;
     else
       free_.push_back(i);
   }
-  for (auto* v : {&q_, &u_, &vd_, &a_, &q1_, &u1_, &vd1_, &a1_, &f_, &given_}) v->assign(n, 0.0);
-  for (auto* v : {&lam_, &lam1_, &phi_, &given_lambda_, &y_}) v->assign(std::max<size_t>(nc, 1), 0.0);
-  for (auto* v : {&M_, &dfdq_, &dfdu_, &dMa_, &dCl_, &chol_}) v->assign(n * n, 0.0);
   C_.assign(std::max<size_t>(nc * n, 1), 0.0);
   w_.assign(std::max<size_t>(nc * n, 1), 0.0);
   g_.assign(std::max<size_t>(nc * nc, 1), 0.0);
@@ -189,6 +193,32 @@ std::string GenAlpha::state() const {
     s += (i ? ", " : "") + std::string(info.coordinate_names[i]) + "=" + number(q_[i]);
   for (int i = 0; i < n_dof_; ++i) s += ", " + std::string(info.speed_names[i]) + "=" + number(u_[i]);
   return s + "]";
+}
+
+void GenAlpha::detect_prescribed() {
+  const int n = n_dof_;
+  std::vector<double> q(n), u(n), udot(n), tau(std::max(model_.info().ntau, 1), 0.0);
+  for (int trial = 0; trial < 2; ++trial) {
+    // A generic state near the initial one, where a driving force vanishes
+    // only by accident (and then, at both states, the motion is free anyway).
+    model_.initial_state(q.data(), u.data());
+    for (int i = 0; i < n; ++i) {
+      q[i] += 0.01 * std::sin(1.3 * i + 0.7 * trial + 1.0);
+      u[i] += 0.1 * std::cos(0.9 * i + 1.1 * trial + 0.5);
+    }
+    const double t = 0.37 + 0.61 * trial;
+    if (model_.forward_dynamics(t, q.data(), u.data(), tau.data(), udot.data()) != 0) continue;
+    model_.mass_matrix(q.data(), M_.data());
+    model_.forcing(t, q.data(), u.data(), tau.data(), f_.data());
+    for (int i = 0; i < n; ++i) {
+      double r = -f_[i], scale = std::abs(f_[i]);
+      for (int j = 0; j < n; ++j) {
+        r += M_[i * n + j] * udot[j];
+        scale += std::abs(M_[i * n + j] * udot[j]);
+      }
+      if (std::abs(r) > 1e-8 * scale) prescribed_[i] = 1;  // LDL^T solves a free row to round-off
+    }
+  }
 }
 
 bool GenAlpha::fail(const std::string& reason, std::string* why) {
@@ -304,6 +334,13 @@ bool GenAlpha::refresh(double t1, const double* tau) {
     std::copy(&C_[static_cast<size_t>(k) * n], &C_[static_cast<size_t>(k) * n] + n, row);
     std::fill(row + n, row + dim, 0.0);
   }
+  // A prescribed coordinate's column goes too (its increment is 0): with
+  // only its row's 1 left, pivoting cannot mix it into the other rows, and
+  // the solve gives exactly 0 instead of round-off of the size of the
+  // elastic accelerations, which fed back through the hub and grew.
+  for (int j = 0; j < n; ++j)
+    if (prescribed_[j])
+      for (int i = 0; i < dim; ++i) lu_[static_cast<size_t>(i) * dim + j] = i == j ? 1.0 : 0.0;
   ++stats_.factorizations;
   int column = 0;
   factored_ = lu_factor(lu_.data(), dim, pivots_.data(), &column);

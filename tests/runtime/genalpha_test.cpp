@@ -393,6 +393,18 @@ TEST_CASE("genalpha: the prescribed coordinate follows its motion", "[genalpha]"
   CHECK(worst < 1e-6);  // second order in h from the given acceleration
 }
 
+TEST_CASE("genalpha: finds the prescribed coordinates of a model without roles", "[genalpha]") {
+  // Generated open trees carry no coordinate_roles (only models with loops do).
+  ModelTable prescribed = cart_pendulum_table(true);
+  prescribed.coordinate_roles = nullptr;
+  Model with(prescribed), without(cart_pendulum_table(false));
+  const GenAlpha a(with, options(1e-3, 0.8)), b(without, options(1e-3, 0.8));
+  CHECK(a.prescribed(0));
+  CHECK_FALSE(a.prescribed(1));
+  CHECK_FALSE(b.prescribed(0));
+  CHECK_FALSE(b.prescribed(1));
+}
+
 TEST_CASE("genalpha: options and models it cannot use", "[genalpha]") {
   Model chain(chain_table());
   CHECK_THROWS_AS(GenAlpha(chain, options(0.0, 0.8)), std::invalid_argument);

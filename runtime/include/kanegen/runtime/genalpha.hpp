@@ -63,7 +63,8 @@ GenAlphaCoefficients genalpha_coefficients(double rho_inf);
 ///     while (ga.t() < t_end)
 ///       if (!ga.step(tau, &why)) ...         // no allocation on success
 ///
-/// Prescribed coordinates (info().coordinate_roles == 2) follow their given
+/// Prescribed coordinates (info().coordinate_roles == 2; open trees, which
+/// have no roles, are probed, see detect_prescribed) follow their given
 /// acceleration, which forward_dynamics reports, as in the explicit
 /// methods. The model must have been generated with Jacobians.
 class GenAlpha {
@@ -91,9 +92,15 @@ class GenAlpha {
   const double* udot() const { return vd_.data(); }     ///< nu, the acceleration at t()
   const double* lambda() const { return lam_.data(); }  ///< nc, the loop multipliers at t()
   const ImplicitStats& stats() const { return stats_; }
+  /// Whether coordinate i follows a prescribed motion (not solved for).
+  bool prescribed(int i) const { return prescribed_[static_cast<size_t>(i)] != 0; }
   const GenAlphaOptions& options() const { return opt_; }
 
  private:
+  /// Generated open trees carry no coordinate_roles: a coordinate is prescribed if
+  /// forward_dynamics leaves its row of M u_dot = f unsolved (the residual
+  /// is the driving force) at two generic states. Allocates (constructor only).
+  void detect_prescribed();
   /// The trial state at t1 from the committed one, with the acceleration
   /// of the last step as the guess (the given one for prescribed speeds).
   void predict(double t1, const double* tau);
