@@ -50,16 +50,27 @@ bool lu_factor(double* A, int n, int* pivots, int* column) {
   return true;
 }
 
-/// b := A^-1 b from the factors of lu_factor.
-void lu_solve(const double* LU, int n, const int* pivots, double* b) {
+/// T := the transpose of the n x n row-major A.
+void transpose(const double* A, int n, double* T) {
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) T[j * n + i] = A[i * n + j];
+}
+
+/// b := A^-1 b from the factors of lu_factor, transposed (LUt = (LU)^T):
+/// the substitutions then run down contiguous columns of L and U with
+/// independent updates, which vectorize, instead of strided or dependent
+/// ones. The factorization's row swaps moved whole rows, multipliers
+/// included, so all of them apply to b before the forward substitution.
+void lu_solve(const double* LUt, int n, const int* pivots, double* b) {
+  for (int k = 0; k < n; ++k) std::swap(b[k], b[pivots[k]]);
   for (int k = 0; k < n; ++k) {
-    std::swap(b[k], b[pivots[k]]);
-    for (int i = k + 1; i < n; ++i) b[i] -= LU[i * n + k] * b[k];
+    const double* column = &LUt[k * n];
+    for (int i = k + 1; i < n; ++i) b[i] -= column[i] * b[k];
   }
-  for (int i = n - 1; i >= 0; --i) {
-    double s = b[i];
-    for (int j = i + 1; j < n; ++j) s -= LU[i * n + j] * b[j];
-    b[i] = s / LU[i * n + i];
+  for (int k = n - 1; k >= 0; --k) {
+    const double* column = &LUt[k * n];
+    b[k] /= column[k];
+    for (int i = 0; i < k; ++i) b[i] -= column[i] * b[k];
   }
 }
 
@@ -183,6 +194,7 @@ GenAlpha::GenAlpha(const Model& model, const GenAlphaOptions& options)
   used_.assign(std::max<size_t>(nc, 1), 0);
   rhs_.assign(dim, 0.0);
   lu_.assign(dim * dim, 0.0);
+  lut_.assign(dim * dim, 0.0);
   pivots_.assign(dim, 0);
 }
 
@@ -293,16 +305,22 @@ void GenAlpha::residual(double t1, const double* tau) {
     model_.constraint_jacobian(q1_.data(), C_.data());
     model_.constraints(q1_.data(), phi_.data());
   }
-  for (int i = 0; i < n; ++i) {
-    if (prescribed_[i]) {  // its row is the driving force, not an equation
-      rhs_[i] = 0.0;
-      continue;
-    }
-    double r = -f_[i];
-    for (int j = 0; j < n; ++j) r += M_[i * n + j] * vd1_[j];
-    for (int k = 0; k < nc_; ++k) r -= C_[k * n + i] * lam1_[k];
-    rhs_[i] = -r;
+  // rhs = f + C^T lambda - M udot, column by column: M is symmetric, so its
+  // rows serve as columns, and the updates are independent (vectorized)
+  // instead of one chain of dependent additions per row.
+  std::copy(f_.begin(), f_.end(), rhs_.begin());
+  for (int j = 0; j < n; ++j) {
+    const double v = vd1_[j];
+    const double* column = &M_[static_cast<size_t>(j) * n];
+    for (int i = 0; i < n; ++i) rhs_[i] -= column[i] * v;
   }
+  for (int k = 0; k < nc_; ++k) {
+    const double l = lam1_[k];
+    const double* row = &C_[static_cast<size_t>(k) * n];
+    for (int i = 0; i < n; ++i) rhs_[i] += row[i] * l;
+  }
+  for (int i = 0; i < n; ++i)
+    if (prescribed_[i]) rhs_[i] = 0.0;  // its row is the driving force, not an equation
   for (int k = 0; k < nc_; ++k) rhs_[n + k] = -beta_p_ * phi_[k];
 }
 
@@ -344,6 +362,7 @@ bool GenAlpha::refresh(double t1, const double* tau) {
   ++stats_.factorizations;
   int column = 0;
   factored_ = lu_factor(lu_.data(), dim, pivots_.data(), &column);
+  if (factored_) transpose(lu_.data(), dim, lut_.data());
   return factored_;
 }
 
@@ -413,7 +432,7 @@ bool GenAlpha::newton(double t1, const double* tau, std::string* reason) {
       if (!refresh(t1, tau)) return refuse(reason, "the iteration matrix is singular");
       refresh_now = stale = false;
     }
-    lu_solve(lu_.data(), dim_, pivots_.data(), rhs_.data());
+    lu_solve(lut_.data(), dim_, pivots_.data(), rhs_.data());
     norm = apply_increment();
     ++stats_.newton_iterations;
     if (!std::isfinite(norm)) return refuse(reason, "the Newton increment is not finite");

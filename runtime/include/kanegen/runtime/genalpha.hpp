@@ -140,7 +140,8 @@ class GenAlpha {
   // Workspace, all sized in the constructor.
   std::vector<double> M_, f_, C_, phi_, rhs_;
   std::vector<double> dfdq_, dfdu_, dMa_, dCl_;
-  std::vector<double> lu_;  ///< the iteration matrix, dim_ x dim_, then its LU factors
+  std::vector<double> lu_;   ///< the iteration matrix, dim_ x dim_, then its LU factors
+  std::vector<double> lut_;  ///< the LU factors transposed, for the solves
   std::vector<int> pivots_;
   std::vector<double> given_, given_lambda_;  ///< forward_dynamics output for the prescribed accelerations
   std::vector<double> chol_, w_, g_, y_;      ///< speed correction: chol(M_ff), M_ff^-1 C^T, C M^-1 C^T
