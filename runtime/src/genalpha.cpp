@@ -196,6 +196,7 @@ GenAlpha::GenAlpha(const Model& model, const GenAlphaOptions& options)
   lu_.assign(dim * dim, 0.0);
   lut_.assign(dim * dim, 0.0);
   pivots_.assign(dim, 0);
+  no_inputs_.assign(static_cast<size_t>(std::max(info.ntau, 1)), 0.0);
 }
 
 std::string GenAlpha::state() const {
@@ -250,6 +251,7 @@ double GenAlpha::constraint_residual(const double* q) {
 }
 
 bool GenAlpha::start(double t0, const double* q, const double* u, const double* tau, std::string* why) {
+  if (!tau) tau = no_inputs_.data();
   started_ = false;
   factored_ = false;
   refresh_next_ = false;
@@ -468,6 +470,7 @@ bool GenAlpha::newton(double t1, const double* tau, std::string* reason) {
 
 bool GenAlpha::step(const double* tau, std::string* why) {
   if (!started_) return fail("genalpha: step() before a successful start()", why);
+  if (!tau) tau = no_inputs_.data();
   const double t1 = t0_ + static_cast<double>(n_ + 1) * opt_.h;
   predict(t1, tau);
   std::string reason;

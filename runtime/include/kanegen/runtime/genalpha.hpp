@@ -76,11 +76,12 @@ class GenAlpha {
   /// Starts at (t0, q, u): q must close the loops (|Phi| <= 1e-10, e.g.
   /// from LoopSolver::assemble); u is corrected to C u = 0 (least kinetic
   /// energy). The initial acceleration comes from constrained_dynamics.
+  /// tau: ntau inputs, or null for all zero.
   /// False, with the reason in *why (if not null), otherwise.
   bool start(double t0, const double* q, const double* u, const double* tau, std::string* why);
 
   /// One step to t() + h with the inputs `tau` (held over the step; ntau
-  /// values, or null if ntau == 0). False, with the time and the reason in
+  /// values, or null for all zero). False, with the time and the reason in
   /// *why, if Newton does not converge within max_newton iterations, the
   /// iteration matrix is singular or the state is not finite; the state is
   /// then left at the last good step. Allocates nothing unless it fails.
@@ -146,6 +147,7 @@ class GenAlpha {
   std::vector<double> given_, given_lambda_;  ///< forward_dynamics output for the prescribed accelerations
   std::vector<double> chol_, w_, g_, y_;      ///< speed correction: chol(M_ff), M_ff^-1 C^T, C M^-1 C^T
   std::vector<char> used_;
+  std::vector<double> no_inputs_;  ///< ntau zeros, for tau == nullptr
   bool factored_ = false;
   bool refresh_next_ = false;
   double eta_ =
