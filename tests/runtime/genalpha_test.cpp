@@ -362,7 +362,7 @@ TEST_CASE("genalpha: simplified Newton reaches the solution of full Newton with 
   CHECK(jacobians[0] == 200);
   CHECK(jacobians[1] < 200);
   // Both converge to the same discrete solution, to the Newton tolerance
-  // (1e-8 relative) accumulated over 200 steps.
+  // (1e-10 relative) accumulated over 200 steps.
   CHECK(q[1][0] == Approx(q[0][0]).margin(1e-6));
   CHECK(q[1][1] == Approx(q[0][1]).margin(1e-6));
 }
