@@ -260,24 +260,26 @@ bool GenAlpha::start(double t0, const double* q, const double* u, const double* 
   n_ = 0;
   std::copy(q, q + n_dof_, q_.begin());
   std::copy(u, u + n_dof_, u_.begin());
-  const std::string at = "genalpha: at t = " + number(t0) + ": ";
+  // Messages are built only on failure: a start allocates nothing either.
+  const auto failed = [&](const std::string& what) {
+    return fail("genalpha: at t = " + number(t0) + ": " + what, why);
+  };
   const double residual = constraint_residual(q_.data());
   if (!(residual <= kStartResidual))
-    return fail(at + "the initial positions do not close the loops (max |Phi| = " + number(residual) +
-                    "); assemble them first",
-                why);
+    return failed("the initial positions do not close the loops (max |Phi| = " + number(residual) +
+                  "); assemble them first");
   std::string reason;
-  if (!correct_speeds(q_.data(), u_.data(), &reason)) return fail(at + reason, why);
+  if (!correct_speeds(q_.data(), u_.data(), &reason)) return failed(reason);
   std::fill(lam_.begin(), lam_.end(), 0.0);
   const int status = model_.constrained_dynamics(t0, q_.data(), u_.data(), tau, vd_.data(), lam_.data());
-  if (status != 0)
-    return fail(at +
-                    (status > 0 ? "the mass matrix is singular (pivot " + std::to_string(status) + ")"
-                                : "singular configuration (loop equation " + std::to_string(-status) + ")") +
-                    " in the initial acceleration",
-                why);
+  if (status > 0)
+    return failed("the mass matrix is singular (pivot " + std::to_string(status) +
+                  ") in the initial acceleration");
+  if (status < 0)
+    return failed("singular configuration (loop equation " + std::to_string(-status) +
+                  ") in the initial acceleration");
   if (!all_finite(q_) || !all_finite(u_) || !all_finite(vd_))
-    return fail(at + "the initial state or acceleration is not finite", why);
+    return failed("the initial state or acceleration is not finite");
   a_ = vd_;  // the consistent start of Arnold and Bruls: a_0 = udot_0
   started_ = true;
   return true;

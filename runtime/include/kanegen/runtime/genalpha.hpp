@@ -61,7 +61,7 @@ GenAlphaCoefficients genalpha_coefficients(double rho_inf);
 /// q_dot = u with a fixed step. Usage:
 ///
 ///     GenAlpha ga(model, options);           // allocates its workspace
-///     if (!ga.start(t0, q0, u0, tau, &why)) ...
+///     if (!ga.start(t0, q0, u0, tau, &why)) ...  // no allocation on success
 ///     while (ga.t() < t_end)
 ///       if (!ga.step(tau, &why)) ...         // no allocation on success
 ///
@@ -79,7 +79,8 @@ class GenAlpha {
   /// from LoopSolver::assemble); u is corrected to C u = 0 (least kinetic
   /// energy). The initial acceleration comes from constrained_dynamics.
   /// tau: ntau inputs, or null for all zero.
-  /// False, with the reason in *why (if not null), otherwise.
+  /// False, with the reason in *why (if not null), otherwise. Allocates
+  /// nothing unless it fails.
   bool start(double t0, const double* q, const double* u, const double* tau, std::string* why);
 
   /// One step to t() + h with the inputs `tau` (held over the step; ntau
