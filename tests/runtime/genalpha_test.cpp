@@ -242,7 +242,7 @@ TEST_CASE("genalpha: second order on the stiff chain against its modal solution"
     INFO("rho_inf " << rho << ": errors " << e1 << " " << e2 << " " << e3);
     CHECK(e1 / e2 > 3.5);
     CHECK(e2 / e3 == Approx(4.0).epsilon(0.1));
-    // rho_inf = 0 damps the fast mode most (O((omega h)^3) per step).
+    // rho_inf = 0 damps the fast mode most (damping ratio O((omega h)^3)).
     CHECK(e3 < (rho == 0.0 ? 5e-4 : 1e-4));
   }
 }

@@ -21,7 +21,7 @@ struct GenAlphaOptions {
   /// (no numerical damping, energy conserved for linear systems), 0 damps
   /// the unresolved ones in one step. 0.8 damps modes with omega h >> 1
   /// (a beam's axial modes at a step of the motion) while resolved modes
-  /// lose only O((omega h)^3) of their amplitude per step.
+  /// get an algorithmic damping ratio of only O((omega h)^3).
   double rho_inf = 0.8;
   int max_newton = 10;  ///< Newton iterations per step, at most (the real-time bound)
   /// Newton stops when the estimated error of the iterate (Hairer's
