@@ -7,8 +7,6 @@
 #include <limits>
 #include <stdexcept>
 
-#include "kanegen/runtime/state_jacobian.hpp"
-
 namespace kanegen::runtime {
 namespace {
 
@@ -52,16 +50,27 @@ bool lu_factor(double* A, int n, int* pivots, int* column) {
   return true;
 }
 
-/// b := A^-1 b from the factors of lu_factor.
-void lu_solve(const double* LU, int n, const int* pivots, double* b) {
+/// T := the transpose of the n x n row-major A.
+void transpose(const double* A, int n, double* T) {
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) T[j * n + i] = A[i * n + j];
+}
+
+/// b := A^-1 b from the factors of lu_factor, transposed (LUt = (LU)^T):
+/// the substitutions then run down contiguous columns of L and U with
+/// independent updates, which vectorize, instead of strided or dependent
+/// ones. The factorization's row swaps moved whole rows, multipliers
+/// included, so all of them apply to b before the forward substitution.
+void lu_solve(const double* LUt, int n, const int* pivots, double* b) {
+  for (int k = 0; k < n; ++k) std::swap(b[k], b[pivots[k]]);
   for (int k = 0; k < n; ++k) {
-    std::swap(b[k], b[pivots[k]]);
-    for (int i = k + 1; i < n; ++i) b[i] -= LU[i * n + k] * b[k];
+    const double* column = &LUt[k * n];
+    for (int i = k + 1; i < n; ++i) b[i] -= column[i] * b[k];
   }
-  for (int i = n - 1; i >= 0; --i) {
-    double s = b[i];
-    for (int j = i + 1; j < n; ++j) s -= LU[i * n + j] * b[j];
-    b[i] = s / LU[i * n + i];
+  for (int k = n - 1; k >= 0; --k) {
+    const double* column = &LUt[k * n];
+    b[k] /= column[k];
+    for (int i = 0; i < k; ++i) b[i] -= column[i] * b[k];
   }
 }
 
@@ -164,25 +173,30 @@ GenAlpha::GenAlpha(const Model& model, const GenAlphaOptions& options)
 
   const size_t n = static_cast<size_t>(n_dof_), nc = static_cast<size_t>(nc_),
                dim = static_cast<size_t>(dim_);
-  // Open trees carry no coordinate_roles: prescribed_coordinates() finds
-  // their prescribed coordinates too (the spin-up beam's hub).
-  prescribed_ = prescribed_coordinates(model);
+  for (auto* v : {&q_, &u_, &vd_, &a_, &q1_, &u1_, &vd1_, &a1_, &f_, &given_}) v->assign(n, 0.0);
+  for (auto* v : {&lam_, &lam1_, &phi_, &given_lambda_, &y_}) v->assign(std::max<size_t>(nc, 1), 0.0);
+  for (auto* v : {&M_, &dfdq_, &dfdu_, &dMa_, &dCl_, &chol_}) v->assign(n * n, 0.0);
+  prescribed_.assign(n, 0);
+  if (info.coordinate_roles) {
+    for (int i = 0; i < n_dof_; ++i) prescribed_[i] = info.coordinate_roles[i] == 2;
+  } else if (nc_ == 0) {  // generated models with loops always have roles
+    detect_prescribed();
+  }
   for (int i = 0; i < n_dof_; ++i) {
     if (prescribed_[i])
       any_prescribed_ = true;
     else
       free_.push_back(i);
   }
-  for (auto* v : {&q_, &u_, &vd_, &a_, &q1_, &u1_, &vd1_, &a1_, &f_, &given_}) v->assign(n, 0.0);
-  for (auto* v : {&lam_, &lam1_, &phi_, &given_lambda_, &y_}) v->assign(std::max<size_t>(nc, 1), 0.0);
-  for (auto* v : {&M_, &dfdq_, &dfdu_, &dMa_, &dCl_, &chol_}) v->assign(n * n, 0.0);
   C_.assign(std::max<size_t>(nc * n, 1), 0.0);
   w_.assign(std::max<size_t>(nc * n, 1), 0.0);
   g_.assign(std::max<size_t>(nc * nc, 1), 0.0);
   used_.assign(std::max<size_t>(nc, 1), 0);
   rhs_.assign(dim, 0.0);
   lu_.assign(dim * dim, 0.0);
+  lut_.assign(dim * dim, 0.0);
   pivots_.assign(dim, 0);
+  no_inputs_.assign(static_cast<size_t>(std::max(info.ntau, 1)), 0.0);
 }
 
 std::string GenAlpha::state() const {
@@ -192,6 +206,32 @@ std::string GenAlpha::state() const {
     s += (i ? ", " : "") + std::string(info.coordinate_names[i]) + "=" + number(q_[i]);
   for (int i = 0; i < n_dof_; ++i) s += ", " + std::string(info.speed_names[i]) + "=" + number(u_[i]);
   return s + "]";
+}
+
+void GenAlpha::detect_prescribed() {
+  const int n = n_dof_;
+  std::vector<double> q(n), u(n), udot(n), tau(std::max(model_.info().ntau, 1), 0.0);
+  for (int trial = 0; trial < 2; ++trial) {
+    // A generic state near the initial one, where a driving force vanishes
+    // only by accident (and then, at both states, the motion is free anyway).
+    model_.initial_state(q.data(), u.data());
+    for (int i = 0; i < n; ++i) {
+      q[i] += 0.01 * std::sin(1.3 * i + 0.7 * trial + 1.0);
+      u[i] += 0.1 * std::cos(0.9 * i + 1.1 * trial + 0.5);
+    }
+    const double t = 0.37 + 0.61 * trial;
+    if (model_.forward_dynamics(t, q.data(), u.data(), tau.data(), udot.data()) != 0) continue;
+    model_.mass_matrix(q.data(), M_.data());
+    model_.forcing(t, q.data(), u.data(), tau.data(), f_.data());
+    for (int i = 0; i < n; ++i) {
+      double r = -f_[i], scale = std::abs(f_[i]);
+      for (int j = 0; j < n; ++j) {
+        r += M_[i * n + j] * udot[j];
+        scale += std::abs(M_[i * n + j] * udot[j]);
+      }
+      if (std::abs(r) > 1e-8 * scale) prescribed_[i] = 1;  // LDL^T solves a free row to round-off
+    }
+  }
 }
 
 bool GenAlpha::fail(const std::string& reason, std::string* why) {
@@ -211,6 +251,7 @@ double GenAlpha::constraint_residual(const double* q) {
 }
 
 bool GenAlpha::start(double t0, const double* q, const double* u, const double* tau, std::string* why) {
+  if (!tau) tau = no_inputs_.data();
   started_ = false;
   factored_ = false;
   refresh_next_ = false;
@@ -219,24 +260,26 @@ bool GenAlpha::start(double t0, const double* q, const double* u, const double* 
   n_ = 0;
   std::copy(q, q + n_dof_, q_.begin());
   std::copy(u, u + n_dof_, u_.begin());
-  const std::string at = "genalpha: at t = " + number(t0) + ": ";
+  // Messages are built only on failure: a start allocates nothing either.
+  const auto failed = [&](const std::string& what) {
+    return fail("genalpha: at t = " + number(t0) + ": " + what, why);
+  };
   const double residual = constraint_residual(q_.data());
   if (!(residual <= kStartResidual))
-    return fail(at + "the initial positions do not close the loops (max |Phi| = " + number(residual) +
-                    "); assemble them first",
-                why);
+    return failed("the initial positions do not close the loops (max |Phi| = " + number(residual) +
+                  "); assemble them first");
   std::string reason;
-  if (!correct_speeds(q_.data(), u_.data(), &reason)) return fail(at + reason, why);
+  if (!correct_speeds(q_.data(), u_.data(), &reason)) return failed(reason);
   std::fill(lam_.begin(), lam_.end(), 0.0);
   const int status = model_.constrained_dynamics(t0, q_.data(), u_.data(), tau, vd_.data(), lam_.data());
-  if (status != 0)
-    return fail(at +
-                    (status > 0 ? "the mass matrix is singular (pivot " + std::to_string(status) + ")"
-                                : "singular configuration (loop equation " + std::to_string(-status) + ")") +
-                    " in the initial acceleration",
-                why);
+  if (status > 0)
+    return failed("the mass matrix is singular (pivot " + std::to_string(status) +
+                  ") in the initial acceleration");
+  if (status < 0)
+    return failed("singular configuration (loop equation " + std::to_string(-status) +
+                  ") in the initial acceleration");
   if (!all_finite(q_) || !all_finite(u_) || !all_finite(vd_))
-    return fail(at + "the initial state or acceleration is not finite", why);
+    return failed("the initial state or acceleration is not finite");
   a_ = vd_;  // the consistent start of Arnold and Bruls: a_0 = udot_0
   started_ = true;
   return true;
@@ -266,16 +309,22 @@ void GenAlpha::residual(double t1, const double* tau) {
     model_.constraint_jacobian(q1_.data(), C_.data());
     model_.constraints(q1_.data(), phi_.data());
   }
-  for (int i = 0; i < n; ++i) {
-    if (prescribed_[i]) {  // its row is the driving force, not an equation
-      rhs_[i] = 0.0;
-      continue;
-    }
-    double r = -f_[i];
-    for (int j = 0; j < n; ++j) r += M_[i * n + j] * vd1_[j];
-    for (int k = 0; k < nc_; ++k) r -= C_[k * n + i] * lam1_[k];
-    rhs_[i] = -r;
+  // rhs = f + C^T lambda - M udot, column by column: M is symmetric, so its
+  // rows serve as columns, and the updates are independent (vectorized)
+  // instead of one chain of dependent additions per row.
+  std::copy(f_.begin(), f_.end(), rhs_.begin());
+  for (int j = 0; j < n; ++j) {
+    const double v = vd1_[j];
+    const double* column = &M_[static_cast<size_t>(j) * n];
+    for (int i = 0; i < n; ++i) rhs_[i] -= column[i] * v;
   }
+  for (int k = 0; k < nc_; ++k) {
+    const double l = lam1_[k];
+    const double* row = &C_[static_cast<size_t>(k) * n];
+    for (int i = 0; i < n; ++i) rhs_[i] += row[i] * l;
+  }
+  for (int i = 0; i < n; ++i)
+    if (prescribed_[i]) rhs_[i] = 0.0;  // its row is the driving force, not an equation
   for (int k = 0; k < nc_; ++k) rhs_[n + k] = -beta_p_ * phi_[k];
 }
 
@@ -307,9 +356,17 @@ bool GenAlpha::refresh(double t1, const double* tau) {
     std::copy(&C_[static_cast<size_t>(k) * n], &C_[static_cast<size_t>(k) * n] + n, row);
     std::fill(row + n, row + dim, 0.0);
   }
+  // A prescribed coordinate's column goes too (its increment is 0): with
+  // only its row's 1 left, pivoting cannot mix it into the other rows, and
+  // the solve gives exactly 0 instead of round-off of the size of the
+  // elastic accelerations, which fed back through the hub and grew.
+  for (int j = 0; j < n; ++j)
+    if (prescribed_[j])
+      for (int i = 0; i < dim; ++i) lu_[static_cast<size_t>(i) * dim + j] = i == j ? 1.0 : 0.0;
   ++stats_.factorizations;
   int column = 0;
   factored_ = lu_factor(lu_.data(), dim, pivots_.data(), &column);
+  if (factored_) transpose(lu_.data(), dim, lut_.data());
   return factored_;
 }
 
@@ -379,7 +436,7 @@ bool GenAlpha::newton(double t1, const double* tau, std::string* reason) {
       if (!refresh(t1, tau)) return refuse(reason, "the iteration matrix is singular");
       refresh_now = stale = false;
     }
-    lu_solve(lu_.data(), dim_, pivots_.data(), rhs_.data());
+    lu_solve(lut_.data(), dim_, pivots_.data(), rhs_.data());
     norm = apply_increment();
     ++stats_.newton_iterations;
     if (!std::isfinite(norm)) return refuse(reason, "the Newton increment is not finite");
@@ -415,6 +472,7 @@ bool GenAlpha::newton(double t1, const double* tau, std::string* reason) {
 
 bool GenAlpha::step(const double* tau, std::string* why) {
   if (!started_) return fail("genalpha: step() before a successful start()", why);
+  if (!tau) tau = no_inputs_.data();
   const double t1 = t0_ + static_cast<double>(n_ + 1) * opt_.h;
   predict(t1, tau);
   std::string reason;

@@ -289,4 +289,96 @@ inline ModelTable cart_pendulum_table(bool prescribed) {
   return t;
 }
 
+// ---------------------------------------------------------------------------
+// Three masses on springs to the wall, tied by one linear loop equation
+// 10 x1 - 20 x2 + 5 x3 = 0: linear, so exact Newton converges in one
+// iteration. Its saddle-point matrix keeps row 1 at column 0 (m1 > 10) and
+// takes the loop row, which has a multiplier from column 0, as the pivot of
+// column 1 (20 > m2): a row swap that moves a multiplier.
+struct TiedParams {
+  static constexpr int np = 6, n = 3;
+  static constexpr const char* names[np] = {"m1", "m2", "m3", "k1", "k2", "k3"};
+  double m1 = 20.0, m2 = 2.0, m3 = 3.0, k1 = 40.0, k2 = 50.0, k3 = 60.0;
+};
+
+inline constexpr double kTie[3] = {10.0, -20.0, 5.0};
+
+inline int tied_dynamics(const void* p, double, const double* q, const double* u, const double*, double* udot,
+                         double* lambda) {
+  const TiedParams& s = par<TiedParams>(p);
+  const double m[3] = {s.m1, s.m2, s.m3}, f[3] = {-s.k1 * q[0], -s.k2 * q[1], -s.k3 * q[2]};
+  (void)u;
+  double S = 0.0, cmf = 0.0;  // C M^-1 C^T, C M^-1 f; gamma = 0 (C constant)
+  for (int i = 0; i < 3; ++i) {
+    S += kTie[i] * kTie[i] / m[i];
+    cmf += kTie[i] * f[i] / m[i];
+  }
+  lambda[0] = -cmf / S;
+  for (int i = 0; i < 3; ++i) udot[i] = (f[i] + kTie[i] * lambda[0]) / m[i];
+  return 0;
+}
+
+inline ModelTable tied_table() {
+  using P = TiedParams;
+  static const char* const names[] = {"x1", "x2", "x3"};
+  static const char* const loops[] = {"tie"};
+  static const int roles[] = {0, 0, 0};
+  static const double q0[] = {1.0, 0.5, 0.0}, u0[] = {0.0, 0.0, 0.0};
+  ModelTable t = base_table<P>("tied", 3, names, q0, u0);
+  t.nc = 1;
+  t.constraint_names = loops;
+  t.coordinate_roles = roles;
+  t.initial_state = [](const void*, double* q, double* u) {
+    q[0] = 1.0;
+    q[1] = 0.5;
+    q[2] = u[0] = u[1] = u[2] = 0.0;
+  };
+  t.mass_matrix = [](const void* p, const double*, double* M) {
+    for (int i = 0; i < 9; ++i) M[i] = 0.0;
+    M[0] = par<P>(p).m1;
+    M[4] = par<P>(p).m2;
+    M[8] = par<P>(p).m3;
+  };
+  t.forcing = [](const void* p, double, const double* q, const double*, const double*, double* f) {
+    f[0] = -par<P>(p).k1 * q[0];
+    f[1] = -par<P>(p).k2 * q[1];
+    f[2] = -par<P>(p).k3 * q[2];
+  };
+  t.constraints = [](const void*, const double* q, double* phi) {
+    phi[0] = kTie[0] * q[0] + kTie[1] * q[1] + kTie[2] * q[2];
+  };
+  t.constraint_jacobian = [](const void*, const double*, double* C) {
+    for (int i = 0; i < 3; ++i) C[i] = kTie[i];
+  };
+  t.constraint_bias = [](const void*, const double*, const double*, double* gamma) { gamma[0] = 0.0; };
+  t.constrained_dynamics = tied_dynamics;
+  t.forward_dynamics = [](const void* p, double tt, const double* q, const double* u, const double* tau,
+                          double* udot) {
+    double lambda = 0.0;
+    return tied_dynamics(p, tt, q, u, tau, udot, &lambda);
+  };
+  t.kinetic_energy = [](const void* p, const double*, const double* u) {
+    const P& s = par<P>(p);
+    return 0.5 * (s.m1 * u[0] * u[0] + s.m2 * u[1] * u[1] + s.m3 * u[2] * u[2]);
+  };
+  t.potential_energy = [](const void* p, const double* q) {
+    const P& s = par<P>(p);
+    return 0.5 * (s.k1 * q[0] * q[0] + s.k2 * q[1] * q[1] + s.k3 * q[2] * q[2]);
+  };
+  t.forcing_jacobian = [](const void* p, double, const double*, const double*, const double*, double* dfdq,
+                          double* dfdu) {
+    for (int i = 0; i < 9; ++i) dfdq[i] = dfdu[i] = 0.0;
+    dfdq[0] = -par<P>(p).k1;
+    dfdq[4] = -par<P>(p).k2;
+    dfdq[8] = -par<P>(p).k3;
+  };
+  t.mass_matrix_product_jacobian = [](const void*, const double*, const double*, double* d) {
+    for (int i = 0; i < 9; ++i) d[i] = 0.0;
+  };
+  t.constraint_force_jacobian = [](const void*, const double*, const double*, double* d) {
+    for (int i = 0; i < 9; ++i) d[i] = 0.0;
+  };
+  return t;
+}
+
 }  // namespace genalpha_models

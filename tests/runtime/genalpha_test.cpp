@@ -242,7 +242,7 @@ TEST_CASE("genalpha: second order on the stiff chain against its modal solution"
     INFO("rho_inf " << rho << ": errors " << e1 << " " << e2 << " " << e3);
     CHECK(e1 / e2 > 3.5);
     CHECK(e2 / e3 == Approx(4.0).epsilon(0.1));
-    // rho_inf = 0 damps the fast mode most (O((omega h)^3) per step).
+    // rho_inf = 0 damps the fast mode most (damping ratio O((omega h)^3)).
     CHECK(e3 < (rho == 0.0 ? 5e-4 : 1e-4));
   }
 }
@@ -296,6 +296,27 @@ TEST_CASE("genalpha: rho_inf = 1 conserves the chain's energy", "[genalpha]") {
   CHECK(ga.stats().jacobian_evaluations == 1);
 }
 
+TEST_CASE("genalpha: one Newton iteration solves a linear constrained step exactly", "[genalpha]") {
+  // Fresh Jacobians each step; the second iteration only confirms. An
+  // inexact linear solve (the LU's row swaps applied out of order) shows
+  // as linear convergence and more iterations.
+  Model model(tied_table());
+  double q0[3], u0[3];
+  model.initial_state(q0, u0);
+  GenAlphaOptions o = options(0.01, 0.8);
+  o.reuse_jacobian = false;
+  o.tolerance = 1e-12;
+  GenAlpha ga(model, o);
+  std::string why;
+  REQUIRE(ga.start(0.0, q0, u0, nullptr, &why));
+  double worst = 0.0;
+  advance(ga, 500, [&](const GenAlpha& g) {
+    worst = std::max(worst, std::abs(10.0 * g.q()[0] - 20.0 * g.q()[1] + 5.0 * g.q()[2]));
+  });
+  CHECK(ga.stats().newton_iterations == 2 * ga.stats().steps);
+  CHECK(worst < 1e-12);
+}
+
 TEST_CASE("genalpha: the constrained pendulum returns after its exact period, on the circle", "[genalpha]") {
   const double theta0 = 2.0;  // 115 degrees: far from the linear pendulum
   const PendulumRun coarse = pendulum_period(theta0, 2000, true);
@@ -341,7 +362,7 @@ TEST_CASE("genalpha: simplified Newton reaches the solution of full Newton with 
   CHECK(jacobians[0] == 200);
   CHECK(jacobians[1] < 200);
   // Both converge to the same discrete solution, to the Newton tolerance
-  // (1e-8 relative) accumulated over 200 steps.
+  // (1e-10 relative) accumulated over 200 steps.
   CHECK(q[1][0] == Approx(q[0][0]).margin(1e-6));
   CHECK(q[1][1] == Approx(q[0][1]).margin(1e-6));
 }
@@ -391,6 +412,18 @@ TEST_CASE("genalpha: the prescribed coordinate follows its motion", "[genalpha]"
     CHECK(g.udot()[0] == Approx(-p.A * p.W * p.W * std::sin(p.W * g.t())).margin(1e-12));
   });
   CHECK(worst < 1e-6);  // second order in h from the given acceleration
+}
+
+TEST_CASE("genalpha: finds the prescribed coordinates of a model without roles", "[genalpha]") {
+  // Generated open trees carry no coordinate_roles (only models with loops do).
+  ModelTable prescribed = cart_pendulum_table(true);
+  prescribed.coordinate_roles = nullptr;
+  Model with(prescribed), without(cart_pendulum_table(false));
+  const GenAlpha a(with, options(1e-3, 0.8)), b(without, options(1e-3, 0.8));
+  CHECK(a.prescribed(0));
+  CHECK_FALSE(a.prescribed(1));
+  CHECK_FALSE(b.prescribed(0));
+  CHECK_FALSE(b.prescribed(1));
 }
 
 TEST_CASE("genalpha: options and models it cannot use", "[genalpha]") {

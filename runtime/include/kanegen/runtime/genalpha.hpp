@@ -21,13 +21,15 @@ struct GenAlphaOptions {
   /// (no numerical damping, energy conserved for linear systems), 0 damps
   /// the unresolved ones in one step. 0.8 damps modes with omega h >> 1
   /// (a beam's axial modes at a step of the motion) while resolved modes
-  /// lose only O((omega h)^3) of their amplitude per step.
+  /// get an algorithmic damping ratio of only O((omega h)^3).
   double rho_inf = 0.8;
   int max_newton = 10;  ///< Newton iterations per step, at most (the real-time bound)
   /// Newton stops when the estimated error of the iterate (Hairer's
   /// theta / (1 - theta) times the last increment) is below `tolerance`
   /// relative to 1 + |x| in the RMS over the free coordinates and speeds.
-  double tolerance = 1e-8;
+  /// 1e-10: 1e-8 left N four-bar's crank 7e-6 rad off after 10 s at 1 ms
+  /// (2.7e-6 with 1e-10); the spin-up beam needs no more iterations for it.
+  double tolerance = 1e-10;
   /// ...and every |Phi_i(q)| <= constraint_tolerance (closed loops).
   double constraint_tolerance = 1e-11;
   /// Simplified Newton: keep the factored iteration matrix from step to
@@ -59,11 +61,12 @@ GenAlphaCoefficients genalpha_coefficients(double rho_inf);
 /// q_dot = u with a fixed step. Usage:
 ///
 ///     GenAlpha ga(model, options);           // allocates its workspace
-///     if (!ga.start(t0, q0, u0, tau, &why)) ...
+///     if (!ga.start(t0, q0, u0, tau, &why)) ...  // no allocation on success
 ///     while (ga.t() < t_end)
 ///       if (!ga.step(tau, &why)) ...         // no allocation on success
 ///
-/// Prescribed coordinates (info().coordinate_roles == 2) follow their given
+/// Prescribed coordinates (info().coordinate_roles == 2; open trees, which
+/// have no roles, are probed, see detect_prescribed) follow their given
 /// acceleration, which forward_dynamics reports, as in the explicit
 /// methods. The model must have been generated with Jacobians.
 class GenAlpha {
@@ -75,11 +78,13 @@ class GenAlpha {
   /// Starts at (t0, q, u): q must close the loops (|Phi| <= 1e-10, e.g.
   /// from LoopSolver::assemble); u is corrected to C u = 0 (least kinetic
   /// energy). The initial acceleration comes from constrained_dynamics.
-  /// False, with the reason in *why (if not null), otherwise.
+  /// tau: ntau inputs, or null for all zero.
+  /// False, with the reason in *why (if not null), otherwise. Allocates
+  /// nothing unless it fails.
   bool start(double t0, const double* q, const double* u, const double* tau, std::string* why);
 
   /// One step to t() + h with the inputs `tau` (held over the step; ntau
-  /// values, or null if ntau == 0). False, with the time and the reason in
+  /// values, or null for all zero). False, with the time and the reason in
   /// *why, if Newton does not converge within max_newton iterations, the
   /// iteration matrix is singular or the state is not finite; the state is
   /// then left at the last good step. Allocates nothing unless it fails.
@@ -91,9 +96,15 @@ class GenAlpha {
   const double* udot() const { return vd_.data(); }     ///< nu, the acceleration at t()
   const double* lambda() const { return lam_.data(); }  ///< nc, the loop multipliers at t()
   const ImplicitStats& stats() const { return stats_; }
+  /// Whether coordinate i follows a prescribed motion (not solved for).
+  bool prescribed(int i) const { return prescribed_[static_cast<size_t>(i)] != 0; }
   const GenAlphaOptions& options() const { return opt_; }
 
  private:
+  /// Generated open trees carry no coordinate_roles: a coordinate is prescribed if
+  /// forward_dynamics leaves its row of M u_dot = f unsolved (the residual
+  /// is the driving force) at two generic states. Allocates (constructor only).
+  void detect_prescribed();
   /// The trial state at t1 from the committed one, with the acceleration
   /// of the last step as the guess (the given one for prescribed speeds).
   void predict(double t1, const double* tau);
@@ -133,11 +144,13 @@ class GenAlpha {
   // Workspace, all sized in the constructor.
   std::vector<double> M_, f_, C_, phi_, rhs_;
   std::vector<double> dfdq_, dfdu_, dMa_, dCl_;
-  std::vector<double> lu_;  ///< the iteration matrix, dim_ x dim_, then its LU factors
+  std::vector<double> lu_;   ///< the iteration matrix, dim_ x dim_, then its LU factors
+  std::vector<double> lut_;  ///< the LU factors transposed, for the solves
   std::vector<int> pivots_;
   std::vector<double> given_, given_lambda_;  ///< forward_dynamics output for the prescribed accelerations
   std::vector<double> chol_, w_, g_, y_;      ///< speed correction: chol(M_ff), M_ff^-1 C^T, C M^-1 C^T
   std::vector<char> used_;
+  std::vector<double> no_inputs_;  ///< ntau zeros, for tau == nullptr
   bool factored_ = false;
   bool refresh_next_ = false;
   double eta_ =
