@@ -127,8 +127,9 @@ class Cvode {
         !check(CVodeSetLinearSolver(mem_, solver_, matrix_), "CVodeSetLinearSolver") ||
         !check(CVodeSetJacFn(mem_, &Cvode::jacobian), "CVodeSetJacFn") ||
         !check(CVodeSetStopTime(mem_, opt.t_end), "CVodeSetStopTime") ||
-        // BDF of order 3 to 5 is unstable near the imaginary axis, where the
-        // undamped modes of an elastic link are: detect it, lower the order.
+        // With max_order above 2: BDF3-5 are unstable near the imaginary
+        // axis; the detection lowers the order when it sees it (it does not
+        // for the spin-up beam, hence the default of 2, integrators.hpp).
         !check(CVodeSetStabLimDet(mem_, SUNTRUE), "CVodeSetStabLimDet") ||
         !check(CVodeSetMaxHnilWarns(mem_, -1), "CVodeSetMaxHnilWarns"))
       return false;
