@@ -4,9 +4,9 @@
 # GiNaC (license, build time, and the numeric path's independence from the
 # symbolic one), nor a layer above them.
 #
-# kanegen_layer(<target> [FORBID <target>...] [STANDARD_LIBRARY_ONLY])
+# kanegen_layer(<target> [FORBID <target>...] [STANDARD_LIBRARY_ONLY [ALLOW <target>...]])
 #   Declares <target> GiNaC-free, and free of the FORBIDden targets (or of
-#   any link library at all). At compile time, every <ginac/*.h> its own
+#   any link library at all but the ALLOWed ones and what they link). At compile time, every <ginac/*.h> its own
 #   sources include resolves first to a header that stops with #error (a
 #   private include directory searched before the system's).
 # kanegen_check_layers()
@@ -37,7 +37,7 @@ function(_kanegen_write_no_ginac_headers)
 endfunction()
 
 function(kanegen_layer target)
-  cmake_parse_arguments(PARSE_ARGV 1 arg "STANDARD_LIBRARY_ONLY" "" "FORBID")
+  cmake_parse_arguments(PARSE_ARGV 1 arg "STANDARD_LIBRARY_ONLY" "" "FORBID;ALLOW")
   if(NOT TARGET ${target})
     message(FATAL_ERROR "kanegen layering: no target ${target} (renamed? update cmake/KanegenLayers.cmake)")
   endif()
@@ -46,6 +46,7 @@ function(kanegen_layer target)
   set_property(GLOBAL APPEND PROPERTY KANEGEN_LAYERS ${target})
   set_property(GLOBAL PROPERTY KANEGEN_LAYER_FORBID_${target} ${arg_FORBID})
   set_property(GLOBAL PROPERTY KANEGEN_LAYER_STD_ONLY_${target} ${arg_STANDARD_LIBRARY_ONLY})
+  set_property(GLOBAL PROPERTY KANEGEN_LAYER_ALLOW_${target} ${arg_ALLOW})
 endfunction()
 
 # The link items of one target, generator expressions reduced to what they
@@ -95,6 +96,12 @@ function(kanegen_check_layers)
   foreach(layer ${layers})
     get_property(forbid GLOBAL PROPERTY KANEGEN_LAYER_FORBID_${layer})
     get_property(std_only GLOBAL PROPERTY KANEGEN_LAYER_STD_ONLY_${layer})
+    get_property(allow GLOBAL PROPERTY KANEGEN_LAYER_ALLOW_${layer})
+    set(only "the standard library only")
+    if(allow)
+      list(JOIN allow ", " allowed)
+      set(only "the standard library and ${allowed} only")
+    endif()
     # Breadth first; chain_<i> is how item i was reached, for the message.
     set(queue ${layer})
     set(seen ${layer})
@@ -120,8 +127,10 @@ function(kanegen_check_layers)
         if(name IN_LIST forbid OR current IN_LIST forbid)
           message(FATAL_ERROR "kanegen layering: ${layer} links ${name}, a layer above it (${chain})")
         endif()
-        if(std_only)
-          message(FATAL_ERROR "kanegen layering: ${layer} must link the standard library only, "
+        # The first link of the chain decides: an allowed library may link what it needs.
+        string(REGEX REPLACE "^[^ ]+ -> ([^ ]+).*$" "\\1" direct "${chain}")
+        if(std_only AND NOT direct IN_LIST allow)
+          message(FATAL_ERROR "kanegen layering: ${layer} must link ${only}, "
                               "and links ${current} (${chain})")
         endif()
       endif()
@@ -148,7 +157,8 @@ endfunction()
 
 function(kanegen_enforce_layers)
   set(above_numeric kanegen_symbolic kanegen_generator)
-  kanegen_layer(kanegen_runtime STANDARD_LIBRARY_ONLY)
+  # CVODE: the implicit integrator (runtime/src/cvode.cpp), a C library.
+  kanegen_layer(kanegen_runtime STANDARD_LIBRARY_ONLY ALLOW SUNDIALS::cvode)
   kanegen_layer(kanegen_model FORBID kanegen_fem kanegen_numeric ${above_numeric})
   kanegen_layer(kanegen_fem FORBID kanegen_numeric ${above_numeric})
   kanegen_layer(kanegen_numeric FORBID ${above_numeric})

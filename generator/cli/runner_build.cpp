@@ -136,7 +136,12 @@ void compile_runner(const fs::path& source_dir, const std::string& name, const R
                                       runtime.library.string(),
                                       "-o",
                                       temporary.string()};
-  if (run_program(compiler(), args) != 0)
+  // The runtime's implicit integrator (CVODE, found at configure time), after
+  // the static runtime library that needs it.
+  const fs::path cvode = KANEGEN_SUNDIALS_CVODE_LIBRARY;
+  std::vector<std::string> linked = args;
+  linked.insert(linked.end(), {cvode.string(), "-Wl,-rpath," + cvode.parent_path().string()});
+  if (run_program(compiler(), linked) != 0)
     throw std::runtime_error((source_dir / (name + ".cpp")).string() + ": " + if_failed);
   fs::rename(temporary, runner);
 }

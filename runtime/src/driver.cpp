@@ -13,7 +13,9 @@
 #include "kanegen/runtime/integrators.hpp"
 #include "kanegen/runtime/loops.hpp"
 #include "kanegen/runtime/options.hpp"
+#include "kanegen/runtime/state_jacobian.hpp"
 #include "kanegen/runtime/text.hpp"
+#include "model_integrators.hpp"
 
 namespace kanegen::runtime {
 namespace {
@@ -169,6 +171,7 @@ struct SimulateArgs {
   std::vector<Assignment> sets, q0, u0;
   std::string output;
   bool stats = false;
+  double rho_inf = 0.8;  ///< genalpha
 };
 
 // The simulate options, values checked one by one by the parser (defaults
@@ -184,13 +187,22 @@ SimulateArgs simulate_args(const ParsedOptions& p) {
   o.h_min = p.number("--h-min");
   o.h_max = p.number("--h-max");
   o.max_steps = p.integer("--max-steps");
+  o.max_order = static_cast<int>(std::min(p.integer("--max-order"), 6L));
   parse_method(p.text("--integrator"), &a.method);  // one of the table's choices
   a.sets = p.assignments("--set");
   a.q0 = p.assignments("--q0");
   a.u0 = p.assignments("--u0");
   a.output = p.text("--output");
   a.stats = p.flag("--stats");
+  a.rho_inf = p.number("--rho-inf");
   if (o.rtol == 0 && o.atol == 0) throw UsageError("--rtol and --atol cannot both be zero");
+  if (a.rho_inf > 1) throw UsageError("--rho-inf must be in [0, 1]");
+  if (o.max_order > 5) throw UsageError("--max-order must be 1 to 5");
+  if (a.method == Method::kGenAlpha) try {
+      detail::genalpha_steps(o);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
   return a;
 }
 
@@ -200,8 +212,43 @@ std::vector<std::string> state_names(const ModelInfo& info) {
   return names;
 }
 
+bool is_implicit(Method method) { return method == Method::kImplicit || method == Method::kGenAlpha; }
+
+// --stats: the counters of every method, and the Newton counters of the implicit ones.
+void print_stats(std::FILE* err, Method method, const IntegrationResult& r) {
+  const StepStats& s = r.stats;
+  std::string line = std::string("stats: integrator=") + method_name(method) +
+                     " accepted=" + std::to_string(s.accepted) + " rejected=" + std::to_string(s.rejected);
+  // genalpha evaluates residuals, not the right-hand side.
+  if (method != Method::kGenAlpha) line += " rhs_evals=" + std::to_string(s.rhs_evals);
+  if (is_implicit(method))
+    line += " newton_iterations=" + std::to_string(s.newton_iterations) +
+            " newton_failures=" + std::to_string(s.newton_failures) +
+            " jacobian_evals=" + std::to_string(s.jacobian_evaluations) +
+            " lu_factorizations=" + std::to_string(s.factorizations) +
+            (s.projections > 0 ? " projections=" + std::to_string(s.projections) : "");
+  print(err, line + " t=" + format_double(r.t) + "\n");
+}
+
+// Integrates with the chosen method: the explicit ones on rhs, the implicit
+// ones with the model's Jacobian kernels (model_integrators.hpp).
+IntegrationResult run_method(const Model& model, const SimulateArgs& a, const Rhs& rhs, double* x,
+                             const IntegrationOptions& opt, const Observer& observer, const double* tau) {
+  const int n = model.info().nq + model.info().nu;
+  try {
+    if (a.method == Method::kImplicit) return detail::integrate_implicit(model, rhs, tau, x, opt, observer);
+    if (a.method == Method::kGenAlpha)
+      return detail::integrate_genalpha(model, a.rho_inf, tau, x, opt, observer);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  return integrate(a.method, rhs, 0.0, x, n, opt, observer);
+}
+
 int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err) {
   const ModelInfo& info = model.info();
+  // Before anything is written: a model without Jacobians cannot run implicitly.
+  if (is_implicit(a.method) && !model.has_jacobians()) throw UsageError(missing_jacobians_message(info));
   const int nq = info.nq, n = info.nq + info.nu;
   apply_parameters(model, a.sets);
   std::vector<double> x(static_cast<size_t>(std::max(n, 1)), 0.0);
@@ -264,12 +311,8 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
   opt.state_names = names;
   if (loops.active())
     opt.project = [&](double, double* xs, std::string* why) { return loops.project(xs, xs + nq, why); };
-  const IntegrationResult r = integrate(a.method, rhs, 0.0, x.data(), n, opt, observer);
-  if (a.stats) {
-    std::fprintf(err, "stats: integrator=%s accepted=%ld rejected=%ld rhs_evals=%ld t=%s\n",
-                 method_name(a.method), r.stats.accepted, r.stats.rejected, r.stats.rhs_evals,
-                 format_double(r.t).c_str());
-  }
+  const IntegrationResult r = run_method(model, a, rhs, x.data(), opt, observer, tau.data());
+  if (a.stats) print_stats(err, a.method, r);
   const bool closed = csv->close();
   if (g_stop_signal != 0) {
     const int signal_number = g_stop_signal;

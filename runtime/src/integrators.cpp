@@ -7,150 +7,41 @@
 #include <exception>
 #include <limits>
 
+#include "integration_run.hpp"
+
 namespace kanegen::runtime {
 
-const char* method_name(Method method) { return method == Method::kRk4 ? "rk4" : "dopri5"; }
+namespace {
+
+struct MethodName {
+  Method method;
+  const char* name;
+};
+constexpr MethodName kMethodNames[] = {{Method::kRk4, "rk4"},
+                                       {Method::kDopri5, "dopri5"},
+                                       {Method::kImplicit, "implicit"},
+                                       {Method::kGenAlpha, "genalpha"}};
+
+}  // namespace
+
+const char* method_name(Method method) {
+  for (const MethodName& m : kMethodNames)
+    if (m.method == method) return m.name;
+  return "unknown";
+}
 
 bool parse_method(std::string_view text, Method* method) {
-  if (text == "rk4") {
-    *method = Method::kRk4;
-  } else if (text == "dopri5") {
-    *method = Method::kDopri5;
-  } else {
-    return false;
-  }
-  return true;
+  for (const MethodName& m : kMethodNames)
+    if (text == m.name) {
+      *method = m.method;
+      return true;
+    }
+  return false;
 }
 
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
-
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
-
-bool all_finite(const double* x, int n) {
-  for (int i = 0; i < n; ++i) {
-    if (!std::isfinite(x[i])) return false;
-  }
-  return true;
-}
-
-// The output times t0, t0 + dt, ..., t_end. Times are computed from the
-// index, not accumulated, so they carry no drift; an interval count within
-// round-off of an integer is rounded rather than producing a sliver.
-class OutputGrid {
- public:
-  OutputGrid(double t0, double dt, double t_end) : t0_(t0), dt_(dt), t_end_(t_end) {
-    const double r = (t_end - t0) / dt;
-    const double nearest = std::round(r);
-    const bool integral = std::abs(r - nearest) <= 1e-9 * std::max(1.0, r);
-    intervals_ = static_cast<long>(integral ? nearest : std::ceil(r));
-    if (t_end > t0) intervals_ = std::max(intervals_, 1L);
-  }
-  long intervals() const { return intervals_; }
-  double time(long k) const { return k >= intervals_ ? t_end_ : t0_ + static_cast<double>(k) * dt_; }
-
- private:
-  double t0_, dt_, t_end_;
-  long intervals_ = 0;
-};
-
-// State shared by both methods: counts, checks every derivative, calls the
-// observer, and turns failures into results that name the time and state.
-class Run {
- public:
-  Run(const Rhs& rhs, const IntegrationOptions& opt, int n, const Observer& observer)
-      : rhs_(rhs), opt_(opt), n_(n), observer_(observer) {}
-
-  const IntegrationOptions& opt() const { return opt_; }
-  int n() const { return n_; }
-  StepStats& stats() { return result_.stats; }
-
-  // Evaluates the right-hand side; on failure records why and returns false.
-  bool eval(double t, const double* x, double* xdot) {
-    ++result_.stats.rhs_evals;
-    bool ok = false;
-    try {
-      ok = rhs_(t, x, xdot);
-    } catch (const std::exception& e) {
-      fail(Status::kRhsFailed, std::string("right-hand side threw (") + e.what() + ")", t, x);
-      return false;
-    }
-    if (!ok) {
-      fail(Status::kRhsFailed, "right-hand side failed", t, x);
-      return false;
-    }
-    for (int i = 0; i < n_; ++i) {
-      if (!std::isfinite(xdot[i])) {
-        fail(Status::kNonFinite, "right-hand side returned d(" + name(i) + ")/dt = " + number(xdot[i]), t, x);
-        return false;
-      }
-    }
-    return true;
-  }
-
-  // Evaluates without recording a failure (for probes off the trajectory).
-  bool probe(double t, const double* x, double* xdot) {
-    ++result_.stats.rhs_evals;
-    try {
-      return rhs_(t, x, xdot) && all_finite(xdot, n_);
-    } catch (const std::exception&) {
-      return false;
-    }
-  }
-
-  // Applies opt.project to an accepted state; false (and a result) if it fails.
-  bool project(double t, double* x) {
-    if (!opt_.project) return true;
-    std::string why;
-    if (opt_.project(t, x, &why)) return true;
-    fail(Status::kRhsFailed, "projection onto the constraints failed: " + why, t, x);
-    return false;
-  }
-
-  // Calls the observer; false (and a result) if it asks to stop.
-  bool emit(double t, const double* x) {
-    if (!observer_ || observer_(t, x)) return true;
-    result_.status = Status::kStoppedByObserver;
-    result_.message = "stopped by the observer at t=" + number(t);
-    return false;
-  }
-
-  // Records a failure at (t, x) unless one is already recorded.
-  void fail(Status status, const std::string& what, double t, const double* x) {
-    if (failed()) return;
-    result_.status = status;
-    result_.message = what + " at t=" + number(t) + ", state " + state(x);
-  }
-  bool failed() const { return result_.status != Status::kSuccess; }
-
-  // The result, with `t` as the time of the state left in x.
-  IntegrationResult finish(double t) {
-    result_.t = t;
-    return result_;
-  }
-
- private:
-  std::string name(int i) const {
-    return i < static_cast<int>(opt_.state_names.size()) ? opt_.state_names[i]
-                                                         : "x[" + std::to_string(i) + "]";
-  }
-  std::string state(const double* x) const {
-    std::string s = "[";
-    for (int i = 0; i < n_; ++i) s += (i ? ", " : "") + name(i) + "=" + number(x[i]);
-    return s + "]";
-  }
-
-  const Rhs& rhs_;
-  const IntegrationOptions& opt_;
-  int n_;
-  const Observer& observer_;
-  IntegrationResult result_;
-};
+using namespace detail;
 
 std::string check_options(Method method, const IntegrationOptions& o, double t0, int n) {
   const auto finite = [](double v) { return std::isfinite(v); };
@@ -158,7 +49,7 @@ std::string check_options(Method method, const IntegrationOptions& o, double t0,
   if (!finite(t0) || !finite(o.t_end) || o.t_end < t0) return "t_end must be finite and >= t0";
   if (!finite(o.dt) || o.dt <= 0) return "dt must be positive";
   if (!((o.rtol >= 0 && finite(o.rtol)) && (o.atol >= 0 && finite(o.atol)))) return "rtol, atol must be >= 0";
-  if (method == Method::kDopri5 && o.rtol == 0 && o.atol == 0 && o.atol_per_component.empty())
+  if (method != Method::kRk4 && o.rtol == 0 && o.atol == 0 && o.atol_per_component.empty())
     return "rtol and atol cannot both be zero";
   if (!o.atol_per_component.empty() && static_cast<int>(o.atol_per_component.size()) != n)
     return "atol_per_component must have one entry per state component";
@@ -167,16 +58,13 @@ std::string check_options(Method method, const IntegrationOptions& o, double t0,
   }
   if (!(o.h0 >= 0) || !(o.h_min >= 0) || !(o.h_max >= 0)) return "h0, h_min, h_max must be >= 0";
   if (o.max_steps <= 0) return "max_steps must be positive";
+  if (o.max_order < 1 || o.max_order > 5) return "max_order must be 1 to 5";
   if (!(o.safety > 0 && o.safety <= 1)) return "safety must be in (0, 1]";
   if (!(o.min_factor > 0 && o.min_factor <= 1) || !(o.max_factor >= 1))
     return "need 0 < min_factor <= 1 <= max_factor";
   if (!(o.pi_beta >= 0 && o.pi_beta < 0.2)) return "pi_beta must be in [0, 0.2)";
   if ((o.t_end - t0) / o.dt > 1e15) return "too many output times (t_end - t0) / dt";
   return {};
-}
-
-std::string max_steps_message(const IntegrationOptions& opt) {
-  return "reached max_steps = " + std::to_string(opt.max_steps) + " before t_end = " + number(opt.t_end);
 }
 
 // ---------------------------------------------------------------- RK4
@@ -429,9 +317,15 @@ class Dopri5 {
 }  // namespace
 
 IntegrationResult integrate(Method method, const Rhs& rhs, double t0, double* x, int n,
-                            const IntegrationOptions& opt, const Observer& observer) {
+                            const IntegrationOptions& opt, const Observer& observer,
+                            const Jacobian& jacobian) {
   Run run(rhs, opt, n, observer);
-  if (const std::string bad = check_options(method, opt, t0, n); !bad.empty() || !rhs || (n > 0 && !x)) {
+  std::string bad = check_options(method, opt, t0, n);
+  if (bad.empty() && method == Method::kImplicit && !jacobian)
+    bad = "the implicit method needs the Jacobian of the right-hand side";
+  if (bad.empty() && method == Method::kGenAlpha)
+    bad = "genalpha integrates a Model, not an ODE x' = f(t, x) (genalpha.hpp)";
+  if (!bad.empty() || !rhs || (n > 0 && !x)) {
     IntegrationResult r;
     r.status = Status::kInvalidArgument;
     r.message = bad.empty() ? "no right-hand side or no state" : bad;
@@ -442,6 +336,7 @@ IntegrationResult integrate(Method method, const Rhs& rhs, double t0, double* x,
     run.fail(Status::kNonFinite, "initial state is not finite", t0, x);
     return run.finish(t0);
   }
+  if (method == Method::kImplicit) return integrate_cvode(run, jacobian, t0, x);
   const double t = method == Method::kRk4 ? integrate_rk4(run, t0, x) : Dopri5(run, x).integrate(t0);
   return run.finish(t);
 }

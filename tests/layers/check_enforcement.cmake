@@ -49,7 +49,7 @@ configure(model_links_libginac FALSE "kanegen_model links GiNaC (kanegen_model -
 configure(numeric_links_generator FALSE
           "kanegen_numeric links kanegen_generator, a layer above it (kanegen_numeric -> kanegen_generator)")
 configure(runtime_links_a_library FALSE
-          "kanegen_runtime must link the standard library only, and links kanegen_model")
+          "kanegen_runtime must link the standard library and SUNDIALS::cvode only, and links kanegen_model")
 configure(numeric_includes_ginac TRUE "Generating done")
 build(numeric_includes_ginac FALSE "GiNaC included (ginac/ginac.h) in a GiNaC-free layer")
 

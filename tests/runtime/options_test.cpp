@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "kanegen/runtime/genalpha.hpp"
 #include "kanegen/runtime/integrators.hpp"
 
 namespace {
@@ -73,6 +74,8 @@ TEST_CASE("simulate's defaults are IntegrationOptions' defaults", "[options]") {
   CHECK(p.number("--h-min") == defaults.h_min);
   CHECK(p.number("--h-max") == defaults.h_max);
   CHECK(p.integer("--max-steps") == defaults.max_steps);
+  CHECK(p.integer("--max-order") == defaults.max_order);
+  CHECK(p.number("--rho-inf") == kanegen::runtime::GenAlphaOptions().rho_inf);
   kanegen::runtime::Method method = kanegen::runtime::Method::kRk4;
   CHECK(kanegen::runtime::parse_method(p.text("--integrator"), &method));
   CHECK(method == kanegen::runtime::Method::kDopri5);
@@ -106,7 +109,7 @@ TEST_CASE("the parser's messages name the option and the rule", "[options]") {
   CHECK(parse_error("simulate", {"--t-end", "1", "--max-steps", "0"}) ==
         "--max-steps needs a positive integer, got '0'");
   CHECK(parse_error("simulate", {"--t-end", "1", "--integrator", "euler"}) ==
-        "unknown integrator 'euler'; known: rk4, dopri5");
+        "unknown integrator 'euler'; known: rk4, dopri5, implicit, genalpha");
   CHECK(parse_error("simulate", {"--t-end", "1", "--stats=1"}) == "option --stats takes no value");
   CHECK(parse_error("simulate", {"--t-end", "1", "-o", "a", "--output", "b"}) ==
         "option --output given more than once");

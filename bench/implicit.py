@@ -1,0 +1,176 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""The adaptive implicit integrator (--integrator implicit, CVODE BDF) against
+DOPRI5 on the stiff and non-stiff models of issue 14, in one run on this
+machine: wall time of the compiled runner, steps, and the accuracy each
+achieves against the published references (the IVP test set for Simeon's
+crank and Andrews' squeezer; the spin-up beam's tip minimum against the
+published -0.574 m and against DOPRI5). Prints a markdown table.
+
+    bench/implicit.py [--kanegen build/generator/kanegen] [--quick]
+
+Each runner is built once by `kanegen simulate` (with the Jacobian kernels,
+which --integrator implicit turns on) and then timed directly, so the times
+exclude generation and compilation. Not a test: nothing here fails on time.
+"""
+import argparse
+import csv
+import io
+import math
+import os
+import re
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+# crank.f's initial state and its solution at t = 0.1 (tests/loops/test_references.cpp).
+CRANK_Q = [0.0, 0.0, 4.500169330000000e-1, 0.0, 0.0, 1.033398630000000e-5, 1.693279690000000e-5]
+CRANK_U = [1.5e2, -7.499576703969453e1, -2.689386719979040e-6, 4.448961125815990e-1, 4.634339319238670e-3,
+           -1.785910760000550e-6, -2.689386719979040e-6]
+CRANK_REF = {"phi2": -0.3311734988256260, "x3": 0.1697373328427860}
+# andrews.f's solution at t = 0.03.
+ANDREWS_REF = {"beta": 0.1581077119629904e2, "Theta": -0.1575637105984298e2, "gamma": 0.4082224013073101e-1,
+               "Phi": -0.5347301163226948, "delta": 0.5244099658805304, "Omega": 0.5347301163226948,
+               "epsilon": 0.1048080741042263e1}
+SPIN_UP_REF = -0.574  # m, Ws = 6 rad/s (docs/flexible-bodies.md)
+# The runners are cached here (kanegen's cache, in the build tree unless set).
+CACHE = os.environ.setdefault("KANEGEN_CACHE_DIR", os.path.join(ROOT, "build", "bench_cache"))
+
+
+def build_runner(kanegen, model):
+    """The cached runner of `model` with Jacobian kernels."""
+    out = subprocess.run([kanegen, "simulate", os.path.join(ROOT, "models", model), "--t-end", "0",
+                          "--integrator", "implicit", "-o", os.devnull], capture_output=True, text=True)
+    if out.returncode != 0:
+        sys.exit(f"cannot build {model}:\n{out.stderr}")
+    match = re.search(r"cached in (\S+)\)", out.stderr)
+    if match:
+        return os.path.join(match.group(1), "runner")
+    # Built before: kanegen said nothing. The newest cached runner of this model with Jacobians.
+    name = os.path.splitext(model)[0]
+    found = [os.path.join(d.path, "runner") for d in os.scandir(CACHE) if
+             os.path.exists(os.path.join(d.path, "runner")) and os.path.exists(os.path.join(d.path, name + ".hpp"))
+             and "forcing_jacobian(" in open(os.path.join(d.path, name + ".hpp")).read()]
+    if not found:
+        sys.exit(f"cannot find the runner of {model} in {CACHE}")
+    return max(found, key=os.path.getmtime)
+
+
+def header(runner):
+    out = subprocess.run([runner, "simulate", "--t-end", "0"], capture_output=True, text=True, check=True)
+    return out.stdout.splitlines()[0].split(",")
+
+
+def simulate(runner, args):
+    """Wall time, the --stats counters and the CSV rows (dicts) of one run."""
+    start = time.perf_counter()
+    out = subprocess.run([runner, "simulate", "--stats"] + args, capture_output=True, text=True)
+    wall = time.perf_counter() - start
+    if out.returncode != 0:
+        sys.exit(f"{runner} {' '.join(args)} failed:\n{out.stderr}")
+    stats = dict(re.findall(r"(\w+)=(\S+)", out.stderr.splitlines()[-1]))
+    rows = [{k: float(v) for k, v in row.items()} for row in csv.DictReader(io.StringIO(out.stdout))]
+    return wall, stats, rows
+
+
+def crank_fe_state(names):
+    """crank.f's initial state on the finite-element rod's nodes (as tests/loops does)."""
+    def field(a, dof, xi):
+        if dof == "v":
+            return a[0] * math.sin(math.pi * xi) + a[1] * math.sin(2 * math.pi * xi)
+        if dof == "theta_z":
+            return math.pi / 0.3 * (a[0] * math.cos(math.pi * xi) + 2 * a[1] * math.cos(2 * math.pi * xi))
+        return a[2] * 4 * xi * (1 - xi) + a[3] * xi * (2 * xi - 1)
+    q = {names[1]: CRANK_Q[1] - CRANK_Q[0]}
+    u = {names[1] + "_dot": CRANK_U[1] - CRANK_U[0], names[2] + "_dot": CRANK_U[2]}
+    for name in names[3:]:
+        node, dof = name.split(".")[1:]
+        xi = int(node[1:]) / 8.0
+        q[name] = field(CRANK_Q[3:], dof, xi)
+        u[name + "_dot"] = field(CRANK_U[3:], dof, xi)
+    return q, u
+
+
+def crank_modes_state(names):
+    q = {names[1]: CRANK_Q[1] - CRANK_Q[0]}
+    u = {names[1] + "_dot": CRANK_U[1] - CRANK_U[0], names[2] + "_dot": CRANK_U[2]}
+    for k in range(4):
+        q[names[3 + k]] = CRANK_Q[3 + k]
+        u[names[3 + k] + "_dot"] = CRANK_U[3 + k]
+    return q, u
+
+
+def state_args(q, u):
+    args = []
+    for name, value in q.items():
+        args += ["--q0", f"{name}={value!r}"]
+    for name, value in u.items():
+        args += ["--u0", f"{name}={value!r}"]
+    return args
+
+
+def crank_accuracy(names):
+    def accuracy(rows):
+        last = rows[-1]
+        phi2 = last[names[0]] + last[names[1]]
+        return (f"phi2 {abs(phi2 - CRANK_REF['phi2']) / abs(CRANK_REF['phi2']):.1e}, "
+                f"x3 {abs(last[names[2]] - CRANK_REF['x3']) / abs(CRANK_REF['x3']):.1e} (relative)")
+    return accuracy
+
+
+def andrews_accuracy(rows):
+    worst = max(abs(rows[-1][k] - v) / abs(v) for k, v in ANDREWS_REF.items())
+    return f"largest relative error {worst:.1e}"
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--kanegen", default=os.path.join(ROOT, "build", "generator", "kanegen"))
+    parser.add_argument("--quick", action="store_true", help="the spin-up beam to 9 s only")
+    args = parser.parse_args()
+    spin_end = "9" if args.quick else "20"
+
+    table = []
+    spin = build_runner(args.kanegen, "spin_up_beam.json")
+    minima = {}
+    for method, extra in [("dopri5", []), ("implicit", ["--rtol", "1e-4", "--atol", "1e-6"])]:
+        wall, stats, rows = simulate(spin, ["--t-end", spin_end, "--dt", "0.05", "--integrator", method] + extra)
+        minima[method] = min(r["tip.y"] for r in rows)
+        table.append([f"spin_up_beam, 10 elements, {spin_end} s", method, " ".join(extra) or "rtol 1e-8, atol 1e-10",
+                      wall, stats, f"tip minimum {minima[method]:.5f} m ({(minima[method] / SPIN_UP_REF - 1) * 100:+.2f} % "
+                      "of the published -0.574)"])
+    table[-1][5] += f", {abs(minima['implicit'] / minima['dopri5'] - 1) * 100:.3f} % from DOPRI5"
+
+    for model, make_state, accuracy, t_end, implicit_tol in [
+            ("simeon_crank_fe.json", crank_fe_state, None, "0.1", ["--rtol", "1e-3", "--atol", "1e-5"]),
+            ("simeon_crank.json", crank_modes_state, None, "0.1", ["--rtol", "1e-3", "--atol", "1e-5"]),
+            ("andrews_squeezer.json", None, andrews_accuracy, "0.03",
+             ["--rtol", "1e-6", "--atol", "1e-8", "--max-order", "5"])]:
+        runner = build_runner(args.kanegen, model)
+        names = header(runner)[1:]
+        nq = names.index(names[0] + "_dot")  # the speeds follow the coordinates
+        state = state_args(*make_state(names[:nq])) if make_state else []
+        measure = accuracy or crank_accuracy(names[:nq])
+        for method, extra in [("dopri5", []), ("implicit", implicit_tol)]:
+            wall, stats, rows = simulate(runner, ["--t-end", t_end, "--dt", t_end, "--integrator", method] +
+                                         extra + state)
+            table.append([f"{model[:-5]}, {t_end} s", method, " ".join(extra) or "rtol 1e-8, atol 1e-10", wall,
+                          stats, measure(rows)])
+
+    print("| model | integrator | tolerances | wall time | steps (rejected) | Newton it. / Jacobians / LU | accuracy |")
+    print("|---|---|---|---|---|---|---|")
+    for model, method, tol, wall, stats, accuracy in table:
+        newton = (f"{stats['newton_iterations']} / {stats['jacobian_evals']} / {stats['lu_factorizations']}"
+                  if "newton_iterations" in stats else "-")
+        print(f"| {model} | {method} | {tol} | {wall:.3f} s | {stats['accepted']} ({stats['rejected']}) | {newton} | "
+              f"{accuracy} |")
+    # The speed-ups, model by model.
+    for k in range(0, len(table), 2):
+        print(f"\n{table[k][0]}: implicit {table[k][3] / table[k + 1][3]:.1f}x the speed of DOPRI5", end="")
+    print()
+
+
+if __name__ == "__main__":
+    main()
