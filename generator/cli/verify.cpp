@@ -172,13 +172,16 @@ struct Sample {
 /// themselves (the choice uses the numeric path alone).
 constexpr double kLoopPivotMargin = 1e-5;
 constexpr int kMaxRedraws = 1000;
+/// The unit round-off that a backward-stable solve leaves, with some room.
+constexpr double kRoundoff = 1e-15;
 
 /// False where the loop equations are nearly dependent by the measure above.
 /// A mass matrix that is not positive definite is not the loops' fault: such
 /// a state is kept, and the mass-matrix rows report it.
-bool loops_independent(const numeric::Evaluation& e) {
+/// S = C_f M_ff^-1 C_f^T of the numeric path (free speeds f), or an empty
+/// matrix where M_ff is not positive definite.
+Eigen::MatrixXd saddle_matrix(const numeric::Evaluation& e) {
   const int nc = static_cast<int>(e.phi.size());
-  if (nc == 0) return true;
   const int n = static_cast<int>(e.forcing.size());
   std::vector<int> free;
   for (int r = 0; r < n; ++r)
@@ -190,8 +193,18 @@ bool loops_independent(const numeric::Evaluation& e) {
     for (int i = 0; i < nc; ++i) cf(i, a) = e.constraint_jacobian[i * n + free[a]];
   }
   const Eigen::LLT<Eigen::MatrixXd> m_factor(mff);
-  if (m_factor.info() != Eigen::Success) return true;
-  const Eigen::MatrixXd s = cf * m_factor.solve(cf.transpose());
+  if (m_factor.info() != Eigen::Success) return {};
+  return cf * m_factor.solve(cf.transpose());
+}
+
+/// False where the loop equations are nearly dependent by the measure above.
+/// A mass matrix that is not positive definite is not the loops' fault: such
+/// a state is kept, and the mass-matrix rows report it.
+bool loops_independent(const numeric::Evaluation& e) {
+  const int nc = static_cast<int>(e.phi.size());
+  if (nc == 0) return true;
+  const Eigen::MatrixXd s = saddle_matrix(e);
+  if (s.size() == 0) return true;
   const double largest = s.diagonal().maxCoeff();
   if (!(largest > 0)) return false;
   const Eigen::LLT<Eigen::MatrixXd> s_factor(s);
@@ -200,6 +213,17 @@ bool loops_independent(const numeric::Evaluation& e) {
   for (int j = 0; j < nc; ++j)
     if (!(l(j, j) * l(j, j) > kLoopPivotMargin * largest)) return false;
   return true;
+}
+
+/// The 2-norm condition number of S (1 without loops or where S is not
+/// positive definite, which the other rows report).
+double saddle_condition(const numeric::Evaluation& e) {
+  if (e.phi.empty()) return 1.0;
+  const Eigen::MatrixXd s = saddle_matrix(e);
+  if (s.size() == 0) return 1.0;
+  const Eigen::VectorXd eigenvalues = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(s).eigenvalues();
+  const double smallest = eigenvalues.minCoeff(), largest = eigenvalues.maxCoeff();
+  return smallest > 0 ? largest / smallest : 1.0;
 }
 
 class Sampler {
@@ -502,6 +526,7 @@ class Comparison {
         [](const Sample& s) { return s.mass_matrix; }, matrix_name(), true);
   }
 
+  double rtol() const { return rtol_; }
   EntryName coordinate_name() const {
     return [this](int r) { return "[" + std::to_string(r) + "] (" + link_.coordinates[r] + ")"; };
   }
@@ -651,13 +676,29 @@ void add_loop_rows(const Comparison& c, const Link& link, std::vector<Row>& rows
   loop_row(
       "constraint_bias", "numeric -(dC/dt) u (duals)", [](const Sample& s) { return s.bias; },
       [](const Sample& s) { return s.reference.constraint_bias; }, c.constraint_name());
-  loop_row(
+  // lambda is only as accurate as S = C M^-1 C^T is conditioned (many loops
+  // in a random, unclosed state can make it 1e10): its entries are measured
+  // against their size times kappa(S) eps / rtol where that exceeds 1, the
+  // forward error that a backward-stable solve may leave. The backward error
+  // of (udot, lambda) together, which no conditioning excuses, is the udot row.
+  const double rtol = c.rtol();
+  rows.push_back(c.vectors(
       "lambda", "numeric lambda", [](const Sample& s) { return s.lambda; },
       [](const Sample& s) {
         return s.reference.lambda.empty() ? std::vector<double>(s.reference.phi.size(), std::nan(""))
                                           : s.reference.lambda;
       },
-      c.constraint_name());
+      c.constraint_name(), false,
+      [rtol](const Sample& s) {
+        std::vector<double> size = s.reference.lambda;
+        const double allowance = std::max(1.0, saddle_condition(s.reference) * kRoundoff / rtol);
+        for (double& v : size) v = std::abs(v) * allowance;
+        return size;
+      }));
+  if (link.constraints.empty()) {
+    rows.back().applicable = false;
+    rows.back().note = "the model has no loops";
+  }
 }
 
 /// The generated values against the numeric reference, and the checks of M

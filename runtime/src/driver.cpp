@@ -281,6 +281,7 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
   if (!csv->write_header(header)) throw RunError(csv->error());
 
   std::vector<double> tau(static_cast<size_t>(std::max(info.ntau, 1)), 0.0);
+  std::vector<double> lambda(static_cast<size_t>(std::max(info.nc, 1)));
   std::vector<double> row(1 + n + std::max(info.ny, 1));
   std::string why;  // the reason the right-hand side failed, for the message
   const StopOnSignal stop_on_signal;
@@ -289,7 +290,8 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
   const Rhs rhs = [&](double t, const double* xs, double* xdot) {
     if (g_stop_signal != 0) return false;
     model.coordinate_rates(xs, xs + nq, xdot);
-    const int pivot = model.forward_dynamics(t, xs, xs + nq, tau.data(), xdot + nq);
+    const int pivot = loops.active() ? loops.dynamics(t, xs, xs + nq, tau.data(), xdot + nq, lambda.data())
+                                     : model.forward_dynamics(t, xs, xs + nq, tau.data(), xdot + nq);
     if (pivot != 0) why = pivot_message(info, pivot);
     return pivot == 0;
   };

@@ -9,10 +9,41 @@
 
 namespace kanegen::runtime {
 
-/// The mass matrix restricted to the coordinates that move, factored once:
-/// corrections of least kinetic-energy norm (mass-orthogonal projection)
-/// keep the motion on its branch through singular positions, where the
-/// Euclidean least-norm step would redistribute it among the coordinates.
+namespace {
+
+/// In place, the lower Cholesky factor of the symmetric n*n matrix A
+/// (row-major, lower triangle read); false if A is not positive definite.
+bool cholesky(std::vector<double>& A, int n) {
+  for (int j = 0; j < n; ++j) {
+    double s = A[j * n + j];
+    for (int k = 0; k < j; ++k) s -= A[j * n + k] * A[j * n + k];
+    if (!(s > 0.0)) return false;
+    A[j * n + j] = std::sqrt(s);
+    for (int i = j + 1; i < n; ++i) {
+      double v = A[i * n + j];
+      for (int k = 0; k < j; ++k) v -= A[i * n + k] * A[j * n + k];
+      A[i * n + j] = v / A[j * n + j];
+    }
+  }
+  return true;
+}
+
+/// x := (L L^T)^-1 x with L from cholesky().
+void cholesky_solve(const std::vector<double>& L, int n, double* x) {
+  for (int i = 0; i < n; ++i) {
+    for (int k = 0; k < i; ++k) x[i] -= L[i * n + k] * x[k];
+    x[i] /= L[i * n + i];
+  }
+  for (int i = n - 1; i >= 0; --i) {
+    for (int k = i + 1; k < n; ++k) x[i] -= L[k * n + i] * x[k];
+    x[i] /= L[i * n + i];
+  }
+}
+
+}  // namespace
+
+/// The mass matrix restricted to the coordinates `cols`, factored once (the
+/// metric of Gauss's principle: accelerations of least kinetic-energy norm).
 class Metric {
  public:
   Metric(const Model& model, const double* q, const std::vector<int>& cols)
@@ -23,20 +54,7 @@ class Metric {
     L_.assign(static_cast<size_t>(m) * m, 0.0);
     for (int i = 0; i < m; ++i)
       for (int j = 0; j <= i; ++j) L_[i * m + j] = M[cols[i] * n_ + cols[j]];
-    for (int j = 0; j < m && ok_; ++j) {
-      double s = L_[j * m + j];
-      for (int k = 0; k < j; ++k) s -= L_[j * m + k] * L_[j * m + k];
-      if (!(s > 0.0)) {
-        ok_ = false;
-        break;
-      }
-      L_[j * m + j] = std::sqrt(s);
-      for (int i = j + 1; i < m; ++i) {
-        double v = L_[i * m + j];
-        for (int k = 0; k < j; ++k) v -= L_[i * m + k] * L_[j * m + k];
-        L_[i * m + j] = v / L_[j * m + j];
-      }
-    }
+    ok_ = cholesky(L_, m);
   }
   bool ok() const { return ok_; }
   /// v (length nu, entries at cols) := M_cols^-1 v.
@@ -44,14 +62,7 @@ class Metric {
     const int m = static_cast<int>(cols_.size());
     std::vector<double> x(m);
     for (int i = 0; i < m; ++i) x[i] = v[cols_[i]];
-    for (int i = 0; i < m; ++i) {
-      for (int k = 0; k < i; ++k) x[i] -= L_[i * m + k] * x[k];
-      x[i] /= L_[i * m + i];
-    }
-    for (int i = m - 1; i >= 0; --i) {
-      for (int k = i + 1; k < m; ++k) x[i] -= L_[k * m + i] * x[k];
-      x[i] /= L_[i * m + i];
-    }
+    cholesky_solve(L_, m, x.data());
     for (int i = 0; i < m; ++i) v[cols_[i]] = x[i];
   }
 
@@ -62,16 +73,88 @@ class Metric {
   bool ok_ = true;
 };
 
+/// The mass-orthogonal projection of the augmented Lagrangian method
+/// (Bayo and Ledesma 1996): a correction dx of the moving coordinates with
+/// (M + alpha C^T C) dx = alpha C^T r, the minimum of
+/// dx^T M dx + alpha |C dx - r|^2. Where the loop equations are independent
+/// it meets C dx = r to 1e-7 per application (so a few applications close the
+/// loops as Newton does); where they are nearly dependent (a singular
+/// position) it moves the coordinates only as far as the equations hold
+/// them, so round-off cannot push the motion onto another branch.
+class Projector {
+ public:
+  Projector(const Model& model, const double* q, const std::vector<int>& cols)
+      : nu_(model.info().nu), nc_(model.info().nc), cols_(cols) {
+    std::vector<double> M(static_cast<size_t>(nu_) * nu_);
+    model.mass_matrix(q, M.data());
+    C_.resize(static_cast<size_t>(nc_) * nu_);
+    model.constraint_jacobian(q, C_.data());
+    const int m = static_cast<int>(cols.size());
+    // alpha C^T C about 1e7 times M (the value Bayo and Ledesma use).
+    double mass = 0.0, stiffness = 0.0;
+    for (int i = 0; i < m; ++i) {
+      mass = std::max(mass, M[cols[i] * nu_ + cols[i]]);
+      for (int c = 0; c < nc_; ++c)
+        stiffness = std::max(stiffness, C_[c * nu_ + cols[i]] * C_[c * nu_ + cols[i]]);
+    }
+    alpha_ = stiffness > 0.0 ? 1e7 * mass / stiffness : 0.0;
+    L_.assign(static_cast<size_t>(m) * m, 0.0);
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j <= i; ++j) {
+        double v = M[cols[i] * nu_ + cols[j]];
+        for (int c = 0; c < nc_; ++c) v += alpha_ * C_[c * nu_ + cols[i]] * C_[c * nu_ + cols[j]];
+        L_[i * m + j] = v;
+      }
+    ok_ = alpha_ > 0.0 && cholesky(L_, m);
+  }
+  bool ok() const { return ok_; }
+  /// x (nu; zero outside the moving columns) := the correction for r (nc).
+  void correct(const double* r, double* x) const {
+    const int m = static_cast<int>(cols_.size());
+    std::vector<double> y(m, 0.0);
+    for (int i = 0; i < m; ++i)
+      for (int c = 0; c < nc_; ++c) y[i] += alpha_ * C_[c * nu_ + cols_[i]] * r[c];
+    cholesky_solve(L_, m, y.data());
+    std::fill(x, x + nu_, 0.0);
+    for (int i = 0; i < m; ++i) x[cols_[i]] = y[i];
+  }
+
+ private:
+  int nu_, nc_;
+  std::vector<int> cols_;
+  std::vector<double> C_, L_;
+  double alpha_ = 0.0;
+  bool ok_ = false;
+};
+
 namespace {
 
 constexpr int kMaxNewton = 50;
+constexpr int kMaxAugmented = 20;  // iterations of the augmented Lagrangian
+// The penalty of the augmented Lagrangian: alpha C^T C against M.
+constexpr double kPenalty = 1e7;
+// Below this ratio of pivots of C M^-1 C^T (the loop equations nearly
+// dependent, within about 1e-4 rad of a parallelogram's singular position)
+// the accelerations come from the augmented Lagrangian, whose loop forces
+// stay bounded, instead of the solve with multipliers, which would amplify
+// round-off into a change of branch.
+constexpr double kWeakestRow = 1e-8;
+// The largest |phi| the projection leaves after an integration step.
+constexpr double kProjectedResidual = 1e-10;
+
+/// What least_norm found about the rank of A W^-1 A^T.
+struct LeastNormRank {
+  int dropped = 0;       ///< rows skipped as combinations of earlier ones
+  double weakest = 0.0;  ///< smallest pivot of a kept row over the largest diagonal entry
+};
 
 /// x = A^T y with (A A^T) y = r, A the rows of C restricted to `cols`: the
 /// least-norm solution of A x = r. Rows that are (numerically) combinations
 /// of earlier ones get y = 0, so redundant loop equations (a parallelogram)
 /// do not break it. Returns false if A has no usable row.
 bool least_norm(const std::vector<double>& C, int nc, int nu, const std::vector<int>& cols,
-                const std::vector<double>& r, std::vector<double>* x, const Metric* metric = nullptr) {
+                const std::vector<double>& r, std::vector<double>* x, const Metric* metric = nullptr,
+                double* multipliers = nullptr, LeastNormRank* rank = nullptr) {
   // W^-1 A^T, column by column (A^T itself without a metric).
   std::vector<double> WA(static_cast<size_t>(nc) * nu, 0.0);
   for (int i = 0; i < nc; ++i)
@@ -86,6 +169,8 @@ bool least_norm(const std::vector<double>& C, int nc, int nu, const std::vector<
       G[i * nc + j] = v;
     }
   std::vector<bool> used(nc, false);
+  std::vector<double> diagonal(nc);
+  for (int j = 0; j < nc; ++j) diagonal[j] = G[j * nc + j];
   bool any = false;
   for (int j = 0; j < nc; ++j) {
     const double scale = G[j * nc + j];
@@ -118,6 +203,15 @@ bool least_norm(const std::vector<double>& C, int nc, int nu, const std::vector<
     for (int k = i + 1; k < nc; ++k)
       if (used[k]) y[i] -= G[k * nc + i] * y[k];
     y[i] /= G[i * nc + i];
+  }
+  if (multipliers) std::copy(y.begin(), y.end(), multipliers);
+  if (rank) {
+    rank->dropped = static_cast<int>(std::count(used.begin(), used.end(), false));
+    double largest = 0.0, smallest = INFINITY;
+    for (int j = 0; j < nc; ++j) largest = std::max(largest, diagonal[j]);
+    for (int j = 0; j < nc; ++j)
+      if (used[j]) smallest = std::min(smallest, G[j * nc + j] * G[j * nc + j]);
+    rank->weakest = smallest / largest;
   }
   x->assign(nu, 0.0);
   for (int c : cols)
@@ -189,8 +283,8 @@ std::string LoopSolver::describe(const std::vector<int>& coordinates) const {
   return s.empty() ? "none" : s;
 }
 
-bool LoopSolver::close_positions(double* q, const std::vector<int>& moving, const Metric* metric,
-                                 int* iterations, std::string* why) const {
+bool LoopSolver::close_positions(double* q, const std::vector<int>& moving, int* iterations,
+                                 std::string* why) const {
   const int nu = model_.info().nu;
   std::vector<double> phi(nc_), C(static_cast<size_t>(nc_) * nu), dx;
   double previous = INFINITY;
@@ -212,28 +306,13 @@ bool LoopSolver::close_positions(double* q, const std::vector<int>& moving, cons
     model_.constraints(q, phi.data());
     model_.constraint_jacobian(q, C.data());
     for (double& v : phi) v = -v;
-    if (!least_norm(C, nc_, nu, moving, phi, &dx, metric)) {
+    if (!least_norm(C, nc_, nu, moving, phi, &dx)) {
       *why = "the loop equations do not depend on the coordinates that may move (" + describe(moving) + ")";
       return false;
     }
     // Damped when the step is large: long steps jump between branches.
     double size = 0.0;
-    int largest = moving.empty() ? 0 : moving.front();
-    for (int c : moving)
-      if (std::abs(dx[c]) > size) {
-        size = std::abs(dx[c]);
-        largest = c;
-      }
-    // Drift after an integration step is tiny; a large correction means the
-    // loop equations are nearly dependent here, where the projection could
-    // move the motion onto another branch.
-    if (metric && size > 1e-6) {
-      *why = std::string("singular configuration: closing the loops would move ") +
-             model_.info().coordinate_names[largest] + " by " + format_double(dx[largest]) +
-             " after one step (the loop equations are nearly dependent: links in line, a dead point or a "
-             "bifurcation)";
-      return false;
-    }
+    for (int c : moving) size = std::max(size, std::abs(dx[c]));
     const double damping = size > 0.5 ? 0.5 / size : 1.0;
     for (int c : moving) q[c] += damping * dx[c];
   }
@@ -241,7 +320,7 @@ bool LoopSolver::close_positions(double* q, const std::vector<int>& moving, cons
 }
 
 bool LoopSolver::close_speeds(const double* q, double* u, const std::vector<int>& moving,
-                              const Metric* metric, std::string* why) const {
+                              std::string* why) const {
   const int nu = model_.info().nu;
   std::vector<double> C(static_cast<size_t>(nc_) * nu), r(nc_, 0.0), du;
   model_.constraint_jacobian(q, C.data());
@@ -255,24 +334,8 @@ bool LoopSolver::close_speeds(const double* q, double* u, const std::vector<int>
     holds = holds && std::abs(r[i]) <= 1e-13 * scale;
   }
   if (holds) return true;
-  if (!least_norm(C, nc_, nu, moving, r, &du, metric)) {
+  if (!least_norm(C, nc_, nu, moving, r, &du)) {
     *why = "the loop speeds do not depend on the speeds that may change";
-    return false;
-  }
-  double size = 0.0, speed = 0.0;
-  int largest = moving.empty() ? 0 : moving.front();
-  for (int c : moving) {
-    speed = std::max(speed, std::abs(u[c]));
-    if (std::abs(du[c]) > size) {
-      size = std::abs(du[c]);
-      largest = c;
-    }
-  }
-  if (metric && size > 1e-6 * (1.0 + speed)) {  // as for the positions: nearly dependent loop equations
-    *why = std::string("singular configuration: closing the loops would change ") +
-           model_.info().speed_names[largest] + " by " + format_double(du[largest]) +
-           " after one step (the loop equations are nearly dependent: links in line, a dead point or a "
-           "bifurcation)";
     return false;
   }
   for (int c : moving) u[c] += du[c];
@@ -299,7 +362,7 @@ Assembly LoopSolver::assemble(double* q, double* u) const {
     a.picked = true;
   }
   std::string why;
-  if (!close_positions(q, free, nullptr, &a.iterations, &why) || !close_speeds(q, u, free, nullptr, &why))
+  if (!close_positions(q, free, &a.iterations, &why) || !close_speeds(q, u, free, &why))
     throw std::runtime_error("assembly failed: " + why + ", holding " + describe(a.independent) +
                              " at the given values; start " + configuration(q) +
                              ". Check the loop's lengths and points, or give initial values nearer a closed "
@@ -308,16 +371,138 @@ Assembly LoopSolver::assemble(double* q, double* u) const {
   return a;
 }
 
+int LoopSolver::dynamics(double t, const double* q, const double* u, const double* tau, double* udot,
+                         double* lambda) const {
+  const int status = model_.constrained_dynamics(t, q, u, tau, udot, lambda);
+  if (status >= 0 || !active()) return status;
+  // A prescribed speed's acceleration is known only inside the generated code.
+  for (int i = 0; i < nq_; ++i)
+    if (model_.info().coordinate_roles[i] == 2) return status;
+  std::vector<int> all(nq_);
+  for (int i = 0; i < nq_; ++i) all[i] = i;
+  const Metric metric(model_, q, all);
+  if (!metric.ok()) return 1;
+  if (scaled_dynamics(t, q, u, tau, metric, udot, lambda)) return 0;
+  return augmented_dynamics(t, q, u, tau, udot, lambda) ? 0 : 1;
+}
+
+bool LoopSolver::scaled_dynamics(double t, const double* q, const double* u, const double* tau,
+                                 const Metric& metric, double* udot, double* lambda) const {
+  const int nu = model_.info().nu;
+  std::vector<int> all(nq_);
+  for (int i = 0; i < nq_; ++i) all[i] = i;
+  std::vector<double> C(static_cast<size_t>(nc_) * nu), r(nc_), correction;
+  model_.forcing(t, q, u, tau, udot);
+  metric.solve(udot);  // the acceleration without the loops
+  model_.constraint_jacobian(q, C.data());
+  model_.constraint_bias(q, u, r.data());
+  for (int c = 0; c < nc_; ++c)
+    for (int i = 0; i < nu; ++i) r[c] -= C[c * nu + i] * udot[i];
+  // The generated solve gives up when a pivot is small against the largest
+  // row; least_norm judges each row against its own size, which is what a
+  // row that merely shrinks near the singular position needs (a
+  // parallelogram's x rows scale with the sine of the crank angle).
+  LeastNormRank rank;
+  if (!least_norm(C, nc_, nu, all, r, &correction, &metric, lambda, &rank) || rank.dropped > 0 ||
+      !(rank.weakest > kWeakestRow))
+    return false;
+  for (int i = 0; i < nu; ++i) udot[i] += correction[i];
+  return true;
+}
+
+bool LoopSolver::augmented_dynamics(double t, const double* q, const double* u, const double* tau,
+                                    double* udot, double* lambda) const {
+  const int nu = model_.info().nu;
+  std::vector<double> W(static_cast<size_t>(nu) * nu), f(nu), C(static_cast<size_t>(nc_) * nu), gamma(nc_);
+  model_.mass_matrix(q, W.data());
+  model_.forcing(t, q, u, tau, f.data());
+  model_.constraint_jacobian(q, C.data());
+  model_.constraint_bias(q, u, gamma.data());
+  // The penalty alpha makes alpha C^T C about 1e7 times M on the rows that
+  // constrain (Bayo and Ledesma's value for unit-scale models): a few
+  // iterations meet the independent loop equations, W = M + alpha C^T C
+  // stays well conditioned, and the rows that (nearly) vanish at the
+  // singular position bend the motion only as far as they can hold it,
+  // with bounded forces, instead of deciding the branch from round-off.
+  double mass = 0.0, stiffness = 0.0;
+  for (int i = 0; i < nu; ++i) {
+    mass = std::max(mass, W[i * nu + i]);
+    for (int c = 0; c < nc_; ++c) stiffness = std::max(stiffness, C[c * nu + i] * C[c * nu + i]);
+  }
+  const double alpha = stiffness > 0.0 ? kPenalty * mass / stiffness : 0.0;
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j <= i; ++j)
+      for (int c = 0; c < nc_; ++c) W[i * nu + j] += alpha * C[c * nu + i] * C[c * nu + j];
+  if (!cholesky(W, nu)) return false;
+  // W udot_k = f + C^T (lambda_k + alpha gamma), then
+  // lambda_{k+1} = lambda_k - alpha (C udot_k - gamma).
+  std::fill(lambda, lambda + nc_, 0.0);
+  std::vector<double> violation(nc_);
+  for (int iteration = 0; iteration < kMaxAugmented; ++iteration) {
+    for (int i = 0; i < nu; ++i) {
+      udot[i] = f[i];
+      for (int c = 0; c < nc_; ++c) udot[i] += C[c * nu + i] * (lambda[c] + alpha * gamma[c]);
+    }
+    cholesky_solve(W, nu, udot);
+    double worst = 0.0, scale = 0.0;
+    for (int c = 0; c < nc_; ++c) {
+      violation[c] = -gamma[c];
+      for (int i = 0; i < nu; ++i) {
+        violation[c] += C[c * nu + i] * udot[i];
+        scale = std::max(scale, std::abs(C[c * nu + i] * udot[i]));
+      }
+      worst = std::max(worst, std::abs(violation[c]));
+    }
+    if (worst <= 1e-12 * std::max(scale, 1e-300)) break;
+    for (int c = 0; c < nc_; ++c) lambda[c] -= alpha * violation[c];
+  }
+  return true;
+}
+
 bool LoopSolver::project(double* q, double* u, std::string* why) const {
   if (!active()) return true;
   std::vector<int> moving;
   for (int i = 0; i < nq_; ++i)
     if (model_.info().coordinate_roles[i] != 2) moving.push_back(i);
-  const Metric metric(model_, q, moving);
-  const Metric* m = metric.ok() ? &metric : nullptr;
-  if (!close_positions(q, moving, m, nullptr, why) || !close_speeds(q, u, moving, m, why)) {
+  const Projector projector(model_, q, moving);
+  if (!projector.ok()) {  // M is not positive definite here: the Euclidean least-norm steps
+    if (close_positions(q, moving, nullptr, why) && close_speeds(q, u, moving, why)) return true;
     *why += " at " + configuration(q);
     return false;
+  }
+  const int nu = model_.info().nu;
+  std::vector<double> r(nc_), dx(nu), C(static_cast<size_t>(nc_) * nu);
+  // Positions: modified Newton with the projector of the start, until the
+  // residual is at the tolerance or stops falling.
+  double previous = INFINITY;
+  int row = 0;
+  for (int it = 0; it < kMaxNewton; ++it) {
+    const double residual_now = residual(q, &row);
+    if (residual_now <= tolerance_ || !(residual_now < 0.5 * previous)) break;
+    previous = residual_now;
+    model_.constraints(q, r.data());
+    for (double& v : r) v = -v;
+    projector.correct(r.data(), dx.data());
+    for (int c : moving) q[c] += dx[c];
+  }
+  if (const double left = residual(q, &row); !(left <= kProjectedResidual)) {
+    *why = std::string("the loops cannot be kept closed: |phi| stays at ") + format_double(left) + " in '" +
+           model_.info().constraint_names[row] +
+           "' (the loop equations are dependent here: links in line, a dead point or a bifurcation, where "
+           "the motion could take either branch) at " +
+           configuration(q);
+    return false;
+  }
+  // Speeds: C u = 0 by the same projection, two applications (each leaves
+  // 1e-7 of the violation where the equations are independent).
+  model_.constraint_jacobian(q, C.data());
+  for (int pass = 0; pass < 2; ++pass) {
+    for (int c = 0; c < nc_; ++c) {
+      r[c] = 0.0;
+      for (int k = 0; k < nu; ++k) r[c] -= C[c * nu + k] * u[k];
+    }
+    projector.correct(r.data(), dx.data());
+    for (int c : moving) u[c] += dx[c];
   }
   return true;
 }

@@ -58,7 +58,8 @@ LoopRun run_loops(double t_end, double dt, double rtol,
   const kanegen::runtime::Rhs rhs = [&](double t, const double* s, double* sdot) {
     double tau[System::ntau > 0 ? System::ntau : 1] = {};
     System::coordinate_rates(s, s + nq, sdot);
-    const int status = model.forward_dynamics(t, s, s + nq, tau, sdot + nq);
+    double lambda[System::nc > 0 ? System::nc : 1];
+    const int status = loops.dynamics(t, s, s + nq, tau, sdot + nq, lambda);
     if (status < 0) run.why = "singular configuration";
     return status == 0;
   };

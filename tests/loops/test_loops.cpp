@@ -90,24 +90,31 @@ TEST_CASE("the slider-crank's loop force at the dead centre is the slider's iner
   CHECK(std::abs(lambda[1]) < 1e-9);
 }
 
-TEST_CASE("the N four-bar follows the parallelogram, then stops at a singular position",
-          "[loops][nfourbar]") {
+TEST_CASE("the N four-bar passes its singular positions on the parallelogram branch", "[loops][nfourbar]") {
   using System = kanegen_models::nfourbar2::System;
-  const LoopRun run = run_loops<System>(10.0, 0.5, 1e-10);
-  // The exact 1-dof motion 3 theta'' = -34.335 cos(theta), integrated independently (models/nfourbar2.json).
-  REQUIRE(run.times.size() >= 5);
-  REQUIRE(run.times[2] == Approx(1.0));
-  REQUIRE(run.times[4] == Approx(2.0));
+  const LoopRun run = run_loops<System>(10.0, 0.5, 1e-9);
+  INFO(run.result.message);
+  REQUIRE(run.result.ok());
+  // The exact 1-dof motion 3 theta'' = -34.335 cos(theta) from theta = pi/2,
+  // theta' = -1 (models/nfourbar2.json), integrated independently by
+  // classical RK4 with h = 1e-5 s and 2.5e-6 s (agreeing to 1e-11): the
+  // cranks pass the ground line (all links in line) twelve times in 10 s.
+  REQUIRE(run.times.size() == 21);
   for (int crank = 0; crank < 3; ++crank) {
-    CHECK(run.states[2][crank] == Approx(-1.7670744763).margin(1e-8));
-    CHECK(run.states[4][crank] == Approx(-4.7702370345).margin(1e-8));
+    CHECK(run.states[2][crank] == Approx(-1.7670744763).margin(1e-7));
+    CHECK(run.states[4][crank] == Approx(-4.7702370345).margin(1e-7));
   }
+  // Each passage costs up to ~1e-5 of phase (the augmented Lagrangian
+  // near the singular position, docs/closed-loops.md); the issue's target
+  // of 1e-6 for B0 at 10 s is not met yet.
+  const double theta = -30.17980086019;
+  const std::vector<double>& end = run.states.back();
+  for (int crank = 0; crank < 3; ++crank) CHECK(end[crank] == Approx(theta).margin(2e-4));
+  // B0, the benchmark's output: the tip of the first crank, 1 m long.
+  CHECK(std::abs(std::cos(end[0]) - std::cos(theta)) < 1e-4);
+  CHECK(std::abs(std::sin(end[0]) - std::sin(theta)) < 1e-4);
   CHECK(run.worst_residual < 1e-10);
-  // The third time the cranks come in line it stops instead of changing branch.
-  CHECK_FALSE(run.result.ok());
-  CHECK(run.why == "singular configuration");
-  CHECK(run.result.t > 2.0);
-  CHECK(run.result.t < 3.0);
+  CHECK(run.worst_energy_change < 1e-5 * run.initial_energy);
 }
 
 TEST_CASE("a free slider-crank conserves energy and keeps its loop closed", "[loops][slider_crank]") {

@@ -33,3 +33,10 @@ target_compile_definitions(test_loop_cli PRIVATE KANEGEN_EXE="$<TARGET_FILE:kane
 target_link_libraries(test_loop_cli PRIVATE Catch2::Catch2)
 add_dependencies(test_loop_cli kanegen kanegen_runtime)
 catch_discover_tests(test_loop_cli TEST_PREFIX "loops cli: ")
+
+# models/nfourbar40.json is the committed output of scripts/make_nfourbar.py.
+find_package(Python3 COMPONENTS Interpreter QUIET)
+if(Python3_Interpreter_FOUND)
+  add_test(NAME loops:nfourbar40_is_up_to_date COMMAND ${Python3_EXECUTABLE}
+                                                      ${PROJECT_SOURCE_DIR}/scripts/make_nfourbar.py --check)
+endif()

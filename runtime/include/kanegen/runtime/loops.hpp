@@ -38,23 +38,42 @@ class LoopSolver {
   /// not close and the configuration.
   Assembly assemble(double* q, double* u) const;
 
-  /// Puts (q, u) back on Phi = 0, C u = 0 by least-norm corrections of the
-  /// coordinates that are not prescribed. False, with the reason in *why,
-  /// if Newton does not converge (a singular or torn configuration).
+  /// Puts (q, u) back on Phi = 0, C u = 0 by the mass-orthogonal projection
+  /// of the augmented Lagrangian method, moving the coordinates that are not
+  /// prescribed (it stays on the branch through singular positions). False,
+  /// with the reason in *why, if |Phi| stays above 1e-10 (the loop equations
+  /// dependent at a true bifurcation, or a torn configuration).
   bool project(double* q, double* u, std::string* why) const;
+
+  /// udot and lambda of M udot = f + C^T lambda, C udot = gamma: the
+  /// generated saddle-point solve, and where it finds the loop equations
+  /// (nearly) dependent (a singular position: links in line), the
+  /// augmented Lagrangian iteration (Bayo and Ledesma 1996), whose
+  /// acceleration is the one of least kinetic-energy norm that the
+  /// constraints allow (Gauss's principle), so that the motion passes
+  /// through on its physical branch with bounded loop forces. Returns as
+  /// Model::constrained_dynamics: 0, k > 0 for a singular M, -k if the
+  /// fallback cannot be used either (a prescribed coordinate).
+  int dynamics(double t, const double* q, const double* u, const double* tau, double* udot,
+               double* lambda) const;
 
   /// "name (role)" of coordinate i, for messages.
   std::string describe(const std::vector<int>& coordinates) const;
 
  private:
-  /// Newton on Phi with only the coordinates in `moving` changing.
-  /// The steps are least-norm in `metric` (the mass matrix) if given, else Euclidean.
-  bool close_positions(double* q, const std::vector<int>& moving, const Metric* metric, int* iterations,
-                       std::string* why) const;
+  /// Newton on Phi with only the coordinates in `moving` changing, by
+  /// Euclidean least-norm steps (assembly: far from closed, any branch near the guess).
+  bool close_positions(double* q, const std::vector<int>& moving, int* iterations, std::string* why) const;
   /// u_moving corrected so that C u = 0.
-  bool close_speeds(const double* q, double* u, const std::vector<int>& moving, const Metric* metric,
-                    std::string* why) const;
+  bool close_speeds(const double* q, double* u, const std::vector<int>& moving, std::string* why) const;
   std::string configuration(const double* q) const;
+  /// dynamics() where the generated solve gave up: the multipliers with each
+  /// loop equation scaled to its own size; false if some are (nearly) dependent.
+  bool scaled_dynamics(double t, const double* q, const double* u, const double* tau, const Metric& metric,
+                       double* udot, double* lambda) const;
+  /// dynamics() at a singular position: the augmented Lagrangian iteration.
+  bool augmented_dynamics(double t, const double* q, const double* u, const double* tau, double* udot,
+                          double* lambda) const;
 
   const Model& model_;
   int nc_, nq_;
