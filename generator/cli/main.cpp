@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cli/modes.hpp"
+#include "cli/preflight.hpp"
 #include "cli/runner_build.hpp"
 #include "cli/verify.hpp"
 #include "codegen/emitter.hpp"
@@ -20,6 +21,20 @@
 namespace {
 
 using kanegen::cli::BuildOptions;
+
+/// Instead of CLI11's PositiveNumber and NonNegativeNumber, whose message
+/// prints the largest double in 309 digits.
+CLI::Validator number_at_least(double lowest, bool inclusive, const std::string& what) {
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        double v = 0;
+        const bool ok = CLI::detail::lexical_cast(text, v) && (inclusive ? v >= lowest : v > lowest);
+        return ok ? std::string() : "needs " + what + ", got '" + text + "'";
+      },
+      "");
+}
+const CLI::Validator kPositive = number_at_least(0, false, "a positive number");
+const CLI::Validator kNonNegative = number_at_least(0, true, "a number >= 0");
 
 /// The options every subcommand has.
 struct RunOptions {
@@ -38,9 +53,12 @@ void add_common(CLI::App* command, RunOptions& options) {
       ->expected(3)
       ->delimiter(',');
   command->add_flag("--quiet", options.quiet, "no progress lines on stderr");
+  // Kept for unknown_arguments_message, which names the nearest option.
+  command->allow_extras();
 }
 
 BuildOptions build_options(const RunOptions& options) {
+  kanegen::cli::check_gravity_option(options.model, !options.gravity.empty());
   BuildOptions b;
   b.verbose = !options.quiet;
   if (options.gravity.size() == 3)
@@ -69,7 +87,9 @@ void add_forwarded(CLI::App* command, const char* runner_command, ForwardedOptio
       option = command->add_option(names, f.values[o.name], help)->type_name(o.value);
       // One value per occurrence; a repeated single option is kept for the runner's parser to refuse.
       if (!o.repeatable) option->expected(1)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-      if (o.required) option->required();
+      // A required one is not marked required here: CLI11 would report it
+      // missing before an unknown option (--tend for --t-end); the runner's
+      // parser, run by forwarded_args, refuses it instead.
     }
     f.options.emplace_back(&o, option);
   }
@@ -93,6 +113,17 @@ std::vector<std::string> forwarded_args(const char* runner_command, const Forwar
   return args;
 }
 
+/// What can be checked before the runner is built: the --set values against
+/// the model's physics and the output file.
+void check_forwarded(const std::string& model, const BuildOptions& b, const ForwardedOptions& f) {
+  const auto values = [&](const char* name) {
+    const auto it = f.values.find(name);
+    return it == f.values.end() ? std::vector<std::string>{} : it->second;
+  };
+  kanegen::cli::check_sets(model, b.load, values("--set"));
+  for (const std::string& output : values("--output")) kanegen::cli::prepare_output_file(output);
+}
+
 // Each subcommand: its options (which CLI11 fills in place, so they stay
 // where main declares them), a function that registers them and one that runs it.
 
@@ -111,6 +142,7 @@ void add_generate(CLI::App& app, GenerateCommand& c) {
 
 int run_generate(const GenerateCommand& c) {
   const BuildOptions b = build_options(c.run);
+  kanegen::cli::prepare_output_directory(c.out_dir);
   const kanegen::pipeline::GeneratedModel g = kanegen::pipeline::generate(c.run.model, b.load);
   kanegen::codegen::write_files_atomically(c.out_dir, g.files);
   if (!c.run.quiet) {
@@ -139,7 +171,9 @@ void add_simulate(CLI::App& app, SimulateCommand& c) {
 /// The runner's own simulate, with the options passed on.
 int run_simulate(const SimulateCommand& c) {
   const std::vector<std::string> args = forwarded_args("simulate", c.forwarded);
-  const std::string runner = kanegen::cli::build_runner(c.run.model, build_options(c.run));
+  const BuildOptions b = build_options(c.run);
+  check_forwarded(c.run.model, b, c.forwarded);
+  const std::string runner = kanegen::cli::build_runner(c.run.model, b);
   return kanegen::cli::run_program(runner, args);
 }
 
@@ -158,7 +192,9 @@ void add_eval(CLI::App& app, EvalCommand& c) {
 /// The runner's own eval, with the options passed on.
 int run_eval(const EvalCommand& c) {
   const std::vector<std::string> args = forwarded_args("eval", c.forwarded);
-  const std::string runner = kanegen::cli::build_runner(c.run.model, build_options(c.run));
+  const BuildOptions b = build_options(c.run);
+  check_forwarded(c.run.model, b, c.forwarded);
+  const std::string runner = kanegen::cli::build_runner(c.run.model, b);
   return kanegen::cli::run_program(runner, args);
 }
 
@@ -179,22 +215,20 @@ void add_verify(CLI::App& app, VerifyCommand& c) {
       "trajectories. Exit status 0: all agree; 1: a mismatch (named on stderr with its state). See "
       "docs/verify.md.");
   kanegen::cli::VerifyOptions& o = c.options;
-  ver->add_option("--samples", o.samples, "number of random states")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+  ver->add_option("--samples", o.samples, "number of random states")->capture_default_str()->check(kPositive);
   ver->add_option("--seed", o.seed, "random seed")->capture_default_str();
   ver->add_option("--rtol", o.rtol, "tolerance of the relative error measures (power balance: 100x)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(kPositive);
   ver->add_option("--spread", o.spread, "parameters drawn in default*[1-S, 1+S] (0: the defaults)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 0.99));
   ver->add_option("--trajectories", o.trajectories, "power-balance trajectories (0: none)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(kNonNegative);
   ver->add_option("--duration", o.duration, "length of each trajectory in s")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(kPositive);
   ver->add_option(
          "--kernels", o.kernels_dir,
          "verify this directory of generated files (from 'kanegen generate', possibly edited) instead of "
@@ -246,6 +280,7 @@ void add_modes(CLI::App& app, ModesCommand& c) {
 int run_modes(ModesCommand& c) {
   c.options.model = c.run.model;
   c.options.build = build_options(c.run);
+  kanegen::cli::check_sets(c.run.model, c.options.build.load, c.options.sets);
   return kanegen::cli::modes(c.options);
 }
 
@@ -270,12 +305,23 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
 
+  for (const CLI::App* command :
+       {generate.command, simulate.command, eval.command, verify.command, modes.command})
+    if (*command)
+      if (const std::string unknown = kanegen::cli::unknown_arguments_message(*command); !unknown.empty()) {
+        std::fprintf(stderr, "error: %s\n", unknown.c_str());
+        return 2;
+      }
+
   try {
     if (*generate.command) return run_generate(generate);
     if (*simulate.command) return run_simulate(simulate);
     if (*eval.command) return run_eval(eval);
     if (*verify.command) return run_verify(verify);
     if (*modes.command) return run_modes(modes);
+  } catch (const kanegen::cli::Interrupted& e) {  // as an interrupted simulation reports it
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 128 + e.signal_number;
   } catch (const kanegen::model::ModelError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;

@@ -1,0 +1,101 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "cli/preflight.hpp"
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+
+#include "kanegen/runtime/options.hpp"
+#include "model/expression_eval.hpp"
+#include "model/model_check.hpp"
+#include "model/names.hpp"
+
+namespace kanegen::cli {
+namespace fs = std::filesystem;
+
+std::string unknown_arguments_message(const CLI::App& command) {
+  const std::vector<std::string> extras = command.remaining();
+  if (extras.empty()) return "";
+  std::vector<std::string> known;
+  for (const CLI::Option* option : command.get_options())
+    for (const std::string& name : option->get_lnames()) known.push_back("--" + name);
+  std::string message;
+  for (const std::string& extra : extras) {
+    if (extra.rfind("-", 0) != 0) continue;  // an option's stray value: the option says enough
+    const std::string name = extra.substr(0, extra.find('='));
+    message += (message.empty() ? "" : "; ") + std::string("unknown option ") + name;
+    if (const std::string guess = model::nearest(name, known); !guess.empty())
+      message += "; did you mean " + guess + "?";
+  }
+  if (message.empty()) message = "unexpected argument '" + extras.front() + "'";
+  return message + " (kanegen " + command.get_name() + " --help lists the options)";
+}
+
+void check_gravity_option(const std::string& model_path, bool gravity_given) {
+  if (!gravity_given || fs::path(model_path).extension() == ".urdf") return;
+  throw runtime::UsageError(
+      "--gravity applies to URDF models only; " + model_path +
+      " sets gravity in its \"gravity\" field: edit it there (or write it with a parameter and use --set)");
+}
+
+void check_sets(const std::string& model_path, const model::LoadOptions& load,
+                const std::vector<std::string>& sets) {
+  if (sets.empty()) return;
+  const model::Model m = model::load_model(model_path, load);
+  model::ParameterValues values = model::default_parameter_values(m);
+  std::vector<std::string> names;
+  for (const model::Parameter& p : m.parameters) names.push_back(p.name);
+  for (const std::string& set : sets) {
+    const auto equals = set.find('=');
+    const std::string name = set.substr(0, equals);
+    if (!values.count(name)) {
+      const std::string guess = model::nearest(name, names);
+      throw runtime::UsageError(
+          "unknown parameter '" + name + "' in --set " + set + "; " +
+          (guess.empty() ? std::string() : "did you mean '" + guess + "'? ") +
+          (names.empty() ? model_path + " has no parameters" : "parameters: " + model::join(names, ", ")));
+    }
+    // The value's syntax was checked by the runner's parser already.
+    if (equals != std::string::npos) values[name] = std::strtod(set.c_str() + equals + 1, nullptr);
+  }
+  model::check_parameter_values(m, values, "from --set");
+}
+
+namespace {
+
+void check_writable_directory(const fs::path& dir) {
+  std::error_code error;
+  if (fs::exists(dir, error) && !fs::is_directory(dir, error))
+    throw std::runtime_error(dir.string() + ": exists and is not a directory; give another output path");
+  fs::create_directories(dir, error);
+  if (error)
+    throw std::runtime_error(dir.string() + ": cannot create the output directory (" + error.message() +
+                             "); give another output path");
+  if (access(dir.c_str(), W_OK) != 0)
+    throw std::runtime_error(dir.string() + ": cannot write in the output directory (" +
+                             std::strerror(errno) + "); give another output path");
+}
+
+}  // namespace
+
+void prepare_output_file(const std::string& file) {
+  if (file.empty() || file == "-") return;
+  const fs::path path(file);
+  std::error_code error;
+  if (fs::is_directory(path, error))
+    throw std::runtime_error(file + ": is a directory; give a file name, e.g. " +
+                             (path / "result.csv").string());
+  check_writable_directory(path.has_parent_path() ? path.parent_path() : fs::path("."));
+  if (fs::exists(path, error) && access(path.c_str(), W_OK) != 0)
+    throw std::runtime_error(file + ": cannot be overwritten (" + std::strerror(errno) +
+                             "); give another output path");
+}
+
+void prepare_output_directory(const std::string& dir) { check_writable_directory(dir); }
+
+}  // namespace kanegen::cli
