@@ -121,7 +121,7 @@ void check_forwarded(const std::string& model, const BuildOptions& b, const Forw
     return it == f.values.end() ? std::vector<std::string>{} : it->second;
   };
   kanegen::cli::check_sets(model, b.load, values("--set"));
-  for (const std::string& output : values("--output")) kanegen::cli::prepare_output_file(output);
+  for (const std::string& output : values("--output")) kanegen::cli::check_output_file(output);
 }
 
 // Each subcommand: its options (which CLI11 fills in place, so they stay
@@ -142,7 +142,7 @@ void add_generate(CLI::App& app, GenerateCommand& c) {
 
 int run_generate(const GenerateCommand& c) {
   const BuildOptions b = build_options(c.run);
-  kanegen::cli::prepare_output_directory(c.out_dir);
+  kanegen::cli::check_output_directory(c.out_dir);
   const kanegen::pipeline::GeneratedModel g = kanegen::pipeline::generate(c.run.model, b.load);
   kanegen::codegen::write_files_atomically(c.out_dir, g.files);
   if (!c.run.quiet) {
@@ -174,6 +174,8 @@ int run_simulate(const SimulateCommand& c) {
   const BuildOptions b = build_options(c.run);
   check_forwarded(c.run.model, b, c.forwarded);
   const std::string runner = kanegen::cli::build_runner(c.run.model, b);
+  if (const auto o = c.forwarded.values.find("--output"); o != c.forwarded.values.end())
+    for (const std::string& output : o->second) kanegen::cli::create_output_directory(output);
   return kanegen::cli::run_program(runner, args);
 }
 

@@ -68,22 +68,24 @@ void check_sets(const std::string& model_path, const model::LoadOptions& load,
 
 namespace {
 
+/// `dir` can be created (or exists) and written in: its nearest existing
+/// ancestor is a directory we may write in. Nothing is created here, so that
+/// a model refused later leaves no trace.
 void check_writable_directory(const fs::path& dir) {
   std::error_code error;
-  if (fs::exists(dir, error) && !fs::is_directory(dir, error))
-    throw std::runtime_error(dir.string() + ": exists and is not a directory; give another output path");
-  fs::create_directories(dir, error);
-  if (error)
-    throw std::runtime_error(dir.string() + ": cannot create the output directory (" + error.message() +
+  fs::path existing = dir;
+  while (!existing.empty() && !fs::exists(existing, error)) existing = existing.parent_path();
+  if (existing.empty()) existing = ".";
+  if (!fs::is_directory(existing, error))
+    throw std::runtime_error(existing.string() + ": exists and is not a directory; give another output path");
+  if (access(existing.c_str(), W_OK) != 0)
+    throw std::runtime_error(existing.string() + ": cannot write in this directory (" + std::strerror(errno) +
                              "); give another output path");
-  if (access(dir.c_str(), W_OK) != 0)
-    throw std::runtime_error(dir.string() + ": cannot write in the output directory (" +
-                             std::strerror(errno) + "); give another output path");
 }
 
 }  // namespace
 
-void prepare_output_file(const std::string& file) {
+void check_output_file(const std::string& file) {
   if (file.empty() || file == "-") return;
   const fs::path path(file);
   std::error_code error;
@@ -96,6 +98,16 @@ void prepare_output_file(const std::string& file) {
                              "); give another output path");
 }
 
-void prepare_output_directory(const std::string& dir) { check_writable_directory(dir); }
+void check_output_directory(const std::string& dir) { check_writable_directory(dir); }
+
+void create_output_directory(const std::string& file) {
+  if (file.empty() || file == "-") return;
+  const fs::path parent = fs::path(file).parent_path();
+  std::error_code error;
+  if (!parent.empty()) fs::create_directories(parent, error);
+  if (error)
+    throw std::runtime_error(parent.string() + ": cannot create the output directory (" + error.message() +
+                             "); give another output path");
+}
 
 }  // namespace kanegen::cli

@@ -31,12 +31,16 @@ void check_gravity_option(const std::string& model_path, bool gravity_given);
 void check_sets(const std::string& model_path, const model::LoadOptions& load,
                 const std::vector<std::string>& sets);
 
-/// Makes sure FILE can be written before the work that produces it:
-/// creates its missing directories, refuses a directory or an unwritable
-/// place. "" and "-" (stdout) pass. Throws std::runtime_error.
-void prepare_output_file(const std::string& file);
+/// Checks that FILE can be written before the work that produces it: not a
+/// directory, and its directory exists or can be created and is writable.
+/// "" and "-" (stdout) pass. Throws std::runtime_error.
+void check_output_file(const std::string& file);
 
-/// The same for an output directory (created if needed).
-void prepare_output_directory(const std::string& dir);
+/// Creates the missing directories of FILE (after the checks, just before
+/// it is written), as generate -o creates its directory.
+void create_output_directory(const std::string& file);
+
+/// The check of check_output_file for an output directory.
+void check_output_directory(const std::string& dir);
 
 }  // namespace kanegen::cli

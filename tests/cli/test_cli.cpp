@@ -3,6 +3,7 @@
 // and bad models. Expected values are analytic (simple pendulum). simulate
 // and eval against the runner they build: the same options and defaults.
 #define CATCH_CONFIG_MAIN
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -256,4 +257,131 @@ TEST_CASE("simulate refuses what the runner refuses, as the runner says it, befo
   // The runner's rules, not stricter ones: a pure absolute tolerance is fine.
   CHECK(kanegen_fresh_cache(cache, "simulate " + pendulum + " --t-end 0.1 --rtol 0 --atol 1e-9 --quiet")
             .status == 0);
+}
+
+// ---- no silent wrong model, and mistakes found before anything is built ----
+
+TEST_CASE("an unknown option is named, with the nearest known one", "[cli]") {
+  const fs::path cache = scratch() / "unknown_option_cache";
+  const Result r = kanegen_fresh_cache(cache, "simulate " + model("simple_pendulum.json") + " --tend 1");
+  CHECK(r.status == 2);
+  CHECK(r.err ==
+        "error: unknown option --tend; did you mean --t-end? (kanegen simulate --help lists the options)\n");
+  CHECK(!fs::exists(cache));
+  // A required option that is missing is still reported as such.
+  const Result missing = kanegen_fresh_cache(cache, "simulate " + model("simple_pendulum.json"));
+  CHECK(missing.status == 2);
+  CHECK(missing.err == "error: simulate needs --t-end\n");
+  CHECK(
+      kanegen("verify " + model("simple_pendulum.json") + " --sample 3").err ==
+      "error: unknown option --sample; did you mean --samples? (kanegen verify --help lists the options)\n");
+}
+
+TEST_CASE("--gravity on a JSON model is refused, before any cache entry", "[cli]") {
+  const fs::path cache = scratch() / "gravity_cache";
+  const Result r =
+      kanegen_fresh_cache(cache, "simulate " + model("simple_pendulum.json") + " --t-end 1 --gravity 0,0,-1");
+  CHECK(r.status == 2);
+  CHECK(r.err ==
+        "error: --gravity applies to URDF models only; " + model("simple_pendulum.json") +
+            " sets gravity in its \"gravity\" field: edit it there (or write it with a parameter and use "
+            "--set)\n");
+  CHECK(!fs::exists(cache));
+}
+
+TEST_CASE("a bad parameter is refused at load and under --set, naming body and parameter", "[cli]") {
+  const fs::path cache = scratch() / "set_cache";
+  const std::string pendulum = model("simple_pendulum.json");
+  const Result set = kanegen_fresh_cache(cache, "simulate " + pendulum + " --t-end 1 --set m=-1.2");
+  CHECK(set.status == 2);
+  CHECK(set.err ==
+        "error: " + pendulum +
+            ": /bodies/0/mass: negative mass (m = -1.2 from --set) of body 'pendulum'; give a positive "
+            "mass in kg (check m in --set)\n");
+  const Result eval = kanegen_fresh_cache(cache, "eval " + pendulum + " --set l=1 --set mm=2");
+  CHECK(eval.status == 2);
+  CHECK(eval.err == "error: unknown parameter 'mm' in --set mm=2; did you mean 'm'? parameters: m, l, g\n");
+  CHECK(!fs::exists(cache));
+  const Result modes = kanegen_fresh_cache(cache, "modes " + pendulum + " --set m=-1");
+  CHECK(modes.status == 2);
+  CHECK(modes.err.find("negative mass (m = -1 from --set) of body 'pendulum'") != std::string::npos);
+  // The default values, at load.
+  const Result load =
+      kanegen("generate " + bad("negative_mass_expression.json") + " -o " + (scratch() / "never").string());
+  CHECK(load.status == 2);
+  CHECK(load.err ==
+        "error: " + bad("negative_mass_expression.json") +
+            ": /bodies/0/mass: negative mass (m1 = -1.2) of body 'a'; give a positive mass in kg (check "
+            "m1 under /parameters)\n");
+  CHECK(!fs::exists(scratch() / "never"));
+  const Result urdf =
+      kanegen("generate " + bad("misspelt_inertia_attribute.urdf") + " -o " + (scratch() / "never").string());
+  CHECK(urdf.status == 2);
+  CHECK(urdf.err.find(
+            "line 8: <link name=\"arm\">/inertial/inertia: unknown attribute 'ixxx' of <inertia>; did "
+            "you mean 'ixx'?") != std::string::npos);
+}
+
+TEST_CASE("the -o path is checked before generating; a missing directory is created", "[cli]") {
+  const fs::path cache = scratch() / "output_cache";
+  const std::string pendulum = model("simple_pendulum.json");
+  const fs::path blocker = scratch() / "a_file";
+  std::ofstream(blocker) << "not a directory\n";
+  const Result r =
+      kanegen_fresh_cache(cache, "simulate " + pendulum + " --t-end 1 -o " + (blocker / "out.csv").string());
+  CHECK(r.status == 1);
+  CHECK(r.err ==
+        "error: " + blocker.string() + ": exists and is not a directory; give another output path\n");
+  CHECK(!fs::exists(cache));  // nothing generated or compiled
+  const Result dir =
+      kanegen_fresh_cache(cache, "simulate " + pendulum + " --t-end 1 -o " + scratch().string());
+  CHECK(dir.status == 1);
+  CHECK(dir.err == "error: " + scratch().string() + ": is a directory; give a file name, e.g. " +
+                       (scratch() / "result.csv").string() + "\n");
+  CHECK(!fs::exists(cache));
+  const Result gen = kanegen("generate " + pendulum + " -o " + (blocker / "gen").string());
+  CHECK(gen.status == 1);
+  CHECK(gen.err.find("exists and is not a directory") != std::string::npos);
+
+  const fs::path csv = scratch() / "new" / "dir" / "pendulum.csv";
+  const Result ok = kanegen("simulate " + pendulum + " --t-end 0.1 --quiet -o " + csv.string());
+  CHECK(ok.status == 0);
+  CHECK(slurp(csv).rfind("t,pivot,", 0) == 0);
+}
+
+TEST_CASE("Ctrl-C while compiling: interrupted, exit 130, nothing cached", "[cli]") {
+  const fs::path cache = scratch() / "sigint_cache";
+  const fs::path out = scratch() / "sigint_out.txt", err = scratch() / "sigint_err.txt";
+  const std::string pendulum = model("double_pendulum.json");
+  const pid_t pid = fork();
+  REQUIRE(pid >= 0);
+  if (pid ==
+      0) {  // a process group of its own, as a shell gives a job: Ctrl-C reaches kanegen and the compiler
+    setpgid(0, 0);
+    setenv("KANEGEN_CACHE_DIR", cache.c_str(), 1);
+    if (!std::freopen(out.c_str(), "w", stdout) || !std::freopen(err.c_str(), "w", stderr)) _exit(126);
+    execl(KANEGEN_EXE, KANEGEN_EXE, "simulate", pendulum.c_str(), "--t-end", "1",
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  setpgid(pid, pid);
+  // Wait until kanegen says it is compiling, then give the compiler a moment to start.
+  for (int i = 0; i < 400 && slurp(err).find("compiling") == std::string::npos; ++i) usleep(25000);
+  REQUIRE(slurp(err).find("compiling") != std::string::npos);
+  usleep(300000);
+  kill(-pid, SIGINT);
+  int status = 0;
+  REQUIRE(waitpid(pid, &status, 0) == pid);
+  INFO(slurp(err));
+  REQUIRE(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 130);
+  CHECK(
+      slurp(err).find("error: interrupted by SIGINT while compiling double_pendulum; nothing was cached\n") !=
+      std::string::npos);
+  CHECK(slurp(err).find("kanegen bug") == std::string::npos);
+  for (const auto& entry : fs::recursive_directory_iterator(cache)) {
+    INFO(entry.path());
+    CHECK(entry.path().filename() != "runner");
+    CHECK(entry.path().filename().string().rfind("runner.tmp", 0) != 0);
+  }
 }
