@@ -100,8 +100,14 @@ std::string pivot_message(const ModelInfo& info, int pivot) {
            " is (nearly) dependent on the ones before it, so the loop forces grow without bound and the "
            "motion may change branch; the mechanism is at or near a dead point or a bifurcation (links in "
            "line)";
-  return "mass matrix is not positive definite (pivot " + std::to_string(pivot) +
-         " of its LDL^T factorisation is not positive)";
+  // Name the coordinate (for a joint, the joint's name) whose pivot failed:
+  // the user's fix is a mass or inertia of a body it carries.
+  const std::string coordinate = pivot <= info.nq ? info.coordinate_names[pivot - 1] : "?";
+  return "mass matrix is not positive definite at coordinate '" + coordinate + "' (pivot " +
+         std::to_string(pivot) +
+         " of its LDL^T factorisation is not positive): a body it moves has a zero or negative mass or an "
+         "invalid inertia at these parameters; check the bodies carried by joint '" +
+         coordinate + "' and the --set values";
 }
 
 std::string json_numbers(const double* v, int n) {
