@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "batch.hpp"
+#include "run_report.hpp"
 #include "kanegen/runtime/csv.hpp"
 #include "kanegen/runtime/integrators.hpp"
 #include "kanegen/runtime/loops.hpp"
@@ -175,6 +176,7 @@ struct SimulateArgs {
   std::vector<Assignment> sets, q0, u0;
   std::string output;
   bool stats = false;
+  bool energies = false;
 };
 
 // The simulate options, values checked one by one by the parser (defaults
@@ -196,6 +198,7 @@ SimulateArgs simulate_args(const ParsedOptions& p) {
   a.u0 = p.assignments("--u0");
   a.output = p.text("--output");
   a.stats = p.flag("--stats");
+  a.energies = p.flag("--energies");
   if (o.rtol == 0 && o.atol == 0) throw UsageError("--rtol and --atol cannot both be zero");
   return a;
 }
@@ -237,16 +240,21 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
   const std::vector<std::string> names = state_names(info);
   header.insert(header.end(), names.begin(), names.end());
   header.insert(header.end(), info.output_names, info.output_names + info.ny);
+  EnergyColumns energy(model, a.energies);
+  energy.add_header(header);
   if (!csv->write_header(header)) throw RunError(csv->error());
+  Progress progress(err, a.opt.t_end);
+  double largest_loop_residual = 0.0;
 
   std::vector<double> tau(static_cast<size_t>(std::max(info.ntau, 1)), 0.0);
-  std::vector<double> row(1 + n + std::max(info.ny, 1));
+  std::vector<double> row(1 + n + std::max(info.ny, 1) + energy.count());
   std::string why;  // the reason the right-hand side failed, for the message
   const StopOnSignal stop_on_signal;
   double t_last_row = 0.0;
   long rows = 0;
   const Rhs rhs = [&](double t, const double* xs, double* xdot) {
     if (g_stop_signal != 0) return false;
+    progress.on_rhs(t);
     model.coordinate_rates(xs, xs + nq, xdot);
     const int pivot = model.forward_dynamics(t, xs, xs + nq, tau.data(), xdot + nq);
     if (pivot != 0) why = pivot_message(info, pivot);
@@ -262,20 +270,24 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
     }
     std::copy(xs, xs + n, row.begin() + 1);
     model.outputs(t, xs, xs + nq, row.data() + 1 + n);
+    energy.fill(xs, xs + nq, row.data() + 1 + n + info.ny);
+    if (loops.active()) largest_loop_residual = std::max(largest_loop_residual, loops.residual(xs));
     t_last_row = t;
     ++rows;
-    return csv->write_row(row.data(), 1 + n + info.ny);
+    return csv->write_row(row.data(), 1 + n + info.ny + energy.count());
   };
   IntegrationOptions opt = a.opt;
   opt.state_names = names;
   if (loops.active())
     opt.project = [&](double, double* xs, std::string* why) { return loops.project(xs, xs + nq, why); };
   const IntegrationResult r = integrate(a.method, rhs, 0.0, x.data(), n, opt, observer);
+  progress.finish();
   if (a.stats) {
     std::fprintf(err, "stats: integrator=%s accepted=%ld rejected=%ld rhs_evals=%ld t=%s\n",
                  method_name(a.method), r.stats.accepted, r.stats.rejected, r.stats.rhs_evals,
                  format_double(r.t).c_str());
   }
+  if (a.stats) print(err, run_summary(r.stats.accepted, r.t, energy, loops.active(), largest_loop_residual));
   const bool closed = csv->close();
   if (g_stop_signal != 0) {
     const int signal_number = g_stop_signal;

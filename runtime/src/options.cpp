@@ -34,6 +34,7 @@ const std::vector<OptionSpec> kSimulate = {
     {"--u0", "", "NAME=VALUE", "", "the model's u0", "initial speed", K::kAssignment, false, true},
     {"--output", "-o", "FILE", "-", "", "write the CSV to FILE instead of stdout", K::kText},
     {"--stats", "", "", "", nullptr, "print step statistics on stderr", K::kFlag},
+    {"--energies", "", "", "", nullptr, "add kinetic_energy, potential_energy and total_energy columns", K::kFlag},
 };
 
 const std::vector<OptionSpec> kEval = {

@@ -385,3 +385,87 @@ TEST_CASE("Ctrl-C while compiling: interrupted, exit 130, nothing cached", "[cli
     CHECK(entry.path().filename().string().rfind("runner.tmp", 0) != 0);
   }
 }
+
+// ---- results a person can look at ----
+
+namespace {
+
+/// The CSV as a header and rows of numbers.
+std::pair<std::vector<std::string>, std::vector<std::vector<double>>> read_csv(const std::string& text) {
+  std::vector<std::string> lines = lines_of(text), header;
+  std::vector<std::vector<double>> rows;
+  std::istringstream h(lines.at(0));
+  for (std::string cell; std::getline(h, cell, ',');) header.push_back(cell);
+  for (std::size_t k = 1; k < lines.size(); ++k) {
+    std::vector<double> row;
+    std::istringstream r(lines[k]);
+    for (std::string cell; std::getline(r, cell, ',');) row.push_back(std::stod(cell));
+    rows.push_back(row);
+  }
+  return {header, rows};
+}
+
+std::size_t column(const std::vector<std::string>& header, const std::string& name) {
+  const auto it = std::find(header.begin(), header.end(), name);
+  REQUIRE(it != header.end());
+  return static_cast<std::size_t>(it - header.begin());
+}
+
+}  // namespace
+
+TEST_CASE("simulate --energies: T, V and T+V columns, by hand for the pendulum", "[cli]") {
+  const Result r = kanegen("simulate " + model("simple_pendulum.json") +
+                           " --t-end 1 --dt 0.25 --energies --set m=2 --set l=1.5 --quiet");
+  REQUIRE(r.status == 0);
+  const auto [header, rows] = read_csv(r.out);
+  const std::size_t q = column(header, "pivot"), u = column(header, "pivot_dot");
+  const std::size_t T = column(header, "kinetic_energy"), V = column(header, "potential_energy"),
+                    E = column(header, "total_energy");
+  CHECK(E == header.size() - 1);
+  REQUIRE(rows.size() == 5);
+  const double m = 2, l = 1.5, g = 9.81;  // a point mass m at distance l below the pivot
+  for (const auto& row : rows) {
+    INFO("t=" << row[0]);
+    CHECK(row[T] == Approx(0.5 * m * l * l * row[u] * row[u]).epsilon(1e-12).margin(1e-14));
+    CHECK(row[V] == Approx(-m * g * l * std::cos(row[q])).epsilon(1e-12));
+    CHECK(row[E] == Approx(row[T] + row[V]).epsilon(1e-14));
+    CHECK(row[E] == Approx(-m * g * l * std::cos(0.5)).epsilon(1e-7));  // conserved, from rest at q0 = 0.5
+  }
+}
+
+TEST_CASE("simulate --energies agrees with the runner's eval at the same states", "[cli]") {
+  const std::string pendulum = model("double_pendulum.json");
+  const Result r = kanegen("simulate " + pendulum + " --t-end 0.5 --dt 0.25 --energies --quiet");
+  REQUIRE(r.status == 0);
+  const auto [header, rows] = read_csv(r.out);
+  for (const auto& row : rows) {
+    char args[400];
+    std::snprintf(args, sizeof args, " --q %.17g,%.17g --u %.17g,%.17g --quiet", row[1], row[2], row[3],
+                  row[4]);
+    const Result e = kanegen("eval " + pendulum + args);
+    REQUIRE(e.status == 0);
+    const auto j = nlohmann::json::parse(e.out);
+    CHECK(row[column(header, "kinetic_energy")] == Approx(j["kinetic_energy"].get<double>()).epsilon(1e-14));
+    CHECK(row[column(header, "potential_energy")] ==
+          Approx(j["potential_energy"].get<double>()).epsilon(1e-14));
+  }
+}
+
+TEST_CASE("simulate --stats ends with a summary: steps, final time, energy drift, loop residual", "[cli]") {
+  const Result r = kanegen("simulate " + model("simple_pendulum.json") + " --t-end 1 --stats --quiet");
+  REQUIRE(r.status == 0);
+  const std::string summary = lines_of(r.err).back();
+  INFO(r.err);
+  CHECK(summary.rfind("summary: ", 0) == 0);
+  CHECK(summary.find(" steps to t=1; T+V changed by at most ") != std::string::npos);
+  const double drift = std::stod(summary.substr(summary.find("at most ") + 8));
+  CHECK(drift < 1e-6);
+  CHECK(summary.find("loop residual") == std::string::npos);
+  const Result loop = kanegen("simulate " + model("four_bar.json") + " --t-end 0.2 --stats --quiet");
+  REQUIRE(loop.status == 0);
+  const std::string with_loops = lines_of(loop.err).back();
+  REQUIRE(with_loops.find("; largest loop residual |phi| ") != std::string::npos);
+  CHECK(std::stod(with_loops.substr(with_loops.find("|phi| ") + 6)) < 1e-8);
+  // Without a terminal there is no progress line (no carriage return).
+  CHECK(r.err.find('\r') == std::string::npos);
+}
