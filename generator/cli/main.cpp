@@ -1,15 +1,22 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // kanegen: generate, simulate and evaluate Kane's equations of a model.
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iostream>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "cli/modes.hpp"
+#include "cli/plot.hpp"
 #include "cli/preflight.hpp"
 #include "cli/runner_build.hpp"
 #include "cli/verify.hpp"
@@ -160,12 +167,60 @@ struct SimulateCommand {
   CLI::App* command = nullptr;
   RunOptions run;
   ForwardedOptions forwarded;
+  std::string plot;  ///< --plot FIG.png
 };
 
 void add_simulate(CLI::App& app, SimulateCommand& c) {
   c.command = app.add_subcommand("simulate", "generate (cached), compile and integrate the model; write CSV");
   add_common(c.command, c.run);
   add_forwarded(c.command, "simulate", c.forwarded);
+  c.command
+      ->add_option("--plot", c.plot,
+                   "also draw the result, every column against t, into FIG.png (kanegen plot)")
+      ->type_name("FIG.png");
+}
+
+/// The CSV of a `simulate --plot` run without -o: a temporary file next to
+/// the plot, copied to stdout afterwards (as without --plot) and removed.
+std::string temporary_csv(const std::string& png) {
+  const std::filesystem::path p(png);
+  return ((p.has_parent_path() ? p.parent_path() : std::filesystem::path(".")) /
+          ("." + p.filename().string() + ".csv.tmp." + std::to_string(getpid())))
+      .string();
+}
+
+int simulate_and_plot(const SimulateCommand& c, const std::string& runner, std::vector<std::string> args) {
+  const auto given = c.forwarded.values.find("--output");
+  const bool to_file = given != c.forwarded.values.end() && !given->second.empty() &&
+                       given->second[0] != "-" && !given->second[0].empty();
+  const std::string csv = to_file ? given->second[0] : temporary_csv(c.plot);
+  if (!to_file) {
+    args.erase(std::remove(args.begin(), args.end(), "-"), args.end());
+    args.erase(std::remove(args.begin(), args.end(), "--output"), args.end());
+    args.insert(args.end(), {"--output", csv});
+    kanegen::cli::create_output_directory(c.plot);
+  }
+  int status = kanegen::cli::run_program(runner, args);
+  if (status == 0) {
+    kanegen::cli::PlotOptions p;
+    p.csv = csv;
+    p.output = c.plot;
+    p.title = std::filesystem::path(c.run.model).filename().string();
+    p.verbose = !c.run.quiet;
+    try {
+      status = kanegen::cli::plot(p);
+    } catch (...) {
+      if (!to_file) std::filesystem::remove(csv);
+      throw;
+    }
+  }
+  if (!to_file) {
+    std::ostringstream text;  // read before it is removed: a closed stdout must not leave it behind
+    text << std::ifstream(csv).rdbuf();
+    std::filesystem::remove(csv);
+    std::cout << text.str() << std::flush;
+  }
+  return status;
 }
 
 /// The runner's own simulate, with the options passed on.
@@ -173,9 +228,11 @@ int run_simulate(const SimulateCommand& c) {
   const std::vector<std::string> args = forwarded_args("simulate", c.forwarded);
   const BuildOptions b = build_options(c.run);
   check_forwarded(c.run.model, b, c.forwarded);
+  if (!c.plot.empty()) kanegen::cli::check_output_file(c.plot);
   const std::string runner = kanegen::cli::build_runner(c.run.model, b);
   if (const auto o = c.forwarded.values.find("--output"); o != c.forwarded.values.end())
     for (const std::string& output : o->second) kanegen::cli::create_output_directory(output);
+  if (!c.plot.empty()) return simulate_and_plot(c, runner, args);
   return kanegen::cli::run_program(runner, args);
 }
 
@@ -286,6 +343,37 @@ int run_modes(ModesCommand& c) {
   return kanegen::cli::modes(c.options);
 }
 
+struct PlotCommand {
+  CLI::App* command = nullptr;
+  kanegen::cli::PlotOptions options;
+  bool quiet = false;
+};
+
+void add_plot(CLI::App& app, PlotCommand& c) {
+  c.command = app.add_subcommand("plot", "draw columns of a result CSV against t into a PNG (with gnuplot)");
+  kanegen::cli::PlotOptions& o = c.options;
+  c.command->add_option("RESULT", o.csv, "a CSV written by kanegen simulate")
+      ->required()
+      ->check(CLI::ExistingFile);
+  c.command->add_option("--y", o.columns, "a column to draw (repeatable; default: all but t, at most 12)")
+      ->type_name("COL");
+  c.command->add_option("-o,--output", o.output, "the PNG to write (default: RESULT with .png)")
+      ->type_name("FIG.png");
+  c.command->add_option("--width", o.width, "width in pixels")
+      ->capture_default_str()
+      ->check(CLI::Range(100, 10000));
+  c.command->add_option("--height", o.height, "height in pixels")
+      ->capture_default_str()
+      ->check(CLI::Range(100, 10000));
+  c.command->add_flag("--quiet", c.quiet, "no progress lines on stderr");
+  c.command->allow_extras();
+}
+
+int run_plot(PlotCommand& c) {
+  c.options.verbose = !c.quiet;
+  return kanegen::cli::plot(c.options);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -299,16 +387,18 @@ int main(int argc, char** argv) {
   EvalCommand eval;
   VerifyCommand verify;
   ModesCommand modes;
+  PlotCommand plot;
   add_generate(app, generate);
   add_simulate(app, simulate);
   add_eval(app, eval);
   add_verify(app, verify);
   add_modes(app, modes);
+  add_plot(app, plot);
 
   CLI11_PARSE(app, argc, argv);
 
   for (const CLI::App* command :
-       {generate.command, simulate.command, eval.command, verify.command, modes.command})
+       {generate.command, simulate.command, eval.command, verify.command, modes.command, plot.command})
     if (*command)
       if (const std::string unknown = kanegen::cli::unknown_arguments_message(*command); !unknown.empty()) {
         std::fprintf(stderr, "error: %s\n", unknown.c_str());
@@ -321,6 +411,7 @@ int main(int argc, char** argv) {
     if (*eval.command) return run_eval(eval);
     if (*verify.command) return run_verify(verify);
     if (*modes.command) return run_modes(modes);
+    if (*plot.command) return run_plot(plot);
   } catch (const kanegen::cli::Interrupted& e) {  // as an interrupted simulation reports it
     std::fprintf(stderr, "error: %s\n", e.what());
     return 128 + e.signal_number;

@@ -469,3 +469,61 @@ TEST_CASE("simulate --stats ends with a summary: steps, final time, energy drift
   // Without a terminal there is no progress line (no carriage return).
   CHECK(r.err.find('\r') == std::string::npos);
 }
+
+namespace {
+
+/// The width and height of a PNG from its IHDR chunk, after checking the
+/// signature; {0, 0} if it is not a PNG.
+std::pair<unsigned, unsigned> png_size(const std::string& bytes) {
+  const std::string signature("\x89PNG\r\n\x1a\n", 8);
+  if (bytes.size() < 24 || bytes.compare(0, 8, signature) != 0 || bytes.compare(12, 4, "IHDR") != 0)
+    return {0, 0};
+  const auto be32 = [&](std::size_t at) {
+    unsigned v = 0;
+    for (std::size_t k = 0; k < 4; ++k) v = v << 8 | static_cast<unsigned char>(bytes[at + k]);
+    return v;
+  };
+  return {be32(16), be32(20)};
+}
+
+}  // namespace
+
+TEST_CASE("kanegen plot draws columns of a result into a PNG with gnuplot", "[cli]") {
+  const fs::path csv = scratch() / "plot_me.csv";
+  REQUIRE(kanegen("simulate " + model("simple_pendulum.json") + " --t-end 2 --energies --quiet -o " +
+                  csv.string())
+              .status == 0);
+  const fs::path png = scratch() / "figures" / "pendulum.png";
+  const Result r = kanegen("plot " + csv.string() +
+                           " --y pivot --y total_energy --width 640 --height 480 -o " + png.string());
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(r.err == "kanegen: wrote " + png.string() + " (2 columns against t)\n");
+  CHECK(png_size(slurp(png)) == std::make_pair(640u, 480u));
+  CHECK(fs::file_size(png) > 5000);  // lines and labels drawn, not an empty frame
+  // The default: every column but t, into RESULT.png.
+  REQUIRE(kanegen("plot " + csv.string() + " --quiet").status == 0);
+  CHECK(png_size(slurp(scratch() / "plot_me.png")) == std::make_pair(1000u, 600u));
+
+  const Result unknown =
+      kanegen("plot " + csv.string() + " --y pivott -o " + (scratch() / "no.png").string());
+  CHECK(unknown.status == 2);
+  CHECK(unknown.err == "error: no column 'pivott' in " + csv.string() + "; did you mean 'pivot'?\n");
+  CHECK(!fs::exists(scratch() / "no.png"));
+  std::ofstream(scratch() / "not_a_result.csv") << "a,b\n1,2\n";
+  const Result foreign = kanegen("plot " + (scratch() / "not_a_result.csv").string());
+  CHECK(foreign.status == 1);
+  CHECK(foreign.err.find("the first line is not a header starting with t") != std::string::npos);
+}
+
+TEST_CASE("simulate --plot simulates and plots in one step; stdout still gets the CSV", "[cli]") {
+  const fs::path png = scratch() / "one_step" / "double.png";
+  const Result r =
+      kanegen("simulate " + model("double_pendulum.json") + " --t-end 1 --quiet --plot " + png.string());
+  REQUIRE(r.status == 0);
+  CHECK(r.out.rfind("t,shoulder,elbow,", 0) == 0);
+  CHECK(lines_of(r.out).size() == 102);
+  CHECK(png_size(slurp(png)).first == 1000u);
+  for (const auto& entry : fs::directory_iterator(png.parent_path()))  // no temporary CSV left
+    CHECK(entry.path().filename() == "double.png");
+}
