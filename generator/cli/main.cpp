@@ -4,7 +4,9 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -296,7 +298,33 @@ void add_verify(CLI::App& app, VerifyCommand& c) {
   ver->add_flag("--json", o.json, "print the report as JSON on stdout");
 }
 
+// verify and modes compute in kanegen itself, with the runner as a
+// coprocess, and write nothing until their verdict: stopped by the user they
+// end at once with the message and status of an interrupted simulation (the
+// runner sees its input close and ends too). While a runner is compiled,
+// run_program's own handler reports the interruption instead.
+char g_interrupted_message[3][160];
+
+extern "C" void stop_now(int signal_number) {
+  const int k = signal_number == SIGINT ? 0 : signal_number == SIGTERM ? 1 : 2;
+  const char* message = g_interrupted_message[k];
+  if (write(STDERR_FILENO, message, std::strlen(message)) < 0) {
+  }
+  _exit(128 + signal_number);
+}
+
+void stop_on_signal(const char* command) {
+  const int signals[3] = {SIGINT, SIGTERM, SIGHUP};
+  const char* names[3] = {"SIGINT", "SIGTERM", "SIGHUP"};
+  for (int k = 0; k < 3; ++k) {
+    std::snprintf(g_interrupted_message[k], sizeof g_interrupted_message[k],
+                  "error: interrupted by %s; kanegen %s stopped before its result\n", names[k], command);
+    std::signal(signals[k], stop_now);
+  }
+}
+
 int run_verify(VerifyCommand& c) {
+  stop_on_signal("verify");
   c.options.model = c.run.model;
   c.options.build = build_options(c.run);
   return kanegen::cli::verify(c.options);
@@ -337,6 +365,7 @@ void add_modes(CLI::App& app, ModesCommand& c) {
 }
 
 int run_modes(ModesCommand& c) {
+  stop_on_signal("modes");
   c.options.model = c.run.model;
   c.options.build = build_options(c.run);
   kanegen::cli::check_sets(c.run.model, c.options.build.load, c.options.sets);

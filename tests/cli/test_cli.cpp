@@ -527,3 +527,32 @@ TEST_CASE("simulate --plot simulates and plots in one step; stdout still gets th
   for (const auto& entry : fs::directory_iterator(png.parent_path()))  // no temporary CSV left
     CHECK(entry.path().filename() == "double.png");
 }
+
+TEST_CASE("Ctrl-C during a long verify: interrupted, exit 130, as a simulation", "[cli]") {
+  const fs::path cache = scratch() / "verify_sigint_cache";
+  const fs::path out = scratch() / "verify_sigint_out.txt", err = scratch() / "verify_sigint_err.txt";
+  const std::string pendulum = model("simple_pendulum.json");
+  const pid_t pid = fork();
+  REQUIRE(pid >= 0);
+  if (pid == 0) {
+    setpgid(0, 0);
+    setenv("KANEGEN_CACHE_DIR", cache.c_str(), 1);
+    if (!std::freopen(out.c_str(), "w", stdout) || !std::freopen(err.c_str(), "w", stderr)) _exit(126);
+    execl(KANEGEN_EXE, KANEGEN_EXE, "verify", pendulum.c_str(), "--samples", "10000000", "--trajectories",
+          "0", static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  setpgid(pid, pid);
+  for (int i = 0; i < 600 && slurp(err).find("random states") == std::string::npos; ++i) usleep(25000);
+  REQUIRE(slurp(err).find("random states") != std::string::npos);
+  usleep(300000);
+  kill(-pid, SIGINT);
+  int status = 0;
+  REQUIRE(waitpid(pid, &status, 0) == pid);
+  INFO(slurp(err));
+  REQUIRE(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 130);
+  CHECK(lines_of(slurp(err)).back() ==
+        "error: interrupted by SIGINT; kanegen verify stopped before its result");
+  CHECK(slurp(out).empty());
+}
