@@ -313,8 +313,12 @@ urdf::ModelInterfaceSharedPtr parse_with_urdfdom(const std::string& text, const 
     }
     errors = console.errors;
     // urdfdom warns where it guesses (a default it makes up): said, not dropped.
-    for (const std::string& warning : console.warnings)
+    std::vector<std::string> said;  // urdfdom repeats some (once per pass over the links)
+    for (const std::string& warning : console.warnings) {
+      if (std::find(said.begin(), said.end(), warning) != said.end()) continue;
+      said.push_back(warning);
       std::fprintf(stderr, "warning: %s: urdfdom: %s\n", file.c_str(), warning.c_str());
+    }
   }
   if (robot) return robot;
   // urdfdom names the culprit in brackets ("Joint [j3] ..."), often in a

@@ -277,7 +277,7 @@ TEST_CASE("an unknown option is named, with the nearest known one", "[cli]") {
       "error: unknown option --sample; did you mean --samples? (kanegen verify --help lists the options)\n");
 }
 
-TEST_CASE("--gravity on a JSON model is refused, before any cache entry", "[cli]") {
+TEST_CASE("a JSON model refuses --gravity, before any cache entry", "[cli]") {
   const fs::path cache = scratch() / "gravity_cache";
   const Result r =
       kanegen_fresh_cache(cache, "simulate " + model("simple_pendulum.json") + " --t-end 1 --gravity 0,0,-1");
@@ -322,7 +322,7 @@ TEST_CASE("a bad parameter is refused at load and under --set, naming body and p
             "you mean 'ixx'?") != std::string::npos);
 }
 
-TEST_CASE("the -o path is checked before generating; a missing directory is created", "[cli]") {
+TEST_CASE("the -o path is checked before generating and a missing directory is created", "[cli]") {
   const fs::path cache = scratch() / "output_cache";
   const std::string pendulum = model("simple_pendulum.json");
   const fs::path blocker = scratch() / "a_file";
@@ -516,7 +516,7 @@ TEST_CASE("kanegen plot draws columns of a result into a PNG with gnuplot", "[cl
   CHECK(foreign.err.find("the first line is not a header starting with t") != std::string::npos);
 }
 
-TEST_CASE("simulate --plot simulates and plots in one step; stdout still gets the CSV", "[cli]") {
+TEST_CASE("simulate --plot simulates and plots in one step and stdout still gets the CSV", "[cli]") {
   const fs::path png = scratch() / "one_step" / "double.png";
   const Result r =
       kanegen("simulate " + model("double_pendulum.json") + " --t-end 1 --quiet --plot " + png.string());
@@ -555,4 +555,11 @@ TEST_CASE("Ctrl-C during a long verify: interrupted, exit 130, as a simulation",
   CHECK(lines_of(slurp(err)).back() ==
         "error: interrupted by SIGINT; kanegen verify stopped before its result");
   CHECK(slurp(out).empty());
+}
+
+TEST_CASE("urdfdom's warnings are said, once each", "[cli]") {
+  const std::string urdf = std::string(KANEGEN_BAD_MODELS_DIR) + "/../../model/data/undefined_material.urdf";
+  const Result r = kanegen("generate " + urdf + " --quiet -o " + (scratch() / "warned").string());
+  CHECK(r.status == 0);
+  CHECK(r.err == "warning: " + urdf + ": urdfdom: link 'arm' material 'steel' undefined.\n");
 }
