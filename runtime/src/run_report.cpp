@@ -42,8 +42,8 @@ void Progress::on_rhs(double t) {
   if (wall < 1.0 || std::chrono::duration<double>(now - last_).count() < 0.1) return;
   last_ = now;
   shown_ = true;
-  std::fprintf(err_, "\r\033[Ksimulate: t = %s of %s s, wall %.1f s, %ld rhs evaluations",
-               format_double(t).c_str(), format_double(t_end_).c_str(), wall, calls_);
+  std::fprintf(err_, "\r\033[Ksimulate: t = %.6g of %.6g s, wall %.1f s, %ld rhs evaluations", t, t_end_, wall,
+               calls_);
   std::fflush(err_);
 }
 

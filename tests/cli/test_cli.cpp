@@ -563,3 +563,27 @@ TEST_CASE("urdfdom's warnings are said, once each", "[cli]") {
   CHECK(r.status == 0);
   CHECK(r.err == "warning: " + urdf + ": urdfdom: link 'arm' material 'steel' undefined.\n");
 }
+
+TEST_CASE("a long run shows one updating progress line on a terminal and nothing on a file", "[cli]") {
+  if (std::system("command -v script >/dev/null 2>&1") != 0) {
+    WARN("no script(1) to give kanegen a terminal: skipped");
+    return;
+  }
+  const fs::path typescript = scratch() / "typescript";
+  const std::string run = std::string(KANEGEN_EXE) + " simulate " + model("simple_pendulum.json") +
+                          " --t-end 100000 --dt 10000 --quiet -o " + (scratch() / "long.csv").string();
+  // script(1) runs the command on a pseudo-terminal, as a user's shell would.
+  const std::string command = "KANEGEN_CACHE_DIR='" KANEGEN_SCRATCH_DIR "/cache' script -qec '" + run + "' " +
+                              typescript.string() + " >/dev/null 2>&1";
+  REQUIRE(std::system(command.c_str()) == 0);
+  const std::string shown = slurp(typescript);
+  const auto first = shown.find("\r\033[Ksimulate: t = ");
+  REQUIRE(first != std::string::npos);
+  CHECK(shown.find(" of 100000 s, wall ", first) != std::string::npos);
+  CHECK(shown.find(" rhs evaluations", first) != std::string::npos);
+  CHECK(shown.find('\n', first) > shown.rfind("\r\033[K"));  // one line, erased at the end
+  const Result piped = kanegen("simulate " + model("simple_pendulum.json") +
+                               " --t-end 100000 --dt 10000 --quiet -o " + (scratch() / "long2.csv").string());
+  CHECK(piped.status == 0);
+  CHECK(piped.err.empty());
+}
