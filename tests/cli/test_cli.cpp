@@ -587,3 +587,12 @@ TEST_CASE("a long run shows one updating progress line on a terminal and nothing
   CHECK(piped.status == 0);
   CHECK(piped.err.empty());
 }
+
+TEST_CASE("a number out of range is refused without the range's 309 digits", "[cli]") {
+  const Result r = kanegen("verify " + model("simple_pendulum.json") + " --duration 0");
+  CHECK(r.status != 0);
+  CHECK(r.err == "--duration: needs a positive number, got '0'\nRun with --help for more information.\n");
+  const Result negative = kanegen("verify " + model("simple_pendulum.json") + " --trajectories -1");
+  CHECK(negative.status != 0);
+  CHECK(negative.err.rfind("--trajectories: needs a number >= 0, got '-1'\n", 0) == 0);
+}
