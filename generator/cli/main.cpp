@@ -368,7 +368,7 @@ int run_modes(ModesCommand& c) {
   stop_on_signal("modes");
   c.options.model = c.run.model;
   c.options.build = build_options(c.run);
-  kanegen::cli::check_sets(c.run.model, c.options.build.load, c.options.sets);
+  kanegen::cli::check_sets(c.run.model, c.options.build.load, c.options.sets, false);
   return kanegen::cli::modes(c.options);
 }
 

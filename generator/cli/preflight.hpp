@@ -27,9 +27,10 @@ void check_gravity_option(const std::string& model_path, bool gravity_given);
 
 /// Loads the model and checks its physical conditions (positive masses,
 /// valid inertias, ...) with each NAME=VALUE of `sets` applied. Throws
-/// model::ModelError, or kanegen::runtime::UsageError for an unknown name.
+/// model::ModelError, or kanegen::runtime::UsageError for an unknown name
+/// (unless !refuse_unknown: then it is skipped, for a caller that reports it).
 void check_sets(const std::string& model_path, const model::LoadOptions& load,
-                const std::vector<std::string>& sets);
+                const std::vector<std::string>& sets, bool refuse_unknown = true);
 
 /// Checks that FILE can be written before the work that produces it: not a
 /// directory, and its directory exists or can be created and is writable.
