@@ -10,13 +10,15 @@ packages=(
   libsundials-dev
   libmujoco-dev libbenchmark-dev
   libclang-rt-dev llvm
+  gnuplot-nox
 )
 # libsundials-dev: CVODE, the runtime's adaptive implicit integrator
 # (--integrator implicit). libclang-rt-dev: clang's sanitizer and libFuzzer runtimes (only recommended
 # by clang, so not pulled in with --no-install-recommends), for the
 # KANEGEN_SANITIZE and KANEGEN_BUILD_FUZZERS builds that CI runs; llvm: its
 # llvm-symbolizer, which the sanitizers call to name frames (and to match the
-# leak suppressions by library).
+# leak suppressions by library). gnuplot-nox: gnuplot without X11, which
+# `kanegen plot` and `simulate --plot` run to draw PNGs.
 if [ "$(id -u)" -ne 0 ]; then
   echo "install-deps.sh: run as root (apt-get needs it), e.g. sudo bash scripts/install-deps.sh" >&2
   exit 1

@@ -1,15 +1,25 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // kanegen: generate, simulate and evaluate Kane's equations of a model.
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iostream>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "cli/modes.hpp"
+#include "cli/plot.hpp"
+#include "cli/preflight.hpp"
 #include "cli/runner_build.hpp"
 #include "cli/verify.hpp"
 #include "codegen/emitter.hpp"
@@ -20,6 +30,20 @@
 namespace {
 
 using kanegen::cli::BuildOptions;
+
+/// Instead of CLI11's PositiveNumber and NonNegativeNumber, whose message
+/// prints the largest double in 309 digits.
+CLI::Validator number_at_least(double lowest, bool inclusive, const std::string& what) {
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        double v = 0;
+        const bool ok = CLI::detail::lexical_cast(text, v) && (inclusive ? v >= lowest : v > lowest);
+        return ok ? std::string() : "needs " + what + ", got '" + text + "'";
+      },
+      "");
+}
+const CLI::Validator kPositive = number_at_least(0, false, "a positive number");
+const CLI::Validator kNonNegative = number_at_least(0, true, "a number >= 0");
 
 /// The options every subcommand has.
 struct RunOptions {
@@ -38,9 +62,12 @@ void add_common(CLI::App* command, RunOptions& options) {
       ->expected(3)
       ->delimiter(',');
   command->add_flag("--quiet", options.quiet, "no progress lines on stderr");
+  // Kept for unknown_arguments_message, which names the nearest option.
+  command->allow_extras();
 }
 
 BuildOptions build_options(const RunOptions& options) {
+  kanegen::cli::check_gravity_option(options.model, !options.gravity.empty());
   BuildOptions b;
   b.verbose = !options.quiet;
   if (options.gravity.size() == 3)
@@ -69,7 +96,9 @@ void add_forwarded(CLI::App* command, const char* runner_command, ForwardedOptio
       option = command->add_option(names, f.values[o.name], help)->type_name(o.value);
       // One value per occurrence; a repeated single option is kept for the runner's parser to refuse.
       if (!o.repeatable) option->expected(1)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-      if (o.required) option->required();
+      // A required one is not marked required here: CLI11 would report it
+      // missing before an unknown option (--tend for --t-end); the runner's
+      // parser, run by forwarded_args, refuses it instead.
     }
     f.options.emplace_back(&o, option);
   }
@@ -91,6 +120,17 @@ std::vector<std::string> forwarded_args(const char* runner_command, const Forwar
   const auto* table = kanegen::runtime::command_options(runner_command);
   kanegen::runtime::parse_options(*table, args, 1, std::string("kanegen ") + runner_command);
   return args;
+}
+
+/// What can be checked before the runner is built: the --set values against
+/// the model's physics and the output file.
+void check_forwarded(const std::string& model, const BuildOptions& b, const ForwardedOptions& f) {
+  const auto values = [&](const char* name) {
+    const auto it = f.values.find(name);
+    return it == f.values.end() ? std::vector<std::string>{} : it->second;
+  };
+  kanegen::cli::check_sets(model, b.load, values("--set"));
+  for (const std::string& output : values("--output")) kanegen::cli::check_output_file(output);
 }
 
 // Each subcommand: its options (which CLI11 fills in place, so they stay
@@ -117,6 +157,7 @@ void add_generate(CLI::App& app, GenerateCommand& c) {
 
 int run_generate(const GenerateCommand& c) {
   const BuildOptions b = build_options(c.run);
+  kanegen::cli::check_output_directory(c.out_dir);
   const kanegen::pipeline::GeneratedModel g = kanegen::pipeline::generate(c.run.model, b.load, {c.jacobians});
   kanegen::codegen::write_files_atomically(c.out_dir, g.files);
   if (!c.run.quiet) {
@@ -136,12 +177,60 @@ struct SimulateCommand {
   CLI::App* command = nullptr;
   RunOptions run;
   ForwardedOptions forwarded;
+  std::string plot;  ///< --plot FIG.png
 };
 
 void add_simulate(CLI::App& app, SimulateCommand& c) {
   c.command = app.add_subcommand("simulate", "generate (cached), compile and integrate the model; write CSV");
   add_common(c.command, c.run);
   add_forwarded(c.command, "simulate", c.forwarded);
+  c.command
+      ->add_option("--plot", c.plot,
+                   "also draw the result, every column against t, into FIG.png (kanegen plot)")
+      ->type_name("FIG.png");
+}
+
+/// The CSV of a `simulate --plot` run without -o: a temporary file next to
+/// the plot, copied to stdout afterwards (as without --plot) and removed.
+std::string temporary_csv(const std::string& png) {
+  const std::filesystem::path p(png);
+  return ((p.has_parent_path() ? p.parent_path() : std::filesystem::path(".")) /
+          ("." + p.filename().string() + ".csv.tmp." + std::to_string(getpid())))
+      .string();
+}
+
+int simulate_and_plot(const SimulateCommand& c, const std::string& runner, std::vector<std::string> args) {
+  const auto given = c.forwarded.values.find("--output");
+  const bool to_file = given != c.forwarded.values.end() && !given->second.empty() &&
+                       given->second[0] != "-" && !given->second[0].empty();
+  const std::string csv = to_file ? given->second[0] : temporary_csv(c.plot);
+  if (!to_file) {
+    args.erase(std::remove(args.begin(), args.end(), "-"), args.end());
+    args.erase(std::remove(args.begin(), args.end(), "--output"), args.end());
+    args.insert(args.end(), {"--output", csv});
+    kanegen::cli::create_output_directory(c.plot);
+  }
+  int status = kanegen::cli::run_program(runner, args);
+  if (status == 0) {
+    kanegen::cli::PlotOptions p;
+    p.csv = csv;
+    p.output = c.plot;
+    p.title = std::filesystem::path(c.run.model).filename().string();
+    p.verbose = !c.run.quiet;
+    try {
+      status = kanegen::cli::plot(p);
+    } catch (...) {
+      if (!to_file) std::filesystem::remove(csv);
+      throw;
+    }
+  }
+  if (!to_file) {
+    std::ostringstream text;  // read before it is removed: a closed stdout must not leave it behind
+    text << std::ifstream(csv).rdbuf();
+    std::filesystem::remove(csv);
+    std::cout << text.str() << std::flush;
+  }
+  return status;
 }
 
 /// The --integrator value forwarded to the runner's simulate, or "" if none was given.
@@ -158,7 +247,12 @@ int run_simulate(const SimulateCommand& c) {
   const std::vector<std::string> args = forwarded_args("simulate", c.forwarded);
   BuildOptions b = build_options(c.run);
   b.jacobians = kanegen::cli::integrator_needs_jacobians(forwarded_integrator(c.forwarded));
+  check_forwarded(c.run.model, b, c.forwarded);
+  if (!c.plot.empty()) kanegen::cli::check_output_file(c.plot);
   const std::string runner = kanegen::cli::build_runner(c.run.model, b);
+  if (const auto o = c.forwarded.values.find("--output"); o != c.forwarded.values.end())
+    for (const std::string& output : o->second) kanegen::cli::create_output_directory(output);
+  if (!c.plot.empty()) return simulate_and_plot(c, runner, args);
   return kanegen::cli::run_program(runner, args);
 }
 
@@ -177,7 +271,9 @@ void add_eval(CLI::App& app, EvalCommand& c) {
 /// The runner's own eval, with the options passed on.
 int run_eval(const EvalCommand& c) {
   const std::vector<std::string> args = forwarded_args("eval", c.forwarded);
-  const std::string runner = kanegen::cli::build_runner(c.run.model, build_options(c.run));
+  const BuildOptions b = build_options(c.run);
+  check_forwarded(c.run.model, b, c.forwarded);
+  const std::string runner = kanegen::cli::build_runner(c.run.model, b);
   return kanegen::cli::run_program(runner, args);
 }
 
@@ -199,22 +295,20 @@ void add_verify(CLI::App& app, VerifyCommand& c) {
       "trajectories. Exit status 0: all agree; 1: a mismatch (named on stderr with its state). See "
       "docs/verify.md.");
   kanegen::cli::VerifyOptions& o = c.options;
-  ver->add_option("--samples", o.samples, "number of random states")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+  ver->add_option("--samples", o.samples, "number of random states")->capture_default_str()->check(kPositive);
   ver->add_option("--seed", o.seed, "random seed")->capture_default_str();
   ver->add_option("--rtol", o.rtol, "tolerance of the relative error measures (power balance: 100x)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(kPositive);
   ver->add_option("--spread", o.spread, "parameters drawn in default*[1-S, 1+S] (0: the defaults)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 0.99));
   ver->add_option("--trajectories", o.trajectories, "power-balance trajectories (0: none)")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(kNonNegative);
   ver->add_option("--duration", o.duration, "length of each trajectory in s")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(kPositive);
   ver->add_option(
          "--kernels", o.kernels_dir,
          "verify this directory of generated files (from 'kanegen generate', possibly edited) instead of "
@@ -226,7 +320,33 @@ void add_verify(CLI::App& app, VerifyCommand& c) {
                 "path (with --kernels: checked when the files have them)");
 }
 
+// verify and modes compute in kanegen itself, with the runner as a
+// coprocess, and write nothing until their verdict: stopped by the user they
+// end at once with the message and status of an interrupted simulation (the
+// runner sees its input close and ends too). While a runner is compiled,
+// run_program's own handler reports the interruption instead.
+char g_interrupted_message[3][160];
+
+extern "C" void stop_now(int signal_number) {
+  const int k = signal_number == SIGINT ? 0 : signal_number == SIGTERM ? 1 : 2;
+  const char* message = g_interrupted_message[k];
+  if (write(STDERR_FILENO, message, std::strlen(message)) < 0) {
+  }
+  _exit(128 + signal_number);
+}
+
+void stop_on_signal(const char* command) {
+  const int signals[3] = {SIGINT, SIGTERM, SIGHUP};
+  const char* names[3] = {"SIGINT", "SIGTERM", "SIGHUP"};
+  for (int k = 0; k < 3; ++k) {
+    std::snprintf(g_interrupted_message[k], sizeof g_interrupted_message[k],
+                  "error: interrupted by %s; kanegen %s stopped before its result\n", names[k], command);
+    std::signal(signals[k], stop_now);
+  }
+}
+
 int run_verify(VerifyCommand& c) {
+  stop_on_signal("verify");
   c.options.model = c.run.model;
   c.options.build = build_options(c.run);
   c.options.build.jacobians = c.jacobians;
@@ -268,9 +388,42 @@ void add_modes(CLI::App& app, ModesCommand& c) {
 }
 
 int run_modes(ModesCommand& c) {
+  stop_on_signal("modes");
   c.options.model = c.run.model;
   c.options.build = build_options(c.run);
+  kanegen::cli::check_sets(c.run.model, c.options.build.load, c.options.sets, false);
   return kanegen::cli::modes(c.options);
+}
+
+struct PlotCommand {
+  CLI::App* command = nullptr;
+  kanegen::cli::PlotOptions options;
+  bool quiet = false;
+};
+
+void add_plot(CLI::App& app, PlotCommand& c) {
+  c.command = app.add_subcommand("plot", "draw columns of a result CSV against t into a PNG (with gnuplot)");
+  kanegen::cli::PlotOptions& o = c.options;
+  c.command->add_option("RESULT", o.csv, "a CSV written by kanegen simulate")
+      ->required()
+      ->check(CLI::ExistingFile);
+  c.command->add_option("--y", o.columns, "a column to draw (repeatable; default: all but t, at most 12)")
+      ->type_name("COL");
+  c.command->add_option("-o,--output", o.output, "the PNG to write (default: RESULT with .png)")
+      ->type_name("FIG.png");
+  c.command->add_option("--width", o.width, "width in pixels")
+      ->capture_default_str()
+      ->check(CLI::Range(100, 10000));
+  c.command->add_option("--height", o.height, "height in pixels")
+      ->capture_default_str()
+      ->check(CLI::Range(100, 10000));
+  c.command->add_flag("--quiet", c.quiet, "no progress lines on stderr");
+  c.command->allow_extras();
+}
+
+int run_plot(PlotCommand& c) {
+  c.options.verbose = !c.quiet;
+  return kanegen::cli::plot(c.options);
 }
 
 }  // namespace
@@ -286,13 +439,23 @@ int main(int argc, char** argv) {
   EvalCommand eval;
   VerifyCommand verify;
   ModesCommand modes;
+  PlotCommand plot;
   add_generate(app, generate);
   add_simulate(app, simulate);
   add_eval(app, eval);
   add_verify(app, verify);
   add_modes(app, modes);
+  add_plot(app, plot);
 
   CLI11_PARSE(app, argc, argv);
+
+  for (const CLI::App* command :
+       {generate.command, simulate.command, eval.command, verify.command, modes.command, plot.command})
+    if (*command)
+      if (const std::string unknown = kanegen::cli::unknown_arguments_message(*command); !unknown.empty()) {
+        std::fprintf(stderr, "error: %s\n", unknown.c_str());
+        return 2;
+      }
 
   try {
     if (*generate.command) return run_generate(generate);
@@ -300,6 +463,10 @@ int main(int argc, char** argv) {
     if (*eval.command) return run_eval(eval);
     if (*verify.command) return run_verify(verify);
     if (*modes.command) return run_modes(modes);
+    if (*plot.command) return run_plot(plot);
+  } catch (const kanegen::cli::Interrupted& e) {  // as an interrupted simulation reports it
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 128 + e.signal_number;
   } catch (const kanegen::model::ModelError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;

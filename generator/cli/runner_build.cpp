@@ -86,9 +86,26 @@ namespace {
 // are passed on to it, so that a simulation stopped by the user closes its
 // output and reports where it stopped, rather than being orphaned.
 volatile pid_t g_child = 0;
+// The last signal passed on, so that a compiler stopped by the user is told
+// apart from one that failed.
+volatile sig_atomic_t g_forwarded = 0;
 
 extern "C" void forward_signal(int signal_number) {
+  g_forwarded = signal_number;
   if (g_child > 0) kill(g_child, signal_number);
+}
+
+const char* signal_name(int signal_number) {
+  switch (signal_number) {
+    case SIGINT:
+      return "SIGINT";
+    case SIGTERM:
+      return "SIGTERM";
+    case SIGHUP:
+      return "SIGHUP";
+    default:
+      return "a signal";
+  }
 }
 
 }  // namespace
@@ -141,8 +158,16 @@ void compile_runner(const fs::path& source_dir, const std::string& name, const R
   const fs::path cvode = KANEGEN_SUNDIALS_CVODE_LIBRARY;
   std::vector<std::string> linked = args;
   linked.insert(linked.end(), {cvode.string(), "-Wl,-rpath," + cvode.parent_path().string()});
-  if (run_program(compiler(), linked) != 0)
-    throw std::runtime_error((source_dir / (name + ".cpp")).string() + ": " + if_failed);
+  g_forwarded = 0;
+  const int status = run_program(compiler(), linked);
+  if (const int signal_number = g_forwarded; signal_number != 0) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);  // the cache keeps no half-built runner; the next run compiles afresh
+    throw Interrupted("interrupted by " + std::string(signal_name(signal_number)) + " while compiling " +
+                          name + "; nothing was cached",
+                      signal_number);
+  }
+  if (status != 0) throw std::runtime_error((source_dir / (name + ".cpp")).string() + ": " + if_failed);
   fs::rename(temporary, runner);
 }
 

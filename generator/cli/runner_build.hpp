@@ -4,6 +4,7 @@
 // goes into it, so repeated `simulate` and `eval` calls skip generation.
 #pragma once
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,14 @@ struct BuildOptions {
 /// Whether the runner's `simulate --integrator VALUE` needs the Jacobian
 /// kernels: the implicit integrators ("implicit", "genalpha") do.
 bool integrator_needs_jacobians(const std::string& integrator);
+
+/// The user stopped a build (SIGINT, SIGTERM or SIGHUP while compiling):
+/// reported as such, with exit status 128 + signal, not as a compiler error.
+struct Interrupted : std::runtime_error {
+  Interrupted(const std::string& what, int signal_number)
+      : std::runtime_error(what), signal_number(signal_number) {}
+  int signal_number;
+};
 
 /// Returns the path of the runner for `model_path`, generating and compiling
 /// it if the cache has none. Throws model::ModelError or std::runtime_error.

@@ -3,6 +3,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
@@ -41,19 +42,24 @@ struct Named {
   std::string where;
 };
 
-bool all_literal(const std::array<Scalar, 6>& s) {
-  for (const Scalar& x : s)
-    if (!x.is_literal) return false;
-  return true;
-}
-
 class Checker {
  public:
   Checker(Model& model, std::string root_place)
       : m_(model), file_(model.source_file), root_place_(std::move(root_place)) {}
 
+  /// For check_parameter_values: the checks of values at `values`.
+  Checker(Model& model, ParameterValues values, std::string origin)
+      : m_(model), file_(model.source_file), values_(std::move(values)), origin_(std::move(origin)) {}
+
+  void run_value_checks() {
+    check_bodies();
+    for (const Joint& j : m_.joints) check_joint_values(j);
+    for (const Spring& s : m_.springs) check_spring_values(s);
+  }
+
   void run() {
     check_names();
+    values_ = default_parameter_values(m_);  // the expressions are checked before they are evaluated
     check_numbers();
     check_expressions();
     check_bodies();
@@ -227,48 +233,108 @@ class Checker {
 
   void check_bodies() const {
     for (const Body& b : m_.bodies) {
-      const bool literal_inertia = all_literal(b.inertia);
-      bool zero_inertia = literal_inertia;
-      for (const Scalar& s : b.inertia) zero_inertia = zero_inertia && s.value == 0.0;
-      if (b.mass.is_literal && b.mass.value < 0)
-        error(b.mass.where, "negative mass (" + format(b.mass.value) + ") of body '" + b.name + "'",
-              "give a positive mass in kg");
-      if (b.mass.is_literal && b.mass.value == 0 && literal_inertia && !zero_inertia)
-        error(b.mass.where, "zero mass with a nonzero inertia in body '" + b.name + "'",
-              "give a positive mass, or set all inertia entries to 0 for a massless frame");
-      if (literal_inertia && !zero_inertia) check_inertia(b);
+      // Evaluated, so that a mass or an inertia given by an expression is
+      // checked at the parameter values, not only when it is a number.
+      const double mass = evaluate(b.mass, values_);
+      std::array<double, 6> inertia{};
+      for (int k = 0; k < 6; ++k) inertia[k] = evaluate(b.inertia[k], values_);
+      const bool zero_inertia =
+          std::all_of(inertia.begin(), inertia.end(), [](double v) { return v == 0.0; });
+      if (mass < 0)
+        error(b.mass.where, "negative mass (" + described(b.mass) + ") of body '" + b.name + "'",
+              "give a positive mass in kg" + parameter_fix(b.mass));
+      if (mass == 0 && !zero_inertia)
+        error(b.mass.where,
+              "zero mass" + in_parentheses(b.mass) + " with a nonzero inertia in body '" + b.name + "'",
+              "give a positive mass, or set all inertia entries to 0 for a massless frame" +
+                  parameter_fix(b.mass));
+      if (!zero_inertia) check_inertia(b, inertia);
     }
   }
 
-  void check_inertia(const Body& b) const {
-    const auto& i = b.inertia;
+  /// "-1.2", or for an expression "-1.2 = m1*2 with m1 = -0.6 from --set m1=-0.6".
+  std::string described(const Scalar& s) const {
+    const std::string value = format(evaluate(s, values_));
+    if (s.is_literal) return value;
+    const std::vector<std::string> used = parameters_in(s.text);
+    if (used.size() == 1 && used[0] == s.text)  // a bare parameter: "m = -1.2 from --set"
+      return s.text + " = " + value + (origin_.empty() ? "" : " " + origin_);
+    std::string text = value + " = " + s.text;
+    for (std::size_t k = 0; k < used.size(); ++k)
+      text += (k ? ", " : " with ") + used[k] + " = " + format(values_.at(used[k]));
+    return text + (origin_.empty() ? "" : " " + origin_);
+  }
+
+  /// Where to fix a value given by an expression: its parameters.
+  std::string parameter_fix(const Scalar& s) const {
+    if (s.is_literal) return "";
+    const std::vector<std::string> used = parameters_in(s.text);
+    if (used.empty()) return "";
+    return " (check " + join(used, ", ") +
+           (origin_.empty() ? std::string(" under /parameters") : std::string(" in --set")) + ")";
+  }
+
+  /// The model's parameters named in an expression, in order of first use.
+  std::vector<std::string> parameters_in(const std::string& text) const {
+    std::vector<std::string> used;
+    for (std::size_t i = 0; i < text.size();) {
+      if (!(std::isalpha(static_cast<unsigned char>(text[i])) || text[i] == '_')) {
+        ++i;
+        continue;
+      }
+      std::size_t end = i;
+      while (end < text.size() && (std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '_'))
+        ++end;
+      const std::string name = text.substr(i, end - i);
+      if (values_.count(name) && std::find(used.begin(), used.end(), name) == used.end())
+        used.push_back(name);
+      i = end;
+    }
+    return used;
+  }
+
+  /// "; izz = k*m1*l1^2/12 with k = -1, m1 = 2, l1 = 0.5 from --set" for the entries given by expressions.
+  std::string inertia_expressions(const Body& b) const {
+    static const char* const kEntries[6] = {"ixx", "iyy", "izz", "ixy", "ixz", "iyz"};
+    std::vector<std::string> entries, used;
+    for (int k = 0; k < 6; ++k) {
+      if (b.inertia[k].is_literal) continue;
+      entries.push_back(std::string(kEntries[k]) + " = " + b.inertia[k].text);
+      for (const std::string& p : parameters_in(b.inertia[k].text))
+        if (std::find(used.begin(), used.end(), p) == used.end()) used.push_back(p);
+    }
+    if (entries.empty()) return "";
+    std::string text = "; " + join(entries, ", ");
+    for (std::size_t k = 0; k < used.size(); ++k)
+      text += (k ? ", " : " with ") + used[k] + " = " + format(values_.at(used[k]));
+    return text + (origin_.empty() ? "" : " " + origin_);
+  }
+
+  void check_inertia(const Body& b, const std::array<double, 6>& i) const {
     Eigen::Matrix3d tensor;
-    tensor << i[0].value, i[3].value, i[4].value, i[3].value, i[1].value, i[5].value, i[4].value, i[5].value,
-        i[2].value;
+    tensor << i[0], i[3], i[4], i[3], i[1], i[5], i[4], i[5], i[2];
     const Eigen::Vector3d l = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(tensor, Eigen::EigenvaluesOnly)
                                   .eigenvalues();  // ascending
     const double tolerance = 1e-9 * l.cwiseAbs().maxCoeff();
     const std::string moments = format(l[0]) + ", " + format(l[1]) + ", " + format(l[2]);
+    const std::string from = inertia_expressions(b);
     if (l[0] < -tolerance)
       error(inertia_place(b),
             "inertia of body '" + b.name + "' has a negative principal moment (principal moments " + moments +
-                ")",
+                from + ")",
             "check the entries: ixx, iyy, izz are positive and the products of inertia ixy, ixz, iyz are the "
             "tensor's off-diagonal entries (-integral of x*y dm), small next to them");
     if (l[0] + l[1] < l[2] - tolerance)
       error(inertia_place(b),
             "inertia of body '" + b.name + "' violates the triangle inequality (principal moments " +
-                moments + ": " + format(l[0]) + " + " + format(l[1]) + " < " + format(l[2]) + ")",
+                moments + ": " + format(l[0]) + " + " + format(l[1]) + " < " + format(l[2]) + from + ")",
             "no mass distribution has such moments: check the entries (the sum of any two principal moments "
             "must be at least the third)");
   }
 
   void check_joints() const {
     for (Joint& j : m_.joints) {
-      if (j.spring_stiffness.is_literal && j.spring_stiffness.value < 0)
-        error(j.spring_stiffness.where, "negative spring stiffness", "use a stiffness >= 0");
-      if (j.damping.is_literal && j.damping.value < 0)
-        error(j.damping.where, "negative damping", "use a damping coefficient >= 0");
+      check_joint_values(j);
       if (!j.moves()) continue;
       const double norm = std::sqrt(j.axis[0] * j.axis[0] + j.axis[1] * j.axis[1] + j.axis[2] * j.axis[2]);
       if (!(norm > 1e-12))
@@ -277,6 +343,19 @@ class Checker {
       for (double& a : j.axis) a /= norm;
     }
   }
+
+  void check_joint_values(const Joint& j) const {
+    if (evaluate(j.spring_stiffness, values_) < 0)
+      error(j.spring_stiffness.where,
+            "negative spring stiffness" + in_parentheses(j.spring_stiffness) + " of joint '" + j.name + "'",
+            "use a stiffness >= 0" + parameter_fix(j.spring_stiffness));
+    if (evaluate(j.damping, values_) < 0)
+      error(j.damping.where, "negative damping" + in_parentheses(j.damping) + " of joint '" + j.name + "'",
+            "use a damping coefficient >= 0" + parameter_fix(j.damping));
+  }
+
+  /// " (= expression with ...)" for an expression; nothing for a number, as before.
+  std::string in_parentheses(const Scalar& s) const { return s.is_literal ? "" : " (" + described(s) + ")"; }
 
   std::string unknown_body_fix(const std::string& name, bool allow_ground) const {
     std::vector<std::string> candidates = names_of(m_.bodies);
@@ -394,10 +473,14 @@ class Checker {
       error(at(s.where, "body2"), what + " has both points on body '" + s.body + "'",
             "attach its second point to another body or to '" + m_.ground +
                 "': between two points of one body it is an internal force and does nothing");
+    check_spring_values(s);
+  }
+
+  void check_spring_values(const Spring& s) const {
     const auto non_negative = [&](const Scalar& x, const std::string& quantity, const std::string& unit) {
-      if (x.is_literal && x.value < 0)
-        error(x.where, "negative " + quantity + " (" + format(x.value) + ") of " + what,
-              "give a " + quantity + " >= 0, in " + unit);
+      if (evaluate(x, values_) < 0)
+        error(x.where, "negative " + quantity + " (" + described(x) + ") of spring '" + s.name + "'",
+              "give a " + quantity + " >= 0, in " + unit + parameter_fix(x));
     };
     non_negative(s.stiffness, "stiffness", "N/m");
     non_negative(s.rest_length, "rest length", "m");
@@ -530,10 +613,12 @@ class Checker {
         const Body* parent =
             check_node(j.parent_node, j.parent, at(j.where, "parent_node"), "joint '" + j.name + "'");
         if (parent && j.type == JointType::prismatic)
-          error(at(j.where, "parent_node"), "only revolute, continuous and fixed joints on beam nodes are supported",
-                "attach prismatic joint '" + j.name +
-                    "' to the body frame (remove \"parent_node\"), or put a fixed joint and a body on the node "
-                    "and the slide on that body");
+          error(
+              at(j.where, "parent_node"),
+              "only revolute, continuous and fixed joints on beam nodes are supported",
+              "attach prismatic joint '" + j.name +
+                  "' to the body frame (remove \"parent_node\"), or put a fixed joint and a body on the node "
+                  "and the slide on that body");
       }
     for (PointForce& f : m_.forces)
       if (f.node != -1) check_node(f.node, f.body, at(f.where, "node"), "force '" + f.name + "'");
@@ -615,10 +700,17 @@ class Checker {
   std::string file_;
   std::string root_place_;
   std::vector<int> parent_joint_;  ///< per body: index of the joint whose child it is
+  ParameterValues values_;         ///< the parameters' values the physical checks use
+  std::string origin_;             ///< where values_ came from, "" for the model's defaults
 };
 
 }  // namespace
 
 void check_model(Model& model, const std::string& root_place) { Checker(model, root_place).run(); }
+
+void check_parameter_values(const Model& model, const ParameterValues& values, const std::string& origin) {
+  Model copy = model;  // the Checker may normalise; the caller's model stays as it is
+  Checker(copy, values, origin).run_value_checks();
+}
 
 }  // namespace kanegen::model

@@ -120,7 +120,7 @@ std::string expected_type(const json* s) {
     return items && items->value("type", json()).is_array() ? "an array of 3 numbers or expressions"
                                                             : "an array of 3 numbers";
   }
-  if (t == "array" || t == "object") return "an " + t;
+  if (t == "array" || t == "object" || t == "integer") return "an " + t;  // "an integer", not "a integer"
   if (t == "boolean") return "true or false";
   return "a " + t;
 }

@@ -7,7 +7,10 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <vector>
 
@@ -108,6 +111,101 @@ void index_urdf(const std::string& text, const std::string& file, UrdfIndex& ind
   }
 }
 
+/// An element kanegen reads (or must see through to the ones it reads): its
+/// attributes, the ones that must be there, and its children. A child
+/// without an entry of its own is not looked into (<visual>, <collision>).
+struct Vocabulary {
+  std::vector<std::string> attributes, required, children;
+  bool numbers = false;  ///< every attribute is one number (<mass>, <inertia>)
+};
+
+const std::map<std::string, Vocabulary>& urdf_vocabulary() {
+  static const std::map<std::string, Vocabulary> v = {
+      {"robot", {{"name", "version"}, {}, {"link", "joint"}}},
+      {"link", {{"name", "type"}, {}, {"inertial", "visual", "collision"}}},
+      {"link/inertial", {{}, {}, {"origin", "mass", "inertia"}}},
+      {"link/inertial/origin", {{"xyz", "rpy"}, {}, {}}},
+      {"link/inertial/mass", {{"value"}, {"value"}, {}, true}},
+      {"link/inertial/inertia",
+       {{"ixx", "ixy", "ixz", "iyy", "iyz", "izz"}, {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"}, {}, true}},
+      {"joint",
+       {{"name", "type"},
+        {},
+        {"origin", "parent", "child", "axis", "limit", "dynamics", "calibration", "safety_controller",
+         "mimic"}}},
+      {"joint/origin", {{"xyz", "rpy"}, {}, {}}},
+      {"joint/parent", {{"link"}, {}, {}}},
+      {"joint/child", {{"link"}, {}, {}}},
+      {"joint/axis", {{"xyz"}, {}, {}}},
+      {"joint/limit", {{"lower", "upper", "effort", "velocity"}, {}, {}}},
+      {"joint/dynamics", {{"damping", "friction"}, {}, {}}},
+      {"joint/calibration", {{"rising", "falling", "reference_position"}, {}, {}}},
+      {"joint/safety_controller",
+       {{"soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity"}, {}, {}}},
+      {"joint/mimic", {{"joint", "multiplier", "offset"}, {}, {}}},
+  };
+  return v;
+}
+
+std::string did_you_mean(const std::string& name, const std::vector<std::string>& known) {
+  const std::string guess = nearest(name, known);
+  return guess.empty() ? "known here: " + join(known, ", ") : "did you mean '" + guess + "'?";
+}
+
+bool is_number(const char* text) {
+  char* end = nullptr;
+  std::strtod(text, &end);
+  while (end && *end != '\0' && std::isspace(static_cast<unsigned char>(*end))) ++end;
+  return end != text && end && *end == '\0';
+}
+
+/// Checks `e` (at `key` in urdf_vocabulary()) and its children: a misspelt
+/// element or attribute would otherwise be dropped by urdfdom without a word
+/// (<inertia ixxx=...> zeroes the whole inertia, <inertal> the mass).
+void check_vocabulary(const tinyxml2::XMLElement* e, const std::string& key, const std::string& place,
+                      const std::string& file) {
+  const Vocabulary& v = urdf_vocabulary().at(key);
+  const std::string here = "line " + std::to_string(e->GetLineNum()) + ": " + place;
+  for (const tinyxml2::XMLAttribute* a = e->FirstAttribute(); a; a = a->Next()) {
+    const std::string name = a->Name();
+    if (key == "robot" && name.rfind("xmlns", 0) == 0) continue;  // namespace declarations
+    if (std::find(v.attributes.begin(), v.attributes.end(), name) == v.attributes.end())
+      throw ModelError(file, here, "unknown attribute '" + name + "' of <" + e->Name() + ">",
+                       did_you_mean(name, v.attributes));
+    if (v.numbers && !is_number(a->Value()))
+      throw ModelError(file, here + "/" + name, "'" + std::string(a->Value()) + "' is not a number",
+                       "write " + name + "=\"...\" as a number (SI units)");
+  }
+  if (v.numbers && e->GetText() &&
+      std::string(e->GetText()).find_first_not_of(" \t\r\n") != std::string::npos)
+    throw ModelError(file, here, "<" + std::string(e->Name()) + "> holds text, which URDF ignores",
+                     "give the values as attributes: <" + std::string(e->Name()) + " " +
+                         join(v.required, "=\"...\" ") + "=\"...\"/>");
+  for (const std::string& name : v.required)
+    if (!e->Attribute(name.c_str()))
+      throw ModelError(file, here, "<" + std::string(e->Name()) + "> has no " + name,
+                       "add " + name + "=\"...\"" +
+                           (v.required.size() > 1 ? " (all of " + join(v.required, ", ") + ")" : ""));
+  for (const tinyxml2::XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const std::string name = c->Name();
+    const bool known = std::find(v.children.begin(), v.children.end(), name) != v.children.end();
+    // <robot> holds extensions (<mujoco>, <ros2_control>, ...): only a near
+    // miss of an element kanegen reads is an error there.
+    if (!known && key == "robot" && nearest(name, {"link", "joint"}).empty()) continue;
+    if (!known)
+      throw ModelError(file, "line " + std::to_string(c->GetLineNum()) + ": " + place + "/" + name,
+                       "unknown element <" + name + "> in <" + e->Name() + ">",
+                       did_you_mean(name, v.children));
+    const std::string child_key = key == "robot" ? name : key + "/" + name;
+    if (!urdf_vocabulary().count(child_key)) continue;  // not read by kanegen: <visual>, <material>, ...
+    const char* child_name = key == "robot" ? c->Attribute("name") : nullptr;
+    const std::string child_place =
+        key == "robot" ? "<" + name + (child_name ? " name=\"" + std::string(child_name) + "\"" : "") + ">"
+                       : place + "/" + name;
+    check_vocabulary(c, child_key, child_place, file);
+  }
+}
+
 /// Joint features urdfdom accepts but kanegen cannot honour, reported here
 /// with their element rather than after urdfdom's terse messages.
 void check_joint_elements(const UrdfIndex& index, const std::string& file) {
@@ -194,9 +292,12 @@ class CapturedConsole : public console_bridge::OutputHandler {
   CapturedConsole& operator=(const CapturedConsole&) = delete;
 
   void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
-    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR) errors.push_back(text);
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR)
+      errors.push_back(text);
+    else if (level == console_bridge::CONSOLE_BRIDGE_LOG_WARN)
+      warnings.push_back(text);
   }
-  std::vector<std::string> errors;
+  std::vector<std::string> errors, warnings;
 };
 
 urdf::ModelInterfaceSharedPtr parse_with_urdfdom(const std::string& text, const UrdfIndex& index,
@@ -211,6 +312,13 @@ urdf::ModelInterfaceSharedPtr parse_with_urdfdom(const std::string& text, const 
       console.errors.push_back(e.what());
     }
     errors = console.errors;
+    // urdfdom warns where it guesses (a default it makes up): said, not dropped.
+    std::vector<std::string> said;  // urdfdom repeats some (once per pass over the links)
+    for (const std::string& warning : console.warnings) {
+      if (std::find(said.begin(), said.end(), warning) != said.end()) continue;
+      said.push_back(warning);
+      std::fprintf(stderr, "warning: %s: urdfdom: %s\n", file.c_str(), warning.c_str());
+    }
   }
   if (robot) return robot;
   // urdfdom names the culprit in brackets ("Joint [j3] ..."), often in a
@@ -309,6 +417,7 @@ Model load_urdf_model(const std::string& path, const LoadOptions& options) {
   const std::string text = read_text_file(path);
   UrdfIndex index;
   index_urdf(text, path, index);
+  check_vocabulary(index.document.RootElement(), "robot", "<robot>", path);
   check_joint_elements(index, path);
   check_joint_tree(index, path);
   const urdf::ModelInterfaceSharedPtr robot = parse_with_urdfdom(text, index, path);

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "batch.hpp"
+#include "run_report.hpp"
 #include "kanegen/runtime/csv.hpp"
 #include "kanegen/runtime/integrators.hpp"
 #include "kanegen/runtime/loops.hpp"
@@ -102,8 +103,14 @@ std::string pivot_message(const ModelInfo& info, int pivot) {
            " is (nearly) dependent on the ones before it, so the loop forces grow without bound and the "
            "motion may change branch; the mechanism is at or near a dead point or a bifurcation (links in "
            "line)";
-  return "mass matrix is not positive definite (pivot " + std::to_string(pivot) +
-         " of its LDL^T factorisation is not positive)";
+  // Name the coordinate (for a joint, the joint's name) whose pivot failed:
+  // the user's fix is a mass or inertia of a body it carries.
+  const std::string coordinate = pivot <= info.nq ? info.coordinate_names[pivot - 1] : "?";
+  return "mass matrix is not positive definite at coordinate '" + coordinate + "' (pivot " +
+         std::to_string(pivot) +
+         " of its LDL^T factorisation is not positive): a body it moves has a zero or negative mass or an "
+         "invalid inertia at these parameters; check the bodies carried by joint '" +
+         coordinate + "' and the --set values";
 }
 
 std::string json_numbers(const double* v, int n) {
@@ -172,6 +179,7 @@ struct SimulateArgs {
   std::string output;
   bool stats = false;
   double rho_inf = 0.8;  ///< genalpha
+  bool energies = false;
 };
 
 // The simulate options, values checked one by one by the parser (defaults
@@ -195,6 +203,7 @@ SimulateArgs simulate_args(const ParsedOptions& p) {
   a.output = p.text("--output");
   a.stats = p.flag("--stats");
   a.rho_inf = p.number("--rho-inf");
+  a.energies = p.flag("--energies");
   if (o.rtol == 0 && o.atol == 0) throw UsageError("--rtol and --atol cannot both be zero");
   if (a.rho_inf > 1) throw UsageError("--rho-inf must be in [0, 1]");
   if (o.max_order > 5) throw UsageError("--max-order must be 1 to 5");
@@ -278,17 +287,22 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
   const std::vector<std::string> names = state_names(info);
   header.insert(header.end(), names.begin(), names.end());
   header.insert(header.end(), info.output_names, info.output_names + info.ny);
+  EnergyColumns energy(model, a.energies);
+  energy.add_header(header);
   if (!csv->write_header(header)) throw RunError(csv->error());
+  Progress progress(err, a.opt.t_end);
+  double largest_loop_residual = 0.0;
 
   std::vector<double> tau(static_cast<size_t>(std::max(info.ntau, 1)), 0.0);
   std::vector<double> lambda(static_cast<size_t>(std::max(info.nc, 1)));
-  std::vector<double> row(1 + n + std::max(info.ny, 1));
+  std::vector<double> row(1 + n + std::max(info.ny, 1) + energy.count());
   std::string why;  // the reason the right-hand side failed, for the message
   const StopOnSignal stop_on_signal;
   double t_last_row = 0.0;
   long rows = 0;
   const Rhs rhs = [&](double t, const double* xs, double* xdot) {
     if (g_stop_signal != 0) return false;
+    progress.on_rhs(t);
     model.coordinate_rates(xs, xs + nq, xdot);
     const int pivot = loops.active() ? loops.dynamics(t, xs, xs + nq, tau.data(), xdot + nq, lambda.data())
                                      : model.forward_dynamics(t, xs, xs + nq, tau.data(), xdot + nq);
@@ -305,16 +319,20 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
     }
     std::copy(xs, xs + n, row.begin() + 1);
     model.outputs(t, xs, xs + nq, row.data() + 1 + n);
+    energy.fill(xs, xs + nq, row.data() + 1 + n + info.ny);
+    if (loops.active()) largest_loop_residual = std::max(largest_loop_residual, loops.residual(xs));
     t_last_row = t;
     ++rows;
-    return csv->write_row(row.data(), 1 + n + info.ny);
+    return csv->write_row(row.data(), 1 + n + info.ny + energy.count());
   };
   IntegrationOptions opt = a.opt;
   opt.state_names = names;
   if (loops.active())
     opt.project = [&](double, double* xs, std::string* why) { return loops.project(xs, xs + nq, why); };
   const IntegrationResult r = run_method(model, a, rhs, x.data(), opt, observer, tau.data());
+  progress.finish();
   if (a.stats) print_stats(err, a.method, r);
+  if (a.stats) print(err, run_summary(r.stats.accepted, r.t, energy, loops.active(), largest_loop_residual));
   const bool closed = csv->close();
   if (g_stop_signal != 0) {
     const int signal_number = g_stop_signal;

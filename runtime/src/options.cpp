@@ -45,6 +45,7 @@ const std::vector<OptionSpec> kSimulate = {
      "print step statistics on stderr (and Newton iterations, Jacobian evaluations and LU factorizations "
      "for implicit and genalpha)",
      K::kFlag},
+    {"--energies", "", "", "", nullptr, "add kinetic_energy, potential_energy and total_energy columns", K::kFlag},
 };
 
 const std::vector<OptionSpec> kEval = {

@@ -3,6 +3,7 @@
 // and bad models. Expected values are analytic (simple pendulum). simulate
 // and eval against the runner they build: the same options and defaults.
 #define CATCH_CONFIG_MAIN
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -296,4 +297,342 @@ TEST_CASE("simulate refuses what the runner refuses, as the runner says it, befo
   // The runner's rules, not stricter ones: a pure absolute tolerance is fine.
   CHECK(kanegen_fresh_cache(cache, "simulate " + pendulum + " --t-end 0.1 --rtol 0 --atol 1e-9 --quiet")
             .status == 0);
+}
+
+// ---- no silent wrong model, and mistakes found before anything is built ----
+
+TEST_CASE("an unknown option is named, with the nearest known one", "[cli]") {
+  const fs::path cache = scratch() / "unknown_option_cache";
+  const Result r = kanegen_fresh_cache(cache, "simulate " + model("simple_pendulum.json") + " --tend 1");
+  CHECK(r.status == 2);
+  CHECK(r.err ==
+        "error: unknown option --tend; did you mean --t-end? (kanegen simulate --help lists the options)\n");
+  CHECK(!fs::exists(cache));
+  // A required option that is missing is still reported as such.
+  const Result missing = kanegen_fresh_cache(cache, "simulate " + model("simple_pendulum.json"));
+  CHECK(missing.status == 2);
+  CHECK(missing.err == "error: simulate needs --t-end\n");
+  CHECK(
+      kanegen("verify " + model("simple_pendulum.json") + " --sample 3").err ==
+      "error: unknown option --sample; did you mean --samples? (kanegen verify --help lists the options)\n");
+}
+
+TEST_CASE("a JSON model refuses --gravity, before any cache entry", "[cli]") {
+  const fs::path cache = scratch() / "gravity_cache";
+  const Result r =
+      kanegen_fresh_cache(cache, "simulate " + model("simple_pendulum.json") + " --t-end 1 --gravity 0,0,-1");
+  CHECK(r.status == 2);
+  CHECK(r.err ==
+        "error: --gravity applies to URDF models only; " + model("simple_pendulum.json") +
+            " sets gravity in its \"gravity\" field: edit it there (or write it with a parameter and use "
+            "--set)\n");
+  CHECK(!fs::exists(cache));
+}
+
+TEST_CASE("a bad parameter is refused at load and under --set, naming body and parameter", "[cli]") {
+  const fs::path cache = scratch() / "set_cache";
+  const std::string pendulum = model("simple_pendulum.json");
+  const Result set = kanegen_fresh_cache(cache, "simulate " + pendulum + " --t-end 1 --set m=-1.2");
+  CHECK(set.status == 2);
+  CHECK(set.err ==
+        "error: " + pendulum +
+            ": /bodies/0/mass: negative mass (m = -1.2 from --set) of body 'pendulum'; give a positive "
+            "mass in kg (check m in --set)\n");
+  const Result eval = kanegen_fresh_cache(cache, "eval " + pendulum + " --set l=1 --set mm=2");
+  CHECK(eval.status == 2);
+  CHECK(eval.err == "error: unknown parameter 'mm' in --set; known parameters: m, l, g\n");
+  CHECK(!fs::exists(cache));
+  const Result modes = kanegen_fresh_cache(cache, "modes " + pendulum + " --set m=-1");
+  CHECK(modes.status == 2);
+  CHECK(modes.err.find("negative mass (m = -1 from --set) of body 'pendulum'") != std::string::npos);
+  // The default values, at load.
+  const Result load =
+      kanegen("generate " + bad("negative_mass_expression.json") + " -o " + (scratch() / "never").string());
+  CHECK(load.status == 2);
+  CHECK(load.err ==
+        "error: " + bad("negative_mass_expression.json") +
+            ": /bodies/0/mass: negative mass (m1 = -1.2) of body 'a'; give a positive mass in kg (check "
+            "m1 under /parameters)\n");
+  CHECK(!fs::exists(scratch() / "never"));
+  const Result urdf =
+      kanegen("generate " + bad("misspelt_inertia_attribute.urdf") + " -o " + (scratch() / "never").string());
+  CHECK(urdf.status == 2);
+  CHECK(urdf.err.find(
+            "line 8: <link name=\"arm\">/inertial/inertia: unknown attribute 'ixxx' of <inertia>; did "
+            "you mean 'ixx'?") != std::string::npos);
+}
+
+TEST_CASE("the -o path is checked before generating and a missing directory is created", "[cli]") {
+  const fs::path cache = scratch() / "output_cache";
+  const std::string pendulum = model("simple_pendulum.json");
+  const fs::path blocker = scratch() / "a_file";
+  std::ofstream(blocker) << "not a directory\n";
+  const Result r =
+      kanegen_fresh_cache(cache, "simulate " + pendulum + " --t-end 1 -o " + (blocker / "out.csv").string());
+  CHECK(r.status == 1);
+  CHECK(r.err ==
+        "error: " + blocker.string() + ": exists and is not a directory; give another output path\n");
+  CHECK(!fs::exists(cache));  // nothing generated or compiled
+  const Result dir =
+      kanegen_fresh_cache(cache, "simulate " + pendulum + " --t-end 1 -o " + scratch().string());
+  CHECK(dir.status == 1);
+  CHECK(dir.err == "error: " + scratch().string() + ": is a directory; give a file name, e.g. " +
+                       (scratch() / "result.csv").string() + "\n");
+  CHECK(!fs::exists(cache));
+  const Result gen = kanegen("generate " + pendulum + " -o " + (blocker / "gen").string());
+  CHECK(gen.status == 1);
+  CHECK(gen.err.find("exists and is not a directory") != std::string::npos);
+
+  const fs::path csv = scratch() / "new" / "dir" / "pendulum.csv";
+  const Result ok = kanegen("simulate " + pendulum + " --t-end 0.1 --quiet -o " + csv.string());
+  CHECK(ok.status == 0);
+  CHECK(slurp(csv).rfind("t,pivot,", 0) == 0);
+}
+
+TEST_CASE("Ctrl-C while compiling: interrupted, exit 130, nothing cached", "[cli]") {
+  const fs::path cache = scratch() / "sigint_cache";
+  const fs::path out = scratch() / "sigint_out.txt", err = scratch() / "sigint_err.txt";
+  const std::string pendulum = model("double_pendulum.json");
+  const pid_t pid = fork();
+  REQUIRE(pid >= 0);
+  if (pid ==
+      0) {  // a process group of its own, as a shell gives a job: Ctrl-C reaches kanegen and the compiler
+    setpgid(0, 0);
+    setenv("KANEGEN_CACHE_DIR", cache.c_str(), 1);
+    if (!std::freopen(out.c_str(), "w", stdout) || !std::freopen(err.c_str(), "w", stderr)) _exit(126);
+    execl(KANEGEN_EXE, KANEGEN_EXE, "simulate", pendulum.c_str(), "--t-end", "1",
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  setpgid(pid, pid);
+  // Wait until kanegen says it is compiling, then give the compiler a moment to start.
+  for (int i = 0; i < 400 && slurp(err).find("compiling") == std::string::npos; ++i) usleep(25000);
+  REQUIRE(slurp(err).find("compiling") != std::string::npos);
+  usleep(300000);
+  kill(-pid, SIGINT);
+  int status = 0;
+  REQUIRE(waitpid(pid, &status, 0) == pid);
+  INFO(slurp(err));
+  REQUIRE(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 130);
+  CHECK(
+      slurp(err).find("error: interrupted by SIGINT while compiling double_pendulum; nothing was cached\n") !=
+      std::string::npos);
+  CHECK(slurp(err).find("kanegen bug") == std::string::npos);
+  for (const auto& entry : fs::recursive_directory_iterator(cache)) {
+    INFO(entry.path());
+    CHECK(entry.path().filename() != "runner");
+    CHECK(entry.path().filename().string().rfind("runner.tmp", 0) != 0);
+  }
+}
+
+// ---- results a person can look at ----
+
+namespace {
+
+/// The CSV as a header and rows of numbers.
+std::pair<std::vector<std::string>, std::vector<std::vector<double>>> read_csv(const std::string& text) {
+  std::vector<std::string> lines = lines_of(text), header;
+  std::vector<std::vector<double>> rows;
+  std::istringstream h(lines.at(0));
+  for (std::string cell; std::getline(h, cell, ',');) header.push_back(cell);
+  for (std::size_t k = 1; k < lines.size(); ++k) {
+    std::vector<double> row;
+    std::istringstream r(lines[k]);
+    for (std::string cell; std::getline(r, cell, ',');) row.push_back(std::stod(cell));
+    rows.push_back(row);
+  }
+  return {header, rows};
+}
+
+std::size_t column(const std::vector<std::string>& header, const std::string& name) {
+  const auto it = std::find(header.begin(), header.end(), name);
+  REQUIRE(it != header.end());
+  return static_cast<std::size_t>(it - header.begin());
+}
+
+}  // namespace
+
+TEST_CASE("simulate --energies: T, V and T+V columns, by hand for the pendulum", "[cli]") {
+  const Result r = kanegen("simulate " + model("simple_pendulum.json") +
+                           " --t-end 1 --dt 0.25 --energies --set m=2 --set l=1.5 --quiet");
+  REQUIRE(r.status == 0);
+  const auto [header, rows] = read_csv(r.out);
+  const std::size_t q = column(header, "pivot"), u = column(header, "pivot_dot");
+  const std::size_t T = column(header, "kinetic_energy"), V = column(header, "potential_energy"),
+                    E = column(header, "total_energy");
+  CHECK(E == header.size() - 1);
+  REQUIRE(rows.size() == 5);
+  const double m = 2, l = 1.5, g = 9.81;  // a point mass m at distance l below the pivot
+  for (const auto& row : rows) {
+    INFO("t=" << row[0]);
+    CHECK(row[T] == Approx(0.5 * m * l * l * row[u] * row[u]).epsilon(1e-12).margin(1e-14));
+    CHECK(row[V] == Approx(-m * g * l * std::cos(row[q])).epsilon(1e-12));
+    CHECK(row[E] == Approx(row[T] + row[V]).epsilon(1e-14));
+    CHECK(row[E] == Approx(-m * g * l * std::cos(0.5)).epsilon(1e-7));  // conserved, from rest at q0 = 0.5
+  }
+}
+
+TEST_CASE("simulate --energies agrees with the runner's eval at the same states", "[cli]") {
+  const std::string pendulum = model("double_pendulum.json");
+  const Result r = kanegen("simulate " + pendulum + " --t-end 0.5 --dt 0.25 --energies --quiet");
+  REQUIRE(r.status == 0);
+  const auto [header, rows] = read_csv(r.out);
+  for (const auto& row : rows) {
+    char args[400];
+    std::snprintf(args, sizeof args, " --q %.17g,%.17g --u %.17g,%.17g --quiet", row[1], row[2], row[3],
+                  row[4]);
+    const Result e = kanegen("eval " + pendulum + args);
+    REQUIRE(e.status == 0);
+    const auto j = nlohmann::json::parse(e.out);
+    CHECK(row[column(header, "kinetic_energy")] == Approx(j["kinetic_energy"].get<double>()).epsilon(1e-14));
+    CHECK(row[column(header, "potential_energy")] ==
+          Approx(j["potential_energy"].get<double>()).epsilon(1e-14));
+  }
+}
+
+TEST_CASE("simulate --stats ends with a summary: steps, final time, energy drift, loop residual", "[cli]") {
+  const Result r = kanegen("simulate " + model("simple_pendulum.json") + " --t-end 1 --stats --quiet");
+  REQUIRE(r.status == 0);
+  const std::string summary = lines_of(r.err).back();
+  INFO(r.err);
+  CHECK(summary.rfind("summary: ", 0) == 0);
+  CHECK(summary.find(" steps to t=1; T+V changed by at most ") != std::string::npos);
+  const double drift = std::stod(summary.substr(summary.find("at most ") + 8));
+  CHECK(drift < 1e-6);
+  CHECK(summary.find("loop residual") == std::string::npos);
+  const Result loop = kanegen("simulate " + model("four_bar.json") + " --t-end 0.2 --stats --quiet");
+  REQUIRE(loop.status == 0);
+  const std::string with_loops = lines_of(loop.err).back();
+  REQUIRE(with_loops.find("; largest loop residual |phi| ") != std::string::npos);
+  CHECK(std::stod(with_loops.substr(with_loops.find("|phi| ") + 6)) < 1e-8);
+  // Without a terminal there is no progress line (no carriage return).
+  CHECK(r.err.find('\r') == std::string::npos);
+}
+
+namespace {
+
+/// The width and height of a PNG from its IHDR chunk, after checking the
+/// signature; {0, 0} if it is not a PNG.
+std::pair<unsigned, unsigned> png_size(const std::string& bytes) {
+  const std::string signature("\x89PNG\r\n\x1a\n", 8);
+  if (bytes.size() < 24 || bytes.compare(0, 8, signature) != 0 || bytes.compare(12, 4, "IHDR") != 0)
+    return {0, 0};
+  const auto be32 = [&](std::size_t at) {
+    unsigned v = 0;
+    for (std::size_t k = 0; k < 4; ++k) v = v << 8 | static_cast<unsigned char>(bytes[at + k]);
+    return v;
+  };
+  return {be32(16), be32(20)};
+}
+
+}  // namespace
+
+TEST_CASE("kanegen plot draws columns of a result into a PNG with gnuplot", "[cli]") {
+  const fs::path csv = scratch() / "plot_me.csv";
+  REQUIRE(kanegen("simulate " + model("simple_pendulum.json") + " --t-end 2 --energies --quiet -o " +
+                  csv.string())
+              .status == 0);
+  const fs::path png = scratch() / "figures" / "pendulum.png";
+  const Result r = kanegen("plot " + csv.string() +
+                           " --y pivot --y total_energy --width 640 --height 480 -o " + png.string());
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(r.err == "kanegen: wrote " + png.string() + " (2 columns against t)\n");
+  CHECK(png_size(slurp(png)) == std::make_pair(640u, 480u));
+  CHECK(fs::file_size(png) > 5000);  // lines and labels drawn, not an empty frame
+  // The default: every column but t, into RESULT.png.
+  REQUIRE(kanegen("plot " + csv.string() + " --quiet").status == 0);
+  CHECK(png_size(slurp(scratch() / "plot_me.png")) == std::make_pair(1000u, 600u));
+
+  const Result unknown =
+      kanegen("plot " + csv.string() + " --y pivott -o " + (scratch() / "no.png").string());
+  CHECK(unknown.status == 2);
+  CHECK(unknown.err == "error: no column 'pivott' in " + csv.string() + "; did you mean 'pivot'?\n");
+  CHECK(!fs::exists(scratch() / "no.png"));
+  std::ofstream(scratch() / "not_a_result.csv") << "a,b\n1,2\n";
+  const Result foreign = kanegen("plot " + (scratch() / "not_a_result.csv").string());
+  CHECK(foreign.status == 1);
+  CHECK(foreign.err.find("the first line is not a header starting with t") != std::string::npos);
+}
+
+TEST_CASE("simulate --plot simulates and plots in one step and stdout still gets the CSV", "[cli]") {
+  const fs::path png = scratch() / "one_step" / "double.png";
+  const Result r =
+      kanegen("simulate " + model("double_pendulum.json") + " --t-end 1 --quiet --plot " + png.string());
+  REQUIRE(r.status == 0);
+  CHECK(r.out.rfind("t,shoulder,elbow,", 0) == 0);
+  CHECK(lines_of(r.out).size() == 102);
+  CHECK(png_size(slurp(png)).first == 1000u);
+  for (const auto& entry : fs::directory_iterator(png.parent_path()))  // no temporary CSV left
+    CHECK(entry.path().filename() == "double.png");
+}
+
+TEST_CASE("Ctrl-C during a long verify: interrupted, exit 130, as a simulation", "[cli]") {
+  const fs::path cache = scratch() / "verify_sigint_cache";
+  const fs::path out = scratch() / "verify_sigint_out.txt", err = scratch() / "verify_sigint_err.txt";
+  const std::string pendulum = model("simple_pendulum.json");
+  const pid_t pid = fork();
+  REQUIRE(pid >= 0);
+  if (pid == 0) {
+    setpgid(0, 0);
+    setenv("KANEGEN_CACHE_DIR", cache.c_str(), 1);
+    if (!std::freopen(out.c_str(), "w", stdout) || !std::freopen(err.c_str(), "w", stderr)) _exit(126);
+    execl(KANEGEN_EXE, KANEGEN_EXE, "verify", pendulum.c_str(), "--samples", "10000000", "--trajectories",
+          "0", static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  setpgid(pid, pid);
+  for (int i = 0; i < 600 && slurp(err).find("random states") == std::string::npos; ++i) usleep(25000);
+  REQUIRE(slurp(err).find("random states") != std::string::npos);
+  usleep(300000);
+  kill(-pid, SIGINT);
+  int status = 0;
+  REQUIRE(waitpid(pid, &status, 0) == pid);
+  INFO(slurp(err));
+  REQUIRE(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 130);
+  CHECK(lines_of(slurp(err)).back() ==
+        "error: interrupted by SIGINT; kanegen verify stopped before its result");
+  CHECK(slurp(out).empty());
+}
+
+TEST_CASE("urdfdom's warnings are said, once each", "[cli]") {
+  const std::string urdf = std::string(KANEGEN_BAD_MODELS_DIR) + "/../../model/data/undefined_material.urdf";
+  const Result r = kanegen("generate " + urdf + " --quiet -o " + (scratch() / "warned").string());
+  CHECK(r.status == 0);
+  CHECK(r.err == "warning: " + urdf + ": urdfdom: link 'arm' material 'steel' undefined.\n");
+}
+
+TEST_CASE("a long run shows one updating progress line on a terminal and nothing on a file", "[cli]") {
+  if (std::system("command -v script >/dev/null 2>&1") != 0) {
+    WARN("no script(1) to give kanegen a terminal: skipped");
+    return;
+  }
+  const fs::path typescript = scratch() / "typescript";
+  const std::string run = std::string(KANEGEN_EXE) + " simulate " + model("simple_pendulum.json") +
+                          " --t-end 100000 --dt 10000 --quiet -o " + (scratch() / "long.csv").string();
+  // script(1) runs the command on a pseudo-terminal, as a user's shell would.
+  const std::string command = "KANEGEN_CACHE_DIR='" KANEGEN_SCRATCH_DIR "/cache' script -qec '" + run + "' " +
+                              typescript.string() + " >/dev/null 2>&1";
+  REQUIRE(std::system(command.c_str()) == 0);
+  const std::string shown = slurp(typescript);
+  const auto first = shown.find("\r\033[Ksimulate: t = ");
+  REQUIRE(first != std::string::npos);
+  CHECK(shown.find(" of 100000 s, wall ", first) != std::string::npos);
+  CHECK(shown.find(" rhs evaluations", first) != std::string::npos);
+  CHECK(shown.find('\n', first) > shown.rfind("\r\033[K"));  // one line, erased at the end
+  const Result piped = kanegen("simulate " + model("simple_pendulum.json") +
+                               " --t-end 100000 --dt 10000 --quiet -o " + (scratch() / "long2.csv").string());
+  CHECK(piped.status == 0);
+  CHECK(piped.err.empty());
+}
+
+TEST_CASE("a number out of range is refused without the range's 309 digits", "[cli]") {
+  const Result r = kanegen("verify " + model("simple_pendulum.json") + " --duration 0");
+  CHECK(r.status != 0);
+  CHECK(r.err == "--duration: needs a positive number, got '0'\nRun with --help for more information.\n");
+  const Result negative = kanegen("verify " + model("simple_pendulum.json") + " --trajectories -1");
+  CHECK(negative.status != 0);
+  CHECK(negative.err.rfind("--trajectories: needs a number >= 0, got '-1'\n", 0) == 0);
 }

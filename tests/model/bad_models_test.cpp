@@ -3,6 +3,8 @@
 // ModelError naming the file, the exact place and a fix.
 #include <catch2/catch.hpp>
 
+#include "model/expression_eval.hpp"
+#include "model/model_check.hpp"
 #include "test_support.hpp"
 
 using kanegen::model::test::bad_model;
@@ -337,16 +339,17 @@ TEST_CASE("bad flexible body: zero elements, and a billion, are refused with the
 }
 
 TEST_CASE("bad flexible body: more modes than the beam has coordinates", "[bad][flexible]") {
-  expect_model_error(bad_model("flex_too_many_modes.json"), "/bodies/0/flexible/modes",
-                     "50 modes asked, but the supported beam of body 'beam' has only 9 coordinates (the limit)",
-                     "ask for at most 9 modes");
+  expect_model_error(
+      bad_model("flex_too_many_modes.json"), "/bodies/0/flexible/modes",
+      "50 modes asked, but the supported beam of body 'beam' has only 9 coordinates (the limit)",
+      "ask for at most 9 modes");
 }
 
 TEST_CASE("bad flexible body: a node that does not exist, a node of the ground", "[bad][flexible]") {
   expect_model_error(bad_model("flex_node_out_of_range.json"), "/joints/1/parent_node",
                      "node 7 of body 'beam' does not exist", "give a node from 0");
-  expect_model_error(bad_model("flex_node_on_ground.json"), "/joints/1/parent_node", "the ground has no nodes",
-                     "remove \"parent_node\"");
+  expect_model_error(bad_model("flex_node_on_ground.json"), "/joints/1/parent_node",
+                     "the ground has no nodes", "remove \"parent_node\"");
 }
 
 TEST_CASE("bad flexible body: missing section data, a zero-length segment", "[bad][flexible]") {
@@ -404,8 +407,8 @@ TEST_CASE("bad assumed modes: 'support', 'modes', 'segments' and modal damping d
 }
 
 TEST_CASE("bad prescribed motion: an undefined name, a damping that cannot apply", "[bad][prescribed]") {
-  expect_model_error(bad_model("prescribed_undefined_name.json"), "/joints/0/prescribed", "unknown name 'Omega'",
-                     "define it under /parameters");
+  expect_model_error(bad_model("prescribed_undefined_name.json"), "/joints/0/prescribed",
+                     "unknown name 'Omega'", "define it under /parameters");
   expect_model_error(bad_model("prescribed_with_damping.json"), "/joints/0/damping",
                      "'damping' does not apply to prescribed joint 'hub'", "remove it");
 }
@@ -437,4 +440,94 @@ TEST_CASE("bad loop: a spherical loop joint cannot be planar", "[bad][loops]") {
 TEST_CASE("bad loop: a reaction output of an unknown loop", "[bad][loops]") {
   expect_model_error(bad_model("loop_unknown_reaction.json"), "/outputs/5/loop",
                      "output 'E_reaction' names unknown loop 'e'", "did you mean 'E'?");
+}
+
+// ---- URDF read as strictly as JSON: a typo must not change the physics silently ----
+
+TEST_CASE("bad URDF: a misspelt inertia attribute (it zeroed the whole inertia)", "[bad][urdf]") {
+  expect_model_error(bad_model("misspelt_inertia_attribute.urdf"),
+                     "line 8: <link name=\"arm\">/inertial/inertia", "unknown attribute 'ixxx' of <inertia>",
+                     "did you mean 'ixx'?");
+}
+
+TEST_CASE("bad URDF: the inertia written as text", "[bad][urdf]") {
+  expect_model_error(bad_model("inertia_as_text.urdf"), "line 8: <link name=\"arm\">/inertial/inertia",
+                     "<inertia> holds text, which URDF ignores",
+                     "give the values as attributes: <inertia ixx=");
+}
+
+TEST_CASE("bad URDF: a misspelt <inertial> (it made the link massless)", "[bad][urdf]") {
+  expect_model_error(bad_model("misspelt_inertial.urdf"), "line 5: <link name=\"arm\">/inertal",
+                     "unknown element <inertal> in <link>", "did you mean 'inertial'?");
+}
+
+TEST_CASE("bad URDF: an inertia entry that is not a number", "[bad][urdf]") {
+  expect_model_error(bad_model("inertia_not_a_number.urdf"),
+                     "line 7: <link name=\"arm\">/inertial/inertia/ixx", "'0,1' is not a number",
+                     "as a number");
+}
+
+TEST_CASE("bad URDF: an unknown element in a joint", "[bad][urdf]") {
+  expect_model_error(bad_model("misspelt_joint_child.urdf"), "line 13: <joint name=\"j1\">/axsi",
+                     "unknown element <axsi> in <joint>", "origin, parent, child, axis");
+}
+
+// ---- physical conditions of values given by expressions, at load and for other values ----
+
+TEST_CASE("bad parameter: a negative mass through a parameter is refused at load", "[bad][parameters]") {
+  expect_model_error(bad_model("negative_mass_expression.json"), "/bodies/0/mass",
+                     "negative mass (m1 = -1.2) of body 'a'", "check m1 under /parameters");
+}
+
+TEST_CASE("bad parameter: a negative izz written as an expression is refused at load", "[bad][parameters]") {
+  expect_model_error(
+      bad_model("negative_izz_expression.json"), "/bodies/0/inertia",
+      "inertia of body 'a' has a negative principal moment (principal moments -0.0416667, "
+      "0.0416667, 0.0416667; ixx = m1*l1^2/12, iyy = m1*l1^2/12, izz = k*m1*l1^2/12 with m1 = 2, "
+      "l1 = 0.5, k = -1)",
+      "ixx, iyy, izz are positive");
+}
+
+TEST_CASE("check_parameter_values: other values of a valid model, as --set gives them", "[bad][parameters]") {
+  const std::string file = kanegen::model::test::source_path("models/double_pendulum.json");
+  const kanegen::model::Model m = kanegen::model::load_model(file);
+  kanegen::model::ParameterValues values = kanegen::model::default_parameter_values(m);
+  CHECK_NOTHROW(kanegen::model::check_parameter_values(m, values, "from --set"));
+  values["m2"] = -0.5;
+  try {
+    kanegen::model::check_parameter_values(m, values, "from --set");
+    FAIL("no error for m2 = -0.5");
+  } catch (const kanegen::model::ModelError& e) {
+    CHECK(e.file() == file);
+    CHECK(e.place() == "/bodies/1/mass");
+    CHECK_THAT(e.what(), Catch::Contains("negative mass (m2 = -0.5 from --set) of body 'link2'") &&
+                             Catch::Contains("check m2 in --set"));
+  }
+}
+
+TEST_CASE("check_parameter_values: the triangle inequality of the principal moments", "[bad][parameters]") {
+  kanegen::model::Model m;
+  m.source_file = "made.json";
+  m.parameters = {{"a", 1.0, "/parameters/a"}};
+  kanegen::model::Body b;
+  b.name = "plate";
+  b.where = "/bodies/0";
+  b.mass = kanegen::model::Scalar::number(1.0, "/bodies/0/mass");
+  const char* entries[6] = {"ixx", "iyy", "izz", "ixy", "ixz", "iyz"};
+  for (int k = 0; k < 6; ++k)
+    b.inertia[k] = kanegen::model::Scalar::number(0.0, "/bodies/0/inertia/" + std::string(entries[k]));
+  b.inertia[0] = kanegen::model::Scalar::number(1.0, "/bodies/0/inertia/ixx");
+  b.inertia[1] = kanegen::model::Scalar::number(1.0, "/bodies/0/inertia/iyy");
+  b.inertia[2] = kanegen::model::Scalar::expression("a", "/bodies/0/inertia/izz");
+  m.bodies.push_back(b);
+  CHECK_NOTHROW(
+      kanegen::model::check_parameter_values(m, {{"a", 2.0}}, "from --set"));  // 1 + 1 = 2: a flat plate
+  try {
+    kanegen::model::check_parameter_values(m, {{"a", 2.5}}, "from --set");
+    FAIL("no error for izz = 2.5 > ixx + iyy");
+  } catch (const kanegen::model::ModelError& e) {
+    CHECK(e.place() == "/bodies/0/inertia");
+    CHECK_THAT(e.what(), Catch::Contains("violates the triangle inequality") &&
+                             Catch::Contains("izz = a with a = 2.5 from --set"));
+  }
 }

@@ -268,7 +268,9 @@ TEST_CASE("simulate: singular mass matrix stops the run, keeps the rows", "[driv
                          "--set", "q_limit=0.53", "--q0", "theta=0", "--u0", "omega=1", "-o", path});
   check_one_line_error(o);
   CHECK(o.code == 1);
-  CHECK(contains(o.err, "mass matrix is not positive definite (pivot 1"));
+  CHECK(contains(o.err, "mass matrix is not positive definite at coordinate 'theta' (pivot 1 of its LDL^T "
+                        "factorisation is not positive): a body it moves has a zero or negative mass or an "
+                        "invalid inertia at these parameters; check the bodies carried by joint 'theta'"));
   CHECK(contains(o.err, "at t=0.55, state [theta=0.55, omega=1]"));
   const std::vector<std::string> rows = lines(slurp(path));
   REQUIRE(rows.size() == 7);  // header and t = 0 .. 0.5

@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: MIT
+// What `simulate` adds around the integration for a person watching or
+// reading the run (private to the runtime): the energy columns
+// (--energies), a progress line on a terminal, and the summary of --stats.
+// Kept apart from driver.cpp, which only calls these hooks.
+#pragma once
+
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "kanegen/runtime/model.hpp"
+
+namespace kanegen::runtime {
+
+/// kinetic_energy, potential_energy and total_energy at each row, from the
+/// model's own kernels; also tracks T + V for the summary.
+class EnergyColumns {
+ public:
+  EnergyColumns(const Model& model, bool enabled) : model_(model), enabled_(enabled) {}
+  /// The column names, appended to `header` if enabled.
+  void add_header(std::vector<std::string>& header) const;
+  int count() const { return enabled_ ? 3 : 0; }
+  /// Writes count() values to `out` (if enabled) and records T + V.
+  void fill(const double* q, const double* u, double* out);
+  /// Largest |(T + V)(t) - (T + V)(0)| over the rows, and (T + V)(0).
+  double largest_change() const { return largest_change_; }
+  double initial() const { return initial_; }
+
+ private:
+  const Model& model_;
+  bool enabled_;
+  bool first_ = true;
+  double initial_ = 0.0, largest_change_ = 0.0;
+};
+
+/// One updating line on stderr ("t = 1.2 of 10 s, wall 3.1 s, 51234 rhs
+/// evaluations"), shown only when stderr is a terminal and the run has
+/// lasted more than a second; erased at the end. A pipe or a file gets nothing.
+class Progress {
+ public:
+  Progress(std::FILE* err, double t_end);
+  ~Progress() { finish(); }
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
+  /// Called at every right-hand side: cheap, looks at the clock every 64th call.
+  void on_rhs(double t);
+  /// Erases the line (if one was shown).
+  void finish();
+
+ private:
+  std::FILE* err_;
+  double t_end_;
+  bool terminal_;
+  bool shown_ = false;
+  long calls_ = 0;
+  std::chrono::steady_clock::time_point start_, last_;
+};
+
+/// The --stats summary line after the run.
+std::string run_summary(long steps, double t_final, const EnergyColumns& energy, bool loops,
+                        double largest_loop_residual);
+
+}  // namespace kanegen::runtime
