@@ -23,7 +23,7 @@ const std::vector<OptionSpec> kSimulate = {
     {"--dt", "", "H", "0.01", nullptr, "output interval, also the rk4 and genalpha step", K::kPositive},
     {"--integrator", "", "NAME", "dopri5", "",
      "dopri5 (adaptive explicit, default), implicit (adaptive BDF for stiff models: use it for elastic "
-     "links), genalpha (fixed step dt, real time) or rk4 (fixed step dt)",
+     "links, with --rtol 1e-3 to 1e-4), genalpha (fixed step dt, real time) or rk4 (fixed step dt)",
      K::kChoice, false, false, "rk4,dopri5,implicit,genalpha"},
     {"--rho-inf", "", "R", "0.8", nullptr, "genalpha: spectral radius at infinity in [0, 1] (1: no damping)",
      K::kNonNegative},

@@ -27,12 +27,14 @@ class EnergyColumns {
   /// Largest |(T + V)(t) - (T + V)(0)| over the rows, and (T + V)(0).
   double largest_change() const { return largest_change_; }
   double initial() const { return initial_; }
+  /// Largest T + |V| over the rows: the size of the energy, for a relative change.
+  double scale() const { return scale_; }
 
  private:
   const Model& model_;
   bool enabled_;
   bool first_ = true;
-  double initial_ = 0.0, largest_change_ = 0.0;
+  double initial_ = 0.0, largest_change_ = 0.0, scale_ = 0.0;
 };
 
 /// One updating line on stderr ("t = 1.2 of 10 s, wall 3.1 s, 51234 rhs
@@ -56,6 +58,7 @@ class Progress {
   bool shown_ = false;
   long calls_ = 0;
   std::chrono::steady_clock::time_point start_, last_;
+  double quiet_for_ = 1.0;  ///< seconds without a line
 };
 
 /// The --stats summary line after the run.
