@@ -199,6 +199,15 @@ std::string temporary_csv(const std::string& png) {
       .string();
 }
 
+/// Writes the temporary CSV to stdout and removes it (read first: a closed
+/// stdout must not leave it behind).
+void pass_to_stdout(const std::string& csv) {
+  std::ostringstream text;
+  text << std::ifstream(csv).rdbuf();
+  std::filesystem::remove(csv);
+  std::cout << text.str() << std::flush;
+}
+
 int simulate_and_plot(const SimulateCommand& c, const std::string& runner, std::vector<std::string> args) {
   const auto given = c.forwarded.values.find("--output");
   const bool to_file = given != c.forwarded.values.end() && !given->second.empty() &&
@@ -220,16 +229,11 @@ int simulate_and_plot(const SimulateCommand& c, const std::string& runner, std::
     try {
       status = kanegen::cli::plot(p);
     } catch (...) {
-      if (!to_file) std::filesystem::remove(csv);
+      if (!to_file) pass_to_stdout(csv);  // the result is kept even when its plot fails
       throw;
     }
   }
-  if (!to_file) {
-    std::ostringstream text;  // read before it is removed: a closed stdout must not leave it behind
-    text << std::ifstream(csv).rdbuf();
-    std::filesystem::remove(csv);
-    std::cout << text.str() << std::flush;
-  }
+  if (!to_file) pass_to_stdout(csv);
   return status;
 }
 
@@ -248,7 +252,10 @@ int run_simulate(const SimulateCommand& c) {
   BuildOptions b = build_options(c.run);
   b.jacobians = kanegen::cli::integrator_needs_jacobians(forwarded_integrator(c.forwarded));
   check_forwarded(c.run.model, b, c.forwarded);
-  if (!c.plot.empty()) kanegen::cli::check_output_file(c.plot);
+  if (!c.plot.empty()) {
+    kanegen::cli::check_output_file(c.plot);
+    kanegen::cli::gnuplot_or_throw();  // before the build and the run, not after
+  }
   const std::string runner = kanegen::cli::build_runner(c.run.model, b);
   if (const auto o = c.forwarded.values.find("--output"); o != c.forwarded.values.end())
     for (const std::string& output : o->second) kanegen::cli::create_output_directory(output);

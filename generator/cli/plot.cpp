@@ -59,6 +59,19 @@ std::string find_gnuplot() {
   return "";
 }
 
+}  // namespace
+
+std::string gnuplot_or_throw() {
+  const std::string gnuplot = find_gnuplot();
+  if (gnuplot.empty())
+    throw std::runtime_error(
+        "gnuplot not found on the PATH; install it (Debian: apt-get install gnuplot-nox) or "
+        "set KANEGEN_GNUPLOT to its path");
+  return gnuplot;
+}
+
+namespace {
+
 std::vector<std::size_t> chosen_columns(const PlotOptions& o, const std::vector<std::string>& header) {
   std::vector<std::size_t> chosen;
   if (o.columns.empty()) {
@@ -112,11 +125,7 @@ int plot(const PlotOptions& o) {
   const std::vector<std::size_t> columns = chosen_columns(o, header);
   const std::string png = plot_output(o);
   check_output_file(png);
-  const std::string gnuplot = find_gnuplot();
-  if (gnuplot.empty())
-    throw std::runtime_error(
-        "gnuplot not found on the PATH; install it (Debian: apt-get install gnuplot-nox) or "
-        "set KANEGEN_GNUPLOT to its path");
+  const std::string gnuplot = gnuplot_or_throw();
   create_output_directory(png);
   // Through a temporary name in the same directory: a failed or stopped plot
   // leaves no half-written PNG.

@@ -17,6 +17,10 @@ struct PlotOptions {
   bool verbose = true;
 };
 
+/// The gnuplot that plot() runs; throws std::runtime_error, saying how to
+/// install it, if there is none (simulate --plot asks before simulating).
+std::string gnuplot_or_throw();
+
 /// The PNG the plot is written to: options.output, or the CSV's name with .png.
 std::string plot_output(const PlotOptions& options);
 

@@ -40,6 +40,7 @@ Worst power_balance(RunnerProcess& runner, const TrajectoryStart& start, double 
   bool singular = false;  // the trajectory reached a singular configuration of the loops
   numeric::State s = start.state;
   const runtime::Rhs rhs = [&](double t, const double* x, double* xdot) {
+    singular = false;  // set by the call that fails, not by an earlier probe
     const nlohmann::json a = request(t, x, "udot");
     if (const int pivot = a["pivot"].get<int>(); pivot != 0) {
       singular = pivot < 0;
@@ -89,7 +90,8 @@ Worst power_balance(RunnerProcess& runner, const TrajectoryStart& start, double 
   // A random start is not on the loops, and its trajectory can reach a state
   // where the loop equations are dependent (the generated solve stops
   // there): the balance is checked up to it, as up to kMaxSteps.
-  const bool ended = result.status == runtime::Status::kMaxSteps || singular;
+  const bool ended = result.status == runtime::Status::kMaxSteps ||
+                     (result.status == runtime::Status::kRhsFailed && singular);
   if (ended && !times.empty() && result.t > times.back()) record(result.t, x.data());
   if (!result.ok() && !ended) {
     worst.abs = worst.rel = std::numeric_limits<double>::infinity();

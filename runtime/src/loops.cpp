@@ -380,10 +380,12 @@ int LoopSolver::dynamics(double t, const double* q, const double* u, const doubl
     if (model_.info().coordinate_roles[i] == 2) return status;
   std::vector<int> all(nq_);
   for (int i = 0; i < nq_; ++i) all[i] = i;
+  // Where a fallback cannot be used either, the generated solve's -k stands:
+  // the loop equations are what failed, not a pivot of M.
   const Metric metric(model_, q, all);
-  if (!metric.ok()) return 1;
+  if (!metric.ok()) return status;
   if (scaled_dynamics(t, q, u, tau, metric, udot, lambda)) return 0;
-  return augmented_dynamics(t, q, u, tau, udot, lambda) ? 0 : 1;
+  return augmented_dynamics(t, q, u, tau, udot, lambda) ? 0 : status;
 }
 
 bool LoopSolver::scaled_dynamics(double t, const double* q, const double* u, const double* tau,
@@ -435,7 +437,8 @@ bool LoopSolver::augmented_dynamics(double t, const double* q, const double* u, 
       for (int c = 0; c < nc_; ++c) W[i * nu + j] += alpha * C[c * nu + i] * C[c * nu + j];
   if (!cholesky(W, nu)) return false;
   // W udot_k = f + C^T (lambda_k + alpha gamma), then
-  // lambda_{k+1} = lambda_k - alpha (C udot_k - gamma).
+  // lambda_{k+1} = lambda_k - alpha (C udot_k - gamma), so that
+  // M udot_k = f + C^T lambda_{k+1}.
   std::fill(lambda, lambda + nc_, 0.0);
   std::vector<double> violation(nc_);
   for (int iteration = 0; iteration < kMaxAugmented; ++iteration) {
@@ -453,8 +456,9 @@ bool LoopSolver::augmented_dynamics(double t, const double* q, const double* u, 
       }
       worst = std::max(worst, std::abs(violation[c]));
     }
-    if (worst <= 1e-12 * std::max(scale, 1e-300)) break;
+    // M udot = f + C^T lambda_{k+1}: the multipliers of the udot just solved.
     for (int c = 0; c < nc_; ++c) lambda[c] -= alpha * violation[c];
+    if (worst <= 1e-12 * std::max(scale, 1e-300)) break;
   }
   return true;
 }

@@ -80,7 +80,8 @@ std::string run_summary(long steps, double t_final, const EnergyColumns& energy,
                 energy.largest_change() / scale);
   std::string s = text;
   if (loops) {
-    std::snprintf(text, sizeof text, "; largest loop residual |phi| %.3g", largest_loop_residual);
+    std::snprintf(text, sizeof text, "; largest loop residual |phi| %.3g of the rows written",
+                  largest_loop_residual);
     s += text;
   }
   return s + "\n";

