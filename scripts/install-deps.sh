@@ -7,13 +7,14 @@ packages=(
   g++ clang cmake make pkg-config git python3
   libginac-dev libeigen3-dev nlohmann-json3-dev catch2 libcli11-dev
   liburdfdom-dev libtinyxml2-dev libvalijson-dev
-  libsundials-dev
+  libsundials-dev libomp-dev
   libmujoco-dev libbenchmark-dev
   libclang-rt-dev llvm
   gnuplot-nox
 )
 # libsundials-dev: CVODE, the runtime's adaptive implicit integrator
-# (--integrator implicit). libclang-rt-dev: clang's sanitizer and libFuzzer runtimes (only recommended
+# (--integrator implicit); libomp-dev: clang's OpenMP, which SUNDIALS's CMake
+# package looks for (its OpenMP vectors) and fails without under clang++. libclang-rt-dev: clang's sanitizer and libFuzzer runtimes (only recommended
 # by clang, so not pulled in with --no-install-recommends), for the
 # KANEGEN_SANITIZE and KANEGEN_BUILD_FUZZERS builds that CI runs; llvm: its
 # llvm-symbolizer, which the sanitizers call to name frames (and to match the
