@@ -122,7 +122,11 @@ TEST_CASE("the free flexible pendulum with geometric stiffening conserves energy
   for (const double speed : {0.0, 9.0}) {
     const FreeRun nodal = released<kanegen_models::free_strip::System>(speed);
     const FreeRun modal = released<kanegen_models::free_strip_modal::System>(speed);
-    const FreeRun linear = released<kanegen_models::free_strip_linear::System>(speed);
+    // Released at 9 rad/s, the linear strip has deflected over ten times as
+    // far as the stiffened one within 1 s (0.23 m against 0.009 m), and its
+    // large motion then costs DOPRI5 minutes for the remaining 4 s: it is
+    // run for 1.2 s, which shows the contrast.
+    const FreeRun linear = released<kanegen_models::free_strip_linear::System>(speed, speed > 0 ? 1.2 : 5.0);
     REQUIRE(nodal.ok);
     REQUIRE(modal.ok);
     REQUIRE(linear.ok);
@@ -144,7 +148,8 @@ TEST_CASE("the free flexible pendulum with geometric stiffening conserves energy
     if (speed > 0) CHECK(nodal.largest_tip < 0.1 * linear.largest_tip);
     WARN("free pendulum released at "
          << speed << " rad/s, 5 s: largest |tip deflection| " << nodal.largest_tip << " m (nodal), "
-         << modal.largest_tip << " m (modal), " << linear.largest_tip << " m (linear); T + V drift / T_max "
+         << modal.largest_tip << " m (modal), " << linear.largest_tip << " m (linear"
+         << (speed > 0 ? ", 1.2 s" : "") << "); T + V drift / T_max "
          << nodal.drift << ", " << modal.drift << ", " << linear.drift);
   }
 }
