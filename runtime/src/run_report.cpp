@@ -44,7 +44,17 @@ Progress::Progress(std::FILE* err, double t_end)
   }
 }
 
+void Progress::on_step(double t, long steps) {
+  steps_ = steps;
+  update(t);
+}
+
 void Progress::on_rhs(double t) {
+  ++rhs_evals_;
+  if (steps_ == 0) update(t);
+}
+
+void Progress::update(double t) {
   ++calls_;
   if (!terminal_ || calls_ % 64 != 0) return;
   const auto now = std::chrono::steady_clock::now();
@@ -53,8 +63,8 @@ void Progress::on_rhs(double t) {
   if (wall < quiet_for_ || std::chrono::duration<double>(now - last_).count() < 0.1) return;
   last_ = now;
   shown_ = true;
-  std::fprintf(err_, "\r\033[Ksimulate: t = %.6g of %.6g s, wall %.1f s, %ld rhs evaluations", t, t_end_,
-               wall, calls_);
+  std::fprintf(err_, "\r\033[Ksimulate: t = %.6g of %.6g s, wall %.1f s, %ld %s", t, t_end_, wall,
+               steps_ > 0 ? steps_ : rhs_evals_, steps_ > 0 ? "steps" : "rhs evaluations");
   std::fflush(err_);
 }
 
