@@ -50,20 +50,19 @@ class Progress {
   Progress& operator=(const Progress&) = delete;
   /// Called after every accepted step.
   void on_step(double t, long steps);
-  /// Called at every right-hand side.
+  /// Called at every right-hand side; looks at the clock every 64th call.
   void on_rhs(double t);
   /// Erases the line (if one was shown).
   void finish();
 
  private:
-  /// Cheap: looks at the clock every 64th call.
   void update(double t);
 
   std::FILE* err_;
   double t_end_;
   bool terminal_;
   bool shown_ = false;
-  long calls_ = 0, rhs_evals_ = 0, steps_ = 0;
+  long rhs_evals_ = 0, steps_ = 0;
   std::chrono::steady_clock::time_point start_, last_;
   double quiet_for_ = 1.0;  ///< seconds without a line
 };

@@ -363,6 +363,19 @@ TEST_CASE("a bad parameter is refused at load and under --set, naming body and p
             "you mean 'ixx'?") != std::string::npos);
 }
 
+TEST_CASE("a mass matrix singular at run time names the joint and the bodies it moves", "[cli]") {
+  // Both rods massless: allowed at load (massless frames), singular at run time.
+  const Result r =
+      kanegen("simulate " + model("double_pendulum.json") + " --t-end 1 --quiet --set m1=0 --set m2=0 -o " +
+              (scratch() / "massless.csv").string());
+  CHECK(r.status == 1);
+  CHECK(r.err.find(
+            "error: mass matrix is not positive definite at coordinate 'shoulder' (pivot 1 of its LDL^T "
+            "factorisation is not positive): joint 'shoulder' moves bodies 'link1', 'link2', one of "
+            "which has a zero or negative mass or an invalid inertia at these parameters (or no mass "
+            "moves along this coordinate); check their masses and inertias and the --set values; ") == 0);
+}
+
 TEST_CASE("the -o path is checked before generating and a missing directory is created", "[cli]") {
   const fs::path cache = scratch() / "output_cache";
   const std::string pendulum = model("simple_pendulum.json");
