@@ -91,6 +91,9 @@ const char* const output_names[23] = {"E.x", "E.y", "E.z", "F.x", "F.y", "F.z", 
 const char* const parameter_names[42] = {"m1", "m2", "m3", "m4", "m5", "m6", "m7", "i1", "i2", "i3", "i4", "i5", "i6", "i7", "xa", "ya", "xb", "yb", "xc", "yc", "c0", "l0", "mom", "d", "da", "e", "ea", "rr", "ra", "ss", "sa", "sb", "sc", "sd", "ta", "tb", "uu", "ua", "ub", "zf", "zt", "fa"};
 const double q0[7] = {-0.06171389001427645, 0.0, 0.45527981916307037, 0.22266839016588588, 0.48736497954384256, -0.22266839016588588, 1.2305474445498212};
 const double u0[7] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+const char* const coordinate_joints[7] = {"beta", "Theta", "gamma", "Phi", "delta", "Omega", "epsilon"};
+const int moved_bodies_first[8] = {0, 2, 3, 4, 5, 7, 8, 10};
+const char* const moved_bodies[10] = {"body1", "body2", "body2", "body3", "body4", "body4", "body5", "body6", "body6", "body7"};
 
 const char* const constraint_names[NC] = {"E3.x", "E3.y", "E4.x", "E4.y", "E6.x", "E6.y"};
 const int coordinate_roles[7] = {1, 0, 0, 0, 0, 0, 0};

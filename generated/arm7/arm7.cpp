@@ -16,6 +16,9 @@ const char* const output_names[1] = {};
 const char* const parameter_names[1] = {};
 const double q0[7] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
 const double u0[7] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+const char* const coordinate_joints[7] = {"joint1", "joint2", "joint3", "joint4", "joint5", "joint6", "joint7"};
+const int moved_bodies_first[8] = {0, 8, 15, 21, 26, 30, 33, 35};
+const char* const moved_bodies[35] = {"link1", "link2", "link3", "link4", "link5", "link6", "link7", "flange", "link2", "link3", "link4", "link5", "link6", "link7", "flange", "link3", "link4", "link5", "link6", "link7", "flange", "link4", "link5", "link6", "link7", "flange", "link5", "link6", "link7", "flange", "link6", "link7", "flange", "link7", "flange"};
 
 
 bool set_parameter([[maybe_unused]] Params& p, [[maybe_unused]] const char* name,

@@ -16,6 +16,9 @@ const char* const output_names[5] = {"tip.x", "tip.y", "tip.z", "shoulder_angle"
 const char* const parameter_names[6] = {"m1", "m2", "l1", "l2", "c1", "c2"};
 const double q0[2] = {0.0, 0.0};
 const double u0[2] = {0.0, 0.0};
+const char* const coordinate_joints[2] = {"shoulder", "elbow"};
+const int moved_bodies_first[3] = {0, 2, 3};
+const char* const moved_bodies[3] = {"link1", "link2", "link2"};
 
 
 bool set_parameter(Params& p, const char* name, double value) {

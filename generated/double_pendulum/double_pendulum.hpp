@@ -44,6 +44,11 @@ extern const char* const output_names[5];
 extern const char* const parameter_names[6];
 extern const double q0[2];
 extern const double u0[2];
+/// Per coordinate: its joint ("" for an elastic coordinate) and the bodies
+/// it moves, moved_bodies[moved_bodies_first[i] .. moved_bodies_first[i + 1]).
+extern const char* const coordinate_joints[2];
+extern const int moved_bodies_first[3];
+extern const char* const moved_bodies[3];
 
 /// Sets a parameter by name; false if there is none of that name.
 bool set_parameter(Params& p, const char* name, double value);
@@ -103,6 +108,9 @@ Table kernel_table() {
   table.parameter_names = parameter_names;
   table.q0 = q0;
   table.u0 = u0;
+  table.coordinate_joints = coordinate_joints;
+  table.moved_bodies_first = moved_bodies_first;
+  table.moved_bodies = moved_bodies;
   table.parameters_size = sizeof(Params);
   table.default_parameters = [](void* p) { new (p) Params(); };
   table.set_parameter = [](void* p, const char* name, double value) {

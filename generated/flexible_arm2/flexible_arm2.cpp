@@ -16,6 +16,9 @@ const char* const output_names[10] = {"tip1.x", "tip1.y", "tip1.z", "tip2.x", "t
 const char* const parameter_names[2] = {"m_motor", "m_payload"};
 const double q0[26] = {0.3, 0.5, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
 const double u0[26] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+const char* const coordinate_joints[26] = {"shoulder", "elbow", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", ""};
+const int moved_bodies_first[27] = {0, 3, 4, 7, 10, 13, 16, 19, 22, 25, 28, 31, 34, 37, 40, 41, 42, 43, 44, 45, 46, 47, 48, 49, 50, 51, 52};
+const char* const moved_bodies[52] = {"link1", "motor", "link2", "link2", "link1", "motor", "link2", "link1", "motor", "link2", "link1", "motor", "link2", "link1", "motor", "link2", "link1", "motor", "link2", "link1", "motor", "link2", "link1", "motor", "link2", "link1", "motor", "link2", "link1", "motor", "link2", "link1", "motor", "link2", "link1", "motor", "link2", "link1", "motor", "link2", "link2", "link2", "link2", "link2", "link2", "link2", "link2", "link2", "link2", "link2", "link2", "link2"};
 
 
 bool set_parameter(Params& p, const char* name, double value) {

@@ -91,6 +91,9 @@ const char* const output_names[14] = {"crank_tip.x", "crank_tip.y", "crank_tip.z
 const char* const parameter_names[7] = {"a", "b", "c", "d", "m_a", "m_b", "m_c"};
 const double q0[3] = {0.0, 0.9733899101495463, 1.696124157962962};
 const double u0[3] = {1e+01, -15.0, -5.0};
+const char* const coordinate_joints[3] = {"crank_angle", "coupler_angle", "rocker_angle"};
+const int moved_bodies_first[4] = {0, 2, 3, 4};
+const char* const moved_bodies[4] = {"crank", "coupler", "coupler", "rocker"};
 
 const char* const constraint_names[NC] = {"E.x", "E.y"};
 const int coordinate_roles[3] = {1, 0, 0};

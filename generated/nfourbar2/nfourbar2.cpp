@@ -91,6 +91,9 @@ const char* const output_names[15] = {"B0.x", "B0.y", "B0.z", "B1.x", "B1.y", "B
 const char* const parameter_names[2] = {"l", "m"};
 const double q0[5] = {1.5707963267948966, 1.5707963267948966, 1.5707963267948966, -1.5707963267948966, -1.5707963267948966};
 const double u0[5] = {-1.0, -1.0, -1.0, 1.0, 1.0};
+const char* const coordinate_joints[5] = {"crank0_angle", "crank1_angle", "crank2_angle", "coupler1_angle", "coupler2_angle"};
+const int moved_bodies_first[6] = {0, 2, 4, 5, 6, 7};
+const char* const moved_bodies[7] = {"crank0", "coupler1", "crank1", "coupler2", "crank2", "coupler1", "coupler2"};
 
 const char* const constraint_names[NC] = {"L1.x", "L1.y", "L2.x", "L2.y"};
 const int coordinate_roles[5] = {1, 0, 0, 0, 0};

@@ -91,6 +91,9 @@ const char* const output_names[9] = {"slider_position", "midspan.x", "midspan.y"
 const char* const parameter_names[5] = {"omega", "L1", "m1", "J1", "m3"};
 const double q0[7] = {0.0, 0.0, 0.450016933, 0.0, 0.0, 0.0, 0.0};
 const double u0[7] = {1.5e+02, -224.99576703969453, 0.0, 0.0, 0.0, 0.0, 0.0};
+const char* const coordinate_joints[7] = {"crank_angle", "rod_angle", "slider_x", "", "", "", ""};
+const int moved_bodies_first[8] = {0, 2, 3, 4, 5, 6, 7, 8};
+const char* const moved_bodies[8] = {"crank", "rod", "rod", "slider", "rod", "rod", "rod", "rod"};
 
 const char* const constraint_names[NC] = {"E.x", "E.y"};
 const int coordinate_roles[7] = {2, 0, 0, 0, 0, 0, 0};

@@ -46,6 +46,11 @@ extern const char* const output_names[9];
 extern const char* const parameter_names[5];
 extern const double q0[7];
 extern const double u0[7];
+/// Per coordinate: its joint ("" for an elastic coordinate) and the bodies
+/// it moves, moved_bodies[moved_bodies_first[i] .. moved_bodies_first[i + 1]).
+extern const char* const coordinate_joints[7];
+extern const int moved_bodies_first[8];
+extern const char* const moved_bodies[8];
 
 constexpr int NC = 2;  ///< loop-closure equations
 
@@ -130,6 +135,9 @@ Table kernel_table() {
   table.parameter_names = parameter_names;
   table.q0 = q0;
   table.u0 = u0;
+  table.coordinate_joints = coordinate_joints;
+  table.moved_bodies_first = moved_bodies_first;
+  table.moved_bodies = moved_bodies;
   table.nc = NC;
   table.constraint_names = constraint_names;
   table.coordinate_roles = coordinate_roles;

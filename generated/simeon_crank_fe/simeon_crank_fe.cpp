@@ -91,6 +91,9 @@ const char* const output_names[9] = {"slider_position", "midspan.x", "midspan.y"
 const char* const parameter_names[5] = {"omega", "L1", "m1", "J1", "m3"};
 const double q0[27] = {0.0, 0.0, 0.450016933, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
 const double u0[27] = {1.5e+02, -224.99576703969453, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+const char* const coordinate_joints[27] = {"crank_angle", "rod_angle", "slider_x", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", ""};
+const int moved_bodies_first[28] = {0, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28};
+const char* const moved_bodies[28] = {"crank", "rod", "rod", "slider", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod"};
 
 const char* const constraint_names[NC] = {"E.x", "E.y"};
 const int coordinate_roles[27] = {2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};

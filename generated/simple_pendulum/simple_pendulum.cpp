@@ -16,6 +16,9 @@ const char* const output_names[4] = {"bob.x", "bob.y", "bob.z", "angle"};
 const char* const parameter_names[3] = {"m", "l", "g"};
 const double q0[1] = {0.5};
 const double u0[1] = {0.0};
+const char* const coordinate_joints[1] = {"pivot"};
+const int moved_bodies_first[2] = {0, 1};
+const char* const moved_bodies[1] = {"pendulum"};
 
 
 bool set_parameter(Params& p, const char* name, double value) {

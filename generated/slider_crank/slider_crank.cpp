@@ -91,6 +91,9 @@ const char* const output_names[11] = {"slider_position", "slider_speed", "rod_re
 const char* const parameter_names[8] = {"omega", "L1", "L2", "m1", "m2", "m3", "J1", "J2"};
 const double q0[3] = {0.0, 0.0, 0.45};
 const double u0[3] = {1.5e+02, -225.0, 0.0};
+const char* const coordinate_joints[3] = {"crank_angle", "rod_angle", "slider_x"};
+const int moved_bodies_first[4] = {0, 2, 3, 4};
+const char* const moved_bodies[4] = {"crank", "rod", "rod", "slider"};
 
 const char* const constraint_names[NC] = {"E.x", "E.y"};
 const int coordinate_roles[3] = {2, 0, 0};

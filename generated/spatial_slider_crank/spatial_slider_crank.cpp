@@ -91,6 +91,9 @@ const char* const output_names[9] = {"slider_x", "rod_mid.x", "rod_mid.y", "rod_
 const char* const parameter_names[2] = {"omega", "h"};
 const double q0[28] = {0.0, 0.0, -0.2013, 0.4919, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
 const double u0[28] = {3e+01, -7.5, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+const char* const coordinate_joints[28] = {"crank_angle", "rod_yaw", "rod_pitch", "slider_x", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", ""};
+const int moved_bodies_first[29] = {0, 3, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31};
+const char* const moved_bodies[31] = {"crank", "cross", "rod", "cross", "rod", "rod", "slider", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod", "rod"};
 
 const char* const constraint_names[NC] = {"S.x", "S.y", "S.z"};
 const int coordinate_roles[28] = {2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};

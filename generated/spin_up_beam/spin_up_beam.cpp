@@ -16,6 +16,9 @@ const char* const output_names[4] = {"tip.x", "tip.y", "tip.z", "root_moment"};
 const char* const parameter_names[2] = {"Ws", "Ts"};
 const double q0[31] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
 const double u0[31] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+const char* const coordinate_joints[31] = {"hub", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", "", ""};
+const int moved_bodies_first[32] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31};
+const char* const moved_bodies[31] = {"beam", "beam", "beam", "beam", "beam", "beam", "beam", "beam", "beam", "beam", "beam", "beam", "beam", "beam", "beam", "beam", "beam", "beam", "beam", "beam", "beam", "beam", "beam", "beam", "beam", "beam", "beam", "beam", "beam", "beam", "beam"};
 
 
 bool set_parameter(Params& p, const char* name, double value) {

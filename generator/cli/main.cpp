@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "cli/generation_interrupt.hpp"
 #include "cli/modes.hpp"
 #include "cli/plot.hpp"
 #include "cli/preflight.hpp"
@@ -158,7 +159,10 @@ void add_generate(CLI::App& app, GenerateCommand& c) {
 int run_generate(const GenerateCommand& c) {
   const BuildOptions b = build_options(c.run);
   kanegen::cli::check_output_directory(c.out_dir);
-  const kanegen::pipeline::GeneratedModel g = kanegen::pipeline::generate(c.run.model, b.load, {c.jacobians});
+  const kanegen::pipeline::GeneratedModel g = [&] {
+    const kanegen::cli::StopWhileGenerating stop(c.run.model, "written");
+    return kanegen::pipeline::generate(c.run.model, b.load, {c.jacobians});
+  }();
   kanegen::codegen::write_files_atomically(c.out_dir, g.files);
   if (!c.run.quiet) {
     std::printf("%s: %d coordinates, %zu intermediates; load %.3f s, derive %.3f s, emit %.3f s",

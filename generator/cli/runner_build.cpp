@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "cli/generation_interrupt.hpp"
 #include "codegen/cpp_printer.hpp"
 #include "codegen/embedded_templates.hpp"
 #include "codegen/emitter.hpp"
@@ -189,8 +190,10 @@ std::string build_runner(const std::string& model_path, const BuildOptions& opti
 
   const auto start = std::chrono::steady_clock::now();
   if (options.verbose) std::fprintf(stderr, "kanegen: generating %s ...\n", model_path.c_str());
-  const pipeline::GeneratedModel generated =
-      pipeline::generate(model_path, options.load, {options.jacobians});
+  const pipeline::GeneratedModel generated = [&] {
+    const StopWhileGenerating stop(model_path, "cached");
+    return pipeline::generate(model_path, options.load, {options.jacobians});
+  }();
   codegen::write_files_atomically(dir.string(), generated.files);
 
   if (options.verbose)

@@ -37,6 +37,22 @@ std::string number_list(const std::vector<double>& values) {
 
 std::string array_size(std::size_t n) { return std::to_string(n > 0 ? n : 1); }
 
+/// The bodies each coordinate moves as one list and where each
+/// coordinate's part starts (nq + 1 offsets).
+void add_moved_bodies(TemplateValues& values, const kane::Equations& eq) {
+  std::vector<std::string> bodies;
+  std::string first = "0";
+  for (const std::vector<std::string>& moved : eq.moved_bodies) {
+    bodies.insert(bodies.end(), moved.begin(), moved.end());
+    first += ", " + std::to_string(bodies.size());
+  }
+  values["COORDINATE_JOINTS"] = quoted_list(eq.coordinate_joints);
+  values["MOVED_BODIES_FIRST"] = first;
+  values["MOVED_BODIES"] = bodies.empty() ? "nullptr" : quoted_list(bodies);
+  values["MOVED_BODIES_ARRAY"] = array_size(bodies.size());
+  values["NQ1_ARRAY"] = std::to_string(eq.nq + 1);
+}
+
 /// The sections of a template file whose lines "//== KEY" start each one;
 /// the text before the first is the file's comment.
 TemplateValues template_sections(const std::string& text) {
@@ -177,6 +193,7 @@ EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, co
   const std::vector<KernelCode> kernels = derive_kernels(model, eq, vars, graph, options.jacobians);
   check_presence(kernels, eq.loops.size() > 0, options.jacobians);
   TemplateValues values = model_values(model, eq, model_hash);
+  add_moved_bodies(values, eq);
   add_loop_values(values, eq);
   add_kernel_values(values, kernels, model.name);
   EmittedModel emitted;

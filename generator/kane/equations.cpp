@@ -2,6 +2,7 @@
 #include "kane/equations.hpp"
 
 #include <map>
+#include <set>
 #include <stdexcept>
 
 #include "kane/beam_node.hpp"
@@ -428,6 +429,34 @@ void add_prescribed_speed(Derivation& d, const model::Joint& joint, int r) {
   d.eq.prescribed.push_back(std::move(prescribed));
 }
 
+/// The bodies in `below` and every body below them in the tree, in model order.
+std::vector<std::string> subtree_bodies(const model::Model& model, std::set<std::string> below) {
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (const model::Joint& joint : model.joints)
+      if (below.count(joint.parent) && below.insert(joint.child).second) grew = true;
+  }
+  std::vector<std::string> names;
+  for (const model::Body& body : model.bodies)
+    if (below.count(body.name)) names.push_back(body.name);
+  return names;
+}
+
+/// What the elastic coordinates of a flexible body move: the body and what
+/// hangs on its nodes (a joint on the body's own frame stays with the frame).
+std::vector<std::string> elastically_moved_bodies(const model::Model& model, const std::string& body) {
+  std::set<std::string> on_nodes;
+  for (const model::Joint& joint : model.joints)
+    if (joint.parent == body && joint.parent_node != -1) on_nodes.insert(joint.child);
+  const std::vector<std::string> below = subtree_bodies(model, on_nodes);
+  std::set<std::string> moved(below.begin(), below.end());
+  moved.insert(body);
+  std::vector<std::string> names;
+  for (const model::Body& b : model.bodies)
+    if (moved.count(b.name)) names.push_back(b.name);
+  return names;
+}
+
 /// The joint coordinates: forces, rates, names and initial state.
 void joint_coordinates(Derivation& d) {
   Equations& eq = d.eq;
@@ -438,6 +467,8 @@ void joint_coordinates(Derivation& d) {
     add_joint_forces(d, joint, r);
     eq.coordinate_rates.push_back(d.vars.u[r]);
     eq.coordinate_names.push_back(joint.name);
+    eq.coordinate_joints.push_back(joint.name);
+    eq.moved_bodies.push_back(subtree_bodies(d.model, {joint.child}));
     eq.speed_names.push_back(joint.name + "_dot");
     eq.input_names.push_back(joint.name + "_tau");
     if (joint.is_prescribed()) {
@@ -459,6 +490,8 @@ void elastic_coordinates(Derivation& d) {
     for (int k = 0; k < d.vars.elastic_count[b]; ++k) {
       eq.coordinate_rates.push_back(d.vars.u[d.vars.elastic_first[b] + k]);
       eq.coordinate_names.push_back(model.bodies[b].name + "." + names[k]);
+      eq.coordinate_joints.push_back("");
+      eq.moved_bodies.push_back(elastically_moved_bodies(model, model.bodies[b].name));
       eq.speed_names.push_back(model.bodies[b].name + "." + names[k] + "_dot");
       eq.q0.push_back(0.0);
       eq.u0.push_back(0.0);

@@ -41,6 +41,11 @@ struct Equations {
   std::vector<GiNaC::ex> outputs;
   std::vector<std::string> output_names;
   std::vector<std::string> coordinate_names, speed_names, input_names;
+  /// Per coordinate: its joint ("" for an elastic coordinate) and the bodies
+  /// it moves, in model order: what the run-time message of a mass matrix
+  /// that is not positive definite names.
+  std::vector<std::string> coordinate_joints;
+  std::vector<std::vector<std::string>> moved_bodies;
   /// Closed loops: M u_dot = f + C^T lambda with C u_dot = gamma.
   LoopConstraints loops;
   /// Per coordinate: 0 free, 1 marked independent (assembly keeps it), 2 prescribed.

@@ -103,14 +103,29 @@ std::string pivot_message(const ModelInfo& info, int pivot) {
            " is (nearly) dependent on the ones before it, so the loop forces grow without bound and the "
            "motion may change branch; the mechanism is at or near a dead point or a bifurcation (links in "
            "line)";
-  // Name the coordinate (for a joint, the joint's name) whose pivot failed:
-  // the user's fix is a mass or inertia of a body it carries.
-  const std::string coordinate = pivot <= info.nq ? info.coordinate_names[pivot - 1] : "?";
-  return "mass matrix is not positive definite at coordinate '" + coordinate + "' (pivot " +
-         std::to_string(pivot) +
-         " of its LDL^T factorisation is not positive): a body it moves has a zero or negative mass or an "
-         "invalid inertia at these parameters; check the bodies carried by joint '" +
-         coordinate + "' and the --set values";
+  // Name the coordinate whose pivot failed and the bodies it moves: the
+  // user's fix is a mass or inertia of one of them.
+  const int i = pivot - 1;
+  const std::string coordinate = pivot <= info.nq ? info.coordinate_names[i] : "?";
+  std::string what = "mass matrix is not positive definite at coordinate '" + coordinate + "' (pivot " +
+                     std::to_string(pivot) + " of its LDL^T factorisation is not positive): ";
+  if (pivot > info.nq || !info.coordinate_joints || !info.moved_bodies_first || !info.moved_bodies)
+    return what +
+           "a body it moves has a zero or negative mass or an invalid inertia at these parameters; check the "
+           "bodies carried by joint '" +
+           coordinate + "' and the --set values";
+  const std::string joint = info.coordinate_joints[i];
+  std::string bodies;
+  const int first = info.moved_bodies_first[i], end = info.moved_bodies_first[i + 1];
+  for (int k = first; k < end; ++k)
+    bodies += std::string(k > first ? ", '" : "'") + info.moved_bodies[k] + "'";
+  what += joint.empty() ? "this elastic coordinate" : "joint '" + joint + "'";
+  const bool one = end - first == 1;
+  what += (one ? " moves body " : " moves bodies ") + bodies + (one ? ", which has" : ", one of which has");
+  return what +
+         " a zero or negative mass or an invalid inertia at these parameters (or no mass moves along this "
+         "coordinate); check " +
+         (one ? "its mass and inertia" : "their masses and inertias") + " and the --set values";
 }
 
 std::string json_numbers(const double* v, int n) {
@@ -327,6 +342,7 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
   };
   IntegrationOptions opt = a.opt;
   opt.state_names = names;
+  opt.on_step = [&](double t, long steps) { progress.on_step(t, steps); };
   if (loops.active())
     opt.project = [&](double, double* xs, std::string* why) { return loops.project(xs, xs + nq, why); };
   const IntegrationResult r = run_method(model, a, rhs, x.data(), opt, observer, tau.data());

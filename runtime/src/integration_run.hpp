@@ -131,6 +131,12 @@ class Run {
     return false;
   }
 
+  // Counts an accepted step ending at t and tells opt.on_step.
+  void accepted(double t) {
+    ++result_.stats.accepted;
+    if (opt_.on_step) opt_.on_step(t, result_.stats.accepted);
+  }
+
   // Calls the observer; false (and a result) if it asks to stop.
   bool emit(double t, const double* x) {
     if (!observer_ || observer_(t, x)) return true;

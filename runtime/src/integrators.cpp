@@ -101,7 +101,7 @@ double integrate_rk4(Run& run, double t0, double* x) {
       std::copy(saved.begin(), saved.end(), x);
       return t;
     }
-    ++run.stats().accepted;
+    run.accepted(t_next);
     t = t_next;
     if (!run.project(t, x)) return t;
     if (!run.emit(t, x)) return t;
@@ -182,9 +182,9 @@ class Dopri5 {
         rejected_last = true;
         continue;
       }
-      ++run_.stats().accepted;
       fac_old = std::max(err, 1e-4);
       const double t_new = last ? opt.t_end : t + h;
+      run_.accepted(t_new);
       if (next <= grid.intervals() && grid.time(next) < t_new) {
         prepare_dense(h);
         for (; next <= grid.intervals() && grid.time(next) < t_new; ++next) {

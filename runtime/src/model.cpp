@@ -38,7 +38,10 @@ Model::Model(const ModelTable& table) : table_(table) {
                     table_.u0,
                     table_.nc,
                     table_.constraint_names,
-                    table_.coordinate_roles};
+                    table_.coordinate_roles,
+                    table_.coordinate_joints,
+                    table_.moved_bodies_first,
+                    table_.moved_bodies};
   // Params is a struct of doubles: storage of doubles holds it aligned.
   parameters_.assign(table_.parameters_size / sizeof(double) + 1, 0.0);
   table_.default_parameters(parameters_.data());

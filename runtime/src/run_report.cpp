@@ -44,17 +44,26 @@ Progress::Progress(std::FILE* err, double t_end)
   }
 }
 
+void Progress::on_step(double t, long steps) {
+  steps_ = steps;
+  update(t);  // a step costs several right-hand sides: the clock is cheap beside it
+}
+
 void Progress::on_rhs(double t) {
-  ++calls_;
-  if (!terminal_ || calls_ % 64 != 0) return;
+  ++rhs_evals_;
+  if (steps_ == 0 && rhs_evals_ % 64 == 0) update(t);
+}
+
+void Progress::update(double t) {
+  if (!terminal_) return;
   const auto now = std::chrono::steady_clock::now();
   const double wall = std::chrono::duration<double>(now - start_).count();
   // Quiet for short runs, then at most ten updates a second.
   if (wall < quiet_for_ || std::chrono::duration<double>(now - last_).count() < 0.1) return;
   last_ = now;
   shown_ = true;
-  std::fprintf(err_, "\r\033[Ksimulate: t = %.6g of %.6g s, wall %.1f s, %ld rhs evaluations", t, t_end_,
-               wall, calls_);
+  std::fprintf(err_, "\r\033[Ksimulate: t = %.6g of %.6g s, wall %.1f s, %ld %s", t, t_end_, wall,
+               steps_ > 0 ? steps_ : rhs_evals_, steps_ > 0 ? "steps" : "rhs evaluations");
   std::fflush(err_);
 }
 

@@ -37,26 +37,32 @@ class EnergyColumns {
   double initial_ = 0.0, largest_change_ = 0.0, scale_ = 0.0;
 };
 
-/// One updating line on stderr ("t = 1.2 of 10 s, wall 3.1 s, 51234 rhs
-/// evaluations"), shown only when stderr is a terminal and the run has
-/// lasted more than a second; erased at the end. A pipe or a file gets nothing.
+/// One updating line on stderr ("t = 1.2 of 10 s, wall 3.1 s, 5123 steps"),
+/// shown only when stderr is a terminal and the run has lasted more than a
+/// second; erased at the end. A pipe or a file gets nothing. The steps are
+/// the integrator's accepted steps (on_step); an integrator that does not
+/// report them (the implicit one) is shown by its right-hand sides instead.
 class Progress {
  public:
   Progress(std::FILE* err, double t_end);
   ~Progress() { finish(); }
   Progress(const Progress&) = delete;
   Progress& operator=(const Progress&) = delete;
-  /// Called at every right-hand side: cheap, looks at the clock every 64th call.
+  /// Called after every accepted step.
+  void on_step(double t, long steps);
+  /// Called at every right-hand side; looks at the clock every 64th call.
   void on_rhs(double t);
   /// Erases the line (if one was shown).
   void finish();
 
  private:
+  void update(double t);
+
   std::FILE* err_;
   double t_end_;
   bool terminal_;
   bool shown_ = false;
-  long calls_ = 0;
+  long rhs_evals_ = 0, steps_ = 0;
   std::chrono::steady_clock::time_point start_, last_;
   double quiet_for_ = 1.0;  ///< seconds without a line
 };

@@ -54,6 +54,18 @@ struct System {
     static const char* const names[] = {"m", "l", "g", "q_limit", "nan_after"};
     return names;
   }
+  static const char* const* coordinate_joints() {
+    static const char* const names[] = {"theta"};
+    return names;
+  }
+  static const int* moved_bodies_first() {
+    static const int first[] = {0, 1};
+    return first;
+  }
+  static const char* const* moved_bodies() {
+    static const char* const names[] = {"bob"};
+    return names;
+  }
   static const double* q0() {
     static const double v[] = {0.3};
     return v;
@@ -112,6 +124,8 @@ struct System {
     t.nq = nq, t.nu = nu, t.ntau = ntau, t.ny = ny, t.np = np;
     t.coordinate_names = coordinate_names(), t.speed_names = speed_names(), t.input_names = input_names();
     t.output_names = output_names(), t.parameter_names = parameter_names(), t.q0 = q0(), t.u0 = u0();
+    t.coordinate_joints = coordinate_joints(), t.moved_bodies_first = moved_bodies_first();
+    t.moved_bodies = moved_bodies();
     t.parameters_size = sizeof(Params);
     t.default_parameters = [](void* p) { new (p) Params(); };
     t.set_parameter = [](void* p, const char* n, double v) {
@@ -268,9 +282,11 @@ TEST_CASE("simulate: singular mass matrix stops the run, keeps the rows", "[driv
                          "--set", "q_limit=0.53", "--q0", "theta=0", "--u0", "omega=1", "-o", path});
   check_one_line_error(o);
   CHECK(o.code == 1);
-  CHECK(contains(o.err, "mass matrix is not positive definite at coordinate 'theta' (pivot 1 of its LDL^T "
-                        "factorisation is not positive): a body it moves has a zero or negative mass or an "
-                        "invalid inertia at these parameters; check the bodies carried by joint 'theta'"));
+  CHECK(contains(o.err,
+                 "mass matrix is not positive definite at coordinate 'theta' (pivot 1 of its LDL^T "
+                 "factorisation is not positive): joint 'theta' moves body 'bob', which has a zero or "
+                 "negative mass or an invalid inertia at these parameters (or no mass moves along this "
+                 "coordinate); check its mass and inertia and the --set values"));
   CHECK(contains(o.err, "at t=0.55, state [theta=0.55, omega=1]"));
   const std::vector<std::string> rows = lines(slurp(path));
   REQUIRE(rows.size() == 7);  // header and t = 0 .. 0.5

@@ -63,6 +63,9 @@ struct IntegrationOptions {
   /// (closed loops); false, with the reason, stops the run (kRhsFailed).
   /// Output between steps comes from the unprojected dense output.
   std::function<bool(double t, double* x, std::string* why)> project;
+  /// Optional: called after every accepted step with its end time and the
+  /// steps accepted so far (simulate's progress line). RK4 and DOPRI5 call it.
+  std::function<void(double t, long accepted)> on_step;
 };
 
 struct StepStats {

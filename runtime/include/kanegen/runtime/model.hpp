@@ -26,6 +26,10 @@ struct ModelInfo {
   int nc = 0;
   const char* const* constraint_names = nullptr;
   const int* coordinate_roles = nullptr;  ///< nq: 0 free, 1 marked independent, 2 prescribed
+  /// Per coordinate: its joint and the bodies it moves (see ModelTable; may be null).
+  const char* const* coordinate_joints = nullptr;
+  const int* moved_bodies_first = nullptr;
+  const char* const* moved_bodies = nullptr;
 };
 
 /// The kernels of system.hpp with the parameters bound.

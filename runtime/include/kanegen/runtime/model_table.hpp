@@ -21,6 +21,12 @@ struct ModelTable {
   const char* const* parameter_names = nullptr;
   const double* q0 = nullptr;
   const double* u0 = nullptr;
+  /// Per coordinate (nq): its joint ("" for an elastic coordinate) and the
+  /// bodies it moves, moved_bodies[moved_bodies_first[i] .. moved_bodies_first[i + 1]);
+  /// null in tables written without them.
+  const char* const* coordinate_joints = nullptr;
+  const int* moved_bodies_first = nullptr;
+  const char* const* moved_bodies = nullptr;
   // Closed loops (0 and null for an open tree).
   int nc = 0;
   const char* const* constraint_names = nullptr;
