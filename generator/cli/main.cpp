@@ -141,6 +141,7 @@ struct GenerateCommand {
   RunOptions run;
   std::string out_dir;
   bool jacobians = false;
+  std::string precision = "double";
 };
 
 constexpr const char* kJacobiansHelp =
@@ -153,12 +154,21 @@ void add_generate(CLI::App& app, GenerateCommand& c) {
   add_common(c.command, c.run);
   c.command->add_option("-o,--output", c.out_dir, "output directory (created if needed)")->required();
   c.command->add_flag("--jacobians", c.jacobians, kJacobiansHelp);
+  c.command
+      ->add_option("--precision", c.precision,
+                   "the kernels' floating-point type: double (default), or float for an FPU with single "
+                   "precision only (writes <name>_float.hpp and .cpp, no runner; open trees without "
+                   "--jacobians; docs/embedded.md)")
+      ->check(CLI::IsMember({"double", "float"}));
 }
 
 int run_generate(const GenerateCommand& c) {
   const BuildOptions b = build_options(c.run);
   kanegen::cli::check_output_directory(c.out_dir);
-  const kanegen::pipeline::GeneratedModel g = kanegen::pipeline::generate(c.run.model, b.load, {c.jacobians});
+  const kanegen::pipeline::GeneratedModel g = kanegen::pipeline::generate(
+      c.run.model, b.load,
+      {c.jacobians, c.precision == "float" ? kanegen::codegen::Precision::single_precision
+                                           : kanegen::codegen::Precision::double_precision});
   kanegen::codegen::write_files_atomically(c.out_dir, g.files);
   if (!c.run.quiet) {
     std::printf("%s: %d coordinates, %zu intermediates; load %.3f s, derive %.3f s, emit %.3f s",
