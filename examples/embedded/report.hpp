@@ -9,13 +9,15 @@
 
 namespace arm7_tracking {
 
-constexpr int kSteps = 2000;   ///< 2 s
+constexpr int kSteps = 2000;    ///< 2 s
 constexpr float kStep = 1e-3f;  ///< 1 kHz control and plant step
 
 inline void print(const Result& r) {
-  printf("arm7 computed torque, %d steps of %g s: tracking error max %.6e rad, final rms %.6e rad, failed steps %d\n",
-         r.steps, static_cast<double>(kStep), static_cast<double>(r.max_error),
-         static_cast<double>(r.final_error), r.failed_steps);
+  printf(
+      "arm7 computed torque, %d steps of %g s: tracking error max %.6e rad, final rms %.6e rad, failed steps "
+      "%d\n",
+      r.steps, static_cast<double>(kStep), static_cast<double>(r.max_error),
+      static_cast<double>(r.final_error), r.failed_steps);
 }
 
 }  // namespace arm7_tracking

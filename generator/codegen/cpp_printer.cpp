@@ -180,7 +180,8 @@ class Printer {
       }
       case Op::power: {
         if (is_integer(n.value) && n.value > 0) return repeated(n.args[0], static_cast<long>(n.value));
-        if (is_integer(n.value)) return scalar_.literal(1.0) + "/(" + repeated(n.args[0], static_cast<long>(-n.value)) + ")";
+        if (is_integer(n.value))
+          return scalar_.literal(1.0) + "/(" + repeated(n.args[0], static_cast<long>(-n.value)) + ")";
         return scalar_.function("pow") + "(" + text(n.args[0]) + ", " + scalar_.literal(n.value) + ")";
       }
       case Op::sqrt: return call("sqrt", n);
@@ -205,7 +206,8 @@ class Printer {
 }  // namespace
 
 PrintedKernel print_kernel(const ExpressionGraph& graph, const std::vector<Assignment>& assignments,
-                           const ScalarType& scalar, const std::string& indent, const std::string& temp_prefix) {
+                           const ScalarType& scalar, const std::string& indent,
+                           const std::string& temp_prefix) {
   return Printer(graph, indent, temp_prefix, scalar).run(assignments);
 }
 

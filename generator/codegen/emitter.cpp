@@ -77,9 +77,10 @@ TemplateValues model_values(const model::Model& model, const kane::Equations& eq
   return {
       {"MODEL_NAME", emitted_name(model.name, scalar)},
       {"SCALAR", scalar.name()},
-      {"PRECISION_NOTE", scalar.is_double() ? ""
-                                            : "// Single precision (kanegen generate --precision float): every "
-                                              "argument, local and literal is float.\n"},
+      {"PRECISION_NOTE", scalar.is_double()
+                             ? ""
+                             : "// Single precision (kanegen generate --precision float): every "
+                               "argument, local and literal is float.\n"},
       {"MODEL_FILE", std::filesystem::path(model.source_file).filename().string()},
       {"MODEL_HASH", model_hash},
       {"GENERATOR_VERSION", KANEGEN_VERSION},

@@ -57,11 +57,12 @@ void print_prescribed_accelerations(Derivation& d) {
   for (const kane::PrescribedSpeed& ps : d.eq.prescribed) {
     const std::string a = symbolic::prescribed_acceleration_name(ps.speed);
     std::string& text = d.prescribed.body;
-    text += "  " + std::string(d.scalar.name()) + " " + a + " = " + d.scalar.literal(0.0) + ";  // prescribed acceleration of " + d.eq.speed_names[ps.speed] + "\n";
+    text += "  " + std::string(d.scalar.name()) + " " + a + " = " + d.scalar.literal(0.0) +
+            ";  // prescribed acceleration of " + d.eq.speed_names[ps.speed] + "\n";
     for (std::size_t k = 0; k < ps.pieces.size(); ++k) {
       const kane::PrescribedSpeed::Piece& piece = ps.pieces[k];
-      const PrintedKernel p =
-          print_kernel(d.graph, {{a, d.graph.add(piece.acceleration)}}, d.scalar, "    ", "x" + a + "_" + str(k) + "_");
+      const PrintedKernel p = print_kernel(d.graph, {{a, d.graph.add(piece.acceleration)}}, d.scalar, "    ",
+                                           "x" + a + "_" + str(k) + "_");
       d.prescribed.operations += p.operations;
       text += std::string(k == 0 ? "  " : " else ") +
               (piece.has_until ? "if (t < " + d.scalar.literal(piece.until) + ") " : "") + "{\n" + p.body +
@@ -142,7 +143,8 @@ KernelCode tree_dynamics_kernel(const Derivation& d) {
       if (li < 0 || lj < 0 || lj > li) continue;
       const Node& entry = d.graph.node(node);
       nonzero[li * d.ns() + lj] = !(entry.op == Op::number && entry.value == 0.0);
-      if (nonzero[li * d.ns() + lj]) dynamics.push_back({"const " + std::string(d.scalar.name()) + " m" + str(li) + "_" + str(lj), node});
+      if (nonzero[li * d.ns() + lj])
+        dynamics.push_back({"const " + std::string(d.scalar.name()) + " m" + str(li) + "_" + str(lj), node});
     }
   for (int i = 0; i < d.n(); ++i) {
     const int node = d.graph.add(d.eq.forcing[i]);
@@ -228,7 +230,8 @@ KernelCode coordinate_rates_kernel(const Derivation& d) {
 
 KernelCode energy_kernel(Kernel kernel, const char* variable, const GiNaC::ex& energy, const Derivation& d) {
   KernelCode code = printed(kernel, d, {{variable, d.graph.add(energy)}});
-  code.body = "  " + std::string(d.scalar.name()) + " " + std::string(variable) + ";\n" + code.body + "  return " + variable + ";\n";
+  code.body = "  " + std::string(d.scalar.name()) + " " + std::string(variable) + ";\n" + code.body +
+              "  return " + variable + ";\n";
   return code;
 }
 

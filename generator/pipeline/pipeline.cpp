@@ -10,8 +10,8 @@
 
 #include "codegen/emitter.hpp"
 #include "kane/equations.hpp"
-#include "model/model_error.hpp"
 #include "model/fnv1a.hpp"
+#include "model/model_error.hpp"
 #include "symbolic/program.hpp"
 #include "symbolic/shape_function.hpp"
 #include "symbolic/variables.hpp"
@@ -23,7 +23,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-
 /// Float kernels are written for open trees: the saddle-point solve of the
 /// loops and the Jacobian kernels exist in double only.
 void check_precision(const model::Model& model, const GenerateOptions& options) {
@@ -32,7 +31,9 @@ void check_precision(const model::Model& model, const GenerateOptions& options) 
     throw model::ModelError(model.source_file, "", "--precision float cannot be combined with --jacobians",
                             "generate the Jacobian kernels in double (leave out --precision)");
   if (!model.loops.empty())
-    throw model::ModelError(model.source_file, "", "--precision float is for open trees, and this model closes " + std::to_string(model.loops.size()) + " loop(s)",
+    throw model::ModelError(model.source_file, "",
+                            "--precision float is for open trees, and this model closes " +
+                                std::to_string(model.loops.size()) + " loop(s)",
                             "generate it in double (leave out --precision)");
 }
 
@@ -97,7 +98,8 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
   // double the cost of the option for code that is thrown away.
   if (generate_options.jacobians) {
     start = std::chrono::steady_clock::now();
-    emitted = codegen::emit_model(model, chosen, vars, chosen_program, hash, {true, generate_options.precision});
+    emitted =
+        codegen::emit_model(model, chosen, vars, chosen_program, hash, {true, generate_options.precision});
     out.seconds.jacobians = seconds_since(start);
   }
 

@@ -7,9 +7,8 @@
 // near zero, where terms cancel, has no meaningful relative error of its
 // own); printed for docs/embedded.md.
 #define CATCH_CONFIG_MAIN
-#include <catch2/catch.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -38,9 +37,9 @@ struct Pair {
   int (*dynamics_f)(const float*, const float*, const float*, float*);
 };
 
-#define KANEGEN_PAIR(NAME)                                                                                 \
-  Pair {                                                                                                   \
-    #NAME, kanegen_models::NAME::NQ, kanegen_models::NAME::NU, kanegen_models::NAME::NTAU,                 \
+#define KANEGEN_PAIR(NAME)                                                                               \
+  Pair {                                                                                                 \
+#NAME, kanegen_models::NAME::NQ, kanegen_models::NAME::NU, kanegen_models::NAME::NTAU,                 \
         [](const double* q, double* M) { kanegen_models::NAME::mass_matrix({}, q, M); },                   \
         [](const float* q, float* M) { kanegen_models::NAME##_float::mass_matrix({}, q, M); },             \
         [](const double* q, const double* u, const double* tau, double* f) {                               \
@@ -54,7 +53,7 @@ struct Pair {
         },                                                                                                 \
         [](const float* q, const float* u, const float* tau, float* a) {                                   \
           return kanegen_models::NAME##_float::forward_dynamics({}, 0.0f, q, u, tau, a);                   \
-        }                                                                                                  \
+        } \
   }
 
 /// max |float - double| and max |double| over every entry of every sample.
@@ -100,9 +99,11 @@ Worst compare(const Pair& m) {
     dynamics.add(af, ad);
   }
   const Worst worst{mass.relative(), force.relative(), dynamics.relative()};
-  std::printf("%-16s float against double, largest difference over 200 states relative to the largest entry: mass_matrix %.1e, "
-              "forcing %.1e, forward_dynamics %.1e\n",
-              m.name, worst.mass_matrix, worst.forcing, worst.dynamics);
+  std::printf(
+      "%-16s float against double, largest difference over 200 states relative to the largest entry: "
+      "mass_matrix %.1e, "
+      "forcing %.1e, forward_dynamics %.1e\n",
+      m.name, worst.mass_matrix, worst.forcing, worst.dynamics);
   return worst;
 }
 

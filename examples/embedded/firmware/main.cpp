@@ -41,9 +41,9 @@ int main() {
   const arm7_tracking::Result r = arm7_tracking::run(arm7_tracking::kSteps, arm7_tracking::kStep, hooks);
   arm7_tracking::print(r);
   constexpr uint32_t loop = 100000;
-  printf("controller: %llu SysTick ticks over %d steps (%.2f per step); a loop of %lu instructions: %lu ticks\n",
-         static_cast<unsigned long long>(control_ticks), r.steps,
-         static_cast<double>(control_ticks) / r.steps, static_cast<unsigned long>(2 * loop),
-         static_cast<unsigned long>(calibration_ticks(loop)));
+  printf(
+      "controller: %llu SysTick ticks over %d steps (%.2f per step); a loop of %lu instructions: %lu ticks\n",
+      static_cast<unsigned long long>(control_ticks), r.steps, static_cast<double>(control_ticks) / r.steps,
+      static_cast<unsigned long>(2 * loop), static_cast<unsigned long>(calibration_ticks(loop)));
   return r.failed_steps == 0 ? 0 : 1;
 }
