@@ -1,17 +1,20 @@
 # SPDX-License-Identifier: MIT
-# kanegen_add_model(<target> <model file> [NAME <model name>] [RUNNER] [JACOBIANS])
+# kanegen_add_model(<target> <model file> [NAME <model name>] [RUNNER] [JACOBIANS] [PRECISION float])
 #
 # Generates the model's kernels at build time (again whenever the model file
 # or the kanegen generator changes) and makes <target> a static library with
 # them: include "<model name>.hpp" and call kanegen_models::<model name>::...
 # With RUNNER, also builds <target>_runner, the simulate/eval/info program.
 # With JACOBIANS, the model also has the Jacobian kernels of implicit
-# integration (kanegen generate --jacobians).
+# integration (kanegen generate --jacobians). With PRECISION float, the
+# kernels are float (kanegen generate --precision float): include
+# "<model name>_float.hpp" and call kanegen_models::<model name>_float::...;
+# such a model has no runner (docs/embedded.md).
 #
 # The model name is read from the file (JSON "name", URDF <robot name>, made
 # a C++ identifier as kanegen does); NAME overrides it if your file is unusual.
 function(kanegen_add_model target model)
-  cmake_parse_arguments(ARG "RUNNER;JACOBIANS" "NAME" "" ${ARGN})
+  cmake_parse_arguments(ARG "RUNNER;JACOBIANS" "NAME;PRECISION" "" ${ARGN})
   get_filename_component(model_path ${model} ABSOLUTE)
   if(NOT EXISTS ${model_path})
     message(FATAL_ERROR "kanegen_add_model(${target}): model file ${model_path} does not exist")
@@ -43,8 +46,19 @@ function(kanegen_add_model target model)
   if(ARG_JACOBIANS)
     set(options --jacobians)
   endif()
+  set(runner_source ${out}/${name}_runner.cpp)
+  if(ARG_PRECISION STREQUAL "float")
+    list(APPEND options --precision float)
+    set(name ${name}_float)
+    set(runner_source)
+    if(ARG_RUNNER)
+      message(FATAL_ERROR "kanegen_add_model(${target}): a PRECISION float model has no RUNNER (the runtime is double)")
+    endif()
+  elseif(ARG_PRECISION AND NOT ARG_PRECISION STREQUAL "double")
+    message(FATAL_ERROR "kanegen_add_model(${target}): PRECISION is double or float, not ${ARG_PRECISION}")
+  endif()
   add_custom_command(
-    OUTPUT ${out}/${name}.hpp ${out}/${name}.cpp ${out}/${name}_runner.cpp
+    OUTPUT ${out}/${name}.hpp ${out}/${name}.cpp ${runner_source}
     COMMAND ${KANEGEN_EXECUTABLE} generate ${model_path} -o ${out} --quiet ${options}
     DEPENDS ${model_path} ${KANEGEN_EXECUTABLE}
     COMMENT "kanegen: generating ${name} from ${model}"

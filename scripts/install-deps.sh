@@ -11,6 +11,7 @@ packages=(
   libmujoco-dev libbenchmark-dev
   libclang-rt-dev llvm
   gnuplot-nox
+  gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
 )
 # libsundials-dev: CVODE, the runtime's adaptive implicit integrator
 # (--integrator implicit); libomp-dev: clang's OpenMP, which SUNDIALS's CMake
@@ -19,7 +20,12 @@ packages=(
 # KANEGEN_SANITIZE and KANEGEN_BUILD_FUZZERS builds that CI runs; llvm: its
 # llvm-symbolizer, which the sanitizers call to name frames (and to match the
 # leak suppressions by library). gnuplot-nox: gnuplot without X11, which
-# `kanegen plot` and `simulate --plot` run to draw PNGs.
+# `kanegen plot` and `simulate --plot` run to draw PNGs. gcc-arm-none-eabi,
+# libnewlib-arm-none-eabi, qemu-system-arm: the Cortex-M4F build of
+# examples/embedded and its run under QEMU (test embedded_arm7_cortex_m4,
+# skipped without them; docs/embedded.md). They add about 920 MB installed
+# (the compiler 436 MB, newlib 369 MB for every ARM multilib, QEMU 51 MB),
+# 97 MB downloaded; 90 s to install here.
 if [ "$(id -u)" -ne 0 ]; then
   echo "install-deps.sh: run as root (apt-get needs it), e.g. sudo bash scripts/install-deps.sh" >&2
   exit 1

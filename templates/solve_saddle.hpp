@@ -12,7 +12,7 @@
 // sizes NS (speeds solved for) and NC (loop equations), no allocation.
 #pragma once
 
-#include <cmath>
+#include <math.h>  // the emitted code uses nothing beyond it (freestanding)
 
 namespace kanegen_templates {
 // kanegen:embed-begin
@@ -26,7 +26,7 @@ int solve_saddle(double* M, double* b, double* C, const double* g, double* lambd
     double s = M[j * NS + j];
     for (int k = 0; k < j; ++k) s -= M[j * NS + k] * M[j * NS + k];
     if (!(s > 0.0)) return j + 1;
-    const double l = std::sqrt(s);
+    const double l = sqrt(s);
     M[j * NS + j] = l;
     for (int i = j + 1; i < NS; ++i) {
       double v = M[i * NS + j];
@@ -62,7 +62,7 @@ int solve_saddle(double* M, double* b, double* C, const double* g, double* lambd
     double s = S[j * NC + j];
     for (int k = 0; k < j; ++k) s -= S[j * NC + k] * S[j * NC + k];
     if (!(s > 1e-6 * largest)) return -(j + 1);
-    const double l = std::sqrt(s);
+    const double l = sqrt(s);
     S[j * NC + j] = l;
     for (int i = j + 1; i < NC; ++i) {
       double v = S[i * NC + j];

@@ -15,11 +15,8 @@
 //   constraint_bias: 45
 //
 // Arrays are plain C arrays with their sizes in the comments; no function
-// allocates, throws or keeps state.
+// allocates, throws or keeps state, and nothing beyond <math.h> is needed.
 #pragma once
-
-#include <new>          // kernel_table(): the Params of a table are placed in the caller's storage
-#include <type_traits>  // and must be plain doubles for that
 
 namespace kanegen_models {
 namespace four_bar {
@@ -121,8 +118,6 @@ int constrained_dynamics(const Params& p, double t, const double* q, const doubl
 /// members these are. The parameters travel as `const void*` to a Params.
 template <class Table>
 Table kernel_table() {
-  static_assert(std::is_trivially_copyable<Params>::value && alignof(Params) <= alignof(double),
-                "the runtime keeps Params in storage of doubles");
   Table table{};
   table.name = "four_bar";
   table.nq = NQ;
@@ -144,7 +139,7 @@ Table kernel_table() {
   table.constraint_names = constraint_names;
   table.coordinate_roles = coordinate_roles;
   table.parameters_size = sizeof(Params);
-  table.default_parameters = [](void* p) { new (p) Params(); };
+  table.default_parameters = [](void* p) { Table::template construct_parameters<Params>(p); };
   table.set_parameter = [](void* p, const char* name, double value) {
     return set_parameter(*static_cast<Params*>(p), name, value);
   };

@@ -142,6 +142,7 @@ struct GenerateCommand {
   RunOptions run;
   std::string out_dir;
   bool jacobians = false;
+  std::string precision = "double";
 };
 
 constexpr const char* kJacobiansHelp =
@@ -154,6 +155,12 @@ void add_generate(CLI::App& app, GenerateCommand& c) {
   add_common(c.command, c.run);
   c.command->add_option("-o,--output", c.out_dir, "output directory (created if needed)")->required();
   c.command->add_flag("--jacobians", c.jacobians, kJacobiansHelp);
+  c.command
+      ->add_option("--precision", c.precision,
+                   "the kernels' floating-point type: double (default), or float for an FPU with single "
+                   "precision only (writes <name>_float.hpp and .cpp, no runner; open trees without "
+                   "--jacobians; docs/embedded.md)")
+      ->check(CLI::IsMember({"double", "float"}));
 }
 
 int run_generate(const GenerateCommand& c) {
@@ -161,7 +168,10 @@ int run_generate(const GenerateCommand& c) {
   kanegen::cli::check_output_directory(c.out_dir);
   const kanegen::pipeline::GeneratedModel g = [&] {
     const kanegen::cli::StopWhileGenerating stop(c.run.model, "written");
-    return kanegen::pipeline::generate(c.run.model, b.load, {c.jacobians});
+    return kanegen::pipeline::generate(
+        c.run.model, b.load,
+        {c.jacobians, c.precision == "float" ? kanegen::codegen::Precision::single_precision
+                                             : kanegen::codegen::Precision::double_precision});
   }();
   kanegen::codegen::write_files_atomically(c.out_dir, g.files);
   if (!c.run.quiet) {

@@ -27,8 +27,9 @@ bool is_integer(double x) { return std::floor(x) == x && std::abs(x) < 64; }
 
 class Printer {
  public:
-  Printer(const ExpressionGraph& graph, const std::string& indent, const std::string& prefix)
-      : graph_(graph), indent_(indent), prefix_(prefix) {}
+  Printer(const ExpressionGraph& graph, const std::string& indent, const std::string& prefix,
+          const ScalarType& scalar)
+      : graph_(graph), indent_(indent), prefix_(prefix), scalar_(scalar) {}
 
   PrintedKernel run(const std::vector<Assignment>& assignments) {
     for (const Assignment& a : assignments) count_uses(a.node);
@@ -85,7 +86,7 @@ class Printer {
     for (int a : node(id).args) emit_temporaries(a);
     if (wants_temp(id)) {
       const std::string name = prefix_ + std::to_string(temps_.size());
-      out_.body += indent_ + "const double " + name + " = " + expression(id) + ";\n";
+      out_.body += indent_ + "const " + scalar_.name() + " " + name + " = " + expression(id) + ";\n";
       temps_.emplace(id, name);
     }
   }
@@ -125,7 +126,7 @@ class Printer {
     negative = coefficient < 0;
     const double magnitude = std::abs(coefficient);
     std::string s;
-    if (magnitude != 1.0 || numerator.empty()) s = format_double(magnitude);
+    if (magnitude != 1.0 || numerator.empty()) s = scalar_.literal(magnitude);
     for (const std::string& f : numerator) s += (s.empty() ? "" : "*") + f;
     if (!denominator.empty()) {
       std::string d;
@@ -141,12 +142,15 @@ class Printer {
     return s;
   }
 
-  std::string call(const char* f, const Node& n) const { return std::string(f) + "(" + text(n.args[0]) + ")"; }
+  // The <math.h> function (not <cmath>'s std::): the kernels compile freestanding.
+  std::string call(const char* f, const Node& n) const {
+    return scalar_.function(f) + "(" + text(n.args[0]) + ")";
+  }
 
   std::string expression(int id) const {
     const Node& n = node(id);
     switch (n.op) {
-      case Op::number: return format_double(n.value);
+      case Op::number: return scalar_.literal(n.value);
       case Op::input: return n.name;
       case Op::add: {
         std::string s;
@@ -158,7 +162,7 @@ class Printer {
             t = product(term, negative);
           } else if (term.op == Op::number) {
             negative = term.value < 0;
-            t = format_double(std::abs(term.value));
+            t = scalar_.literal(std::abs(term.value));
           } else {
             t = text(a);
           }
@@ -176,22 +180,24 @@ class Printer {
       }
       case Op::power: {
         if (is_integer(n.value) && n.value > 0) return repeated(n.args[0], static_cast<long>(n.value));
-        if (is_integer(n.value)) return "1.0/(" + repeated(n.args[0], static_cast<long>(-n.value)) + ")";
-        return "std::pow(" + text(n.args[0]) + ", " + format_double(n.value) + ")";
+        if (is_integer(n.value))
+          return scalar_.literal(1.0) + "/(" + repeated(n.args[0], static_cast<long>(-n.value)) + ")";
+        return scalar_.function("pow") + "(" + text(n.args[0]) + ", " + scalar_.literal(n.value) + ")";
       }
-      case Op::sqrt: return call("std::sqrt", n);
-      case Op::sin: return call("std::sin", n);
-      case Op::cos: return call("std::cos", n);
-      case Op::tan: return call("std::tan", n);
-      case Op::exp: return call("std::exp", n);
-      case Op::log: return call("std::log", n);
-      case Op::abs: return call("std::abs", n);
+      case Op::sqrt: return call("sqrt", n);
+      case Op::sin: return call("sin", n);
+      case Op::cos: return call("cos", n);
+      case Op::tan: return call("tan", n);
+      case Op::exp: return call("exp", n);
+      case Op::log: return call("log", n);
+      case Op::abs: return call("fabs", n);
     }
     return "";
   }
 
   const ExpressionGraph& graph_;
   std::string indent_, prefix_;
+  ScalarType scalar_;
   std::map<int, int> uses_;
   std::map<int, std::string> temps_;
   PrintedKernel out_;
@@ -200,8 +206,9 @@ class Printer {
 }  // namespace
 
 PrintedKernel print_kernel(const ExpressionGraph& graph, const std::vector<Assignment>& assignments,
-                           const std::string& indent, const std::string& temp_prefix) {
-  return Printer(graph, indent, temp_prefix).run(assignments);
+                           const ScalarType& scalar, const std::string& indent,
+                           const std::string& temp_prefix) {
+  return Printer(graph, indent, temp_prefix, scalar).run(assignments);
 }
 
 }  // namespace kanegen::codegen

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // Prints a kernel (a set of assignments `target = node`) of the expression
-// graph as straight-line C++: nodes used more than once become `const double`
+// graph as straight-line C++: nodes used more than once become `const double` (or float)
 // temporaries named by their position, the rest are inlined. The text
 // depends only on the graph's canonical structure, so it is byte-identical
 // from run to run.
@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "codegen/expression_graph.hpp"
+#include "codegen/scalar_type.hpp"
 
 namespace kanegen::codegen {
 
@@ -24,8 +25,11 @@ struct PrintedKernel {
   int temporaries = 0;
 };
 
+/// `scalar` is the type of the temporaries and literals and picks the
+/// <math.h> functions (sin or sinf).
 PrintedKernel print_kernel(const ExpressionGraph& graph, const std::vector<Assignment>& assignments,
-                           const std::string& indent = "  ", const std::string& temp_prefix = "x");
+                           const ScalarType& scalar, const std::string& indent = "  ",
+                           const std::string& temp_prefix = "x");
 
 /// Shortest decimal text that reads back as the same double, always with a
 /// '.' or an exponent so that C++ reads it as a double.

@@ -29,10 +29,10 @@ std::string quoted_list(const std::vector<std::string>& names) {
   return s;
 }
 
-std::string number_list(const std::vector<double>& values) {
+std::string number_list(const std::vector<double>& values, const ScalarType& scalar) {
   std::string s;
-  for (double v : values) s += (s.empty() ? "" : ", ") + format_double(v);
-  return s.empty() ? "0.0" : s;
+  for (double v : values) s += (s.empty() ? "" : ", ") + scalar.literal(v);
+  return s.empty() ? scalar.literal(0.0) : s;
 }
 
 std::string array_size(std::size_t n) { return std::to_string(n > 0 ? n : 1); }
@@ -79,17 +79,24 @@ std::string embedded_region(const std::string& text) {
 }
 
 /// Names, sizes, initial state and parameters: everything but the kernels.
+/// A float model is named <name>_float (files and namespace), so that a
+/// program can hold both precisions of one model.
 TemplateValues model_values(const model::Model& model, const kane::Equations& eq,
-                            const std::string& model_hash) {
+                            const std::string& model_hash, const ScalarType& scalar) {
   std::vector<std::string> parameter_names;
   std::string fields;
   for (const model::Parameter& par : model.parameters) {
     parameter_names.push_back(par.name);
-    fields += "  double " + par.name + " = " + format_double(par.value) + ";\n";
+    fields += "  " + std::string(scalar.name()) + " " + par.name + " = " + scalar.literal(par.value) + ";\n";
   }
   const std::size_t ntau = eq.input_names.size(), ny = eq.output_names.size();
   return {
-      {"MODEL_NAME", model.name},
+      {"MODEL_NAME", emitted_name(model.name, scalar)},
+      {"SCALAR", scalar.name()},
+      {"PRECISION_NOTE", scalar.is_double()
+                             ? ""
+                             : "// Single precision (kanegen generate --precision float): every "
+                               "argument, local and literal is float.\n"},
       {"MODEL_FILE", std::filesystem::path(model.source_file).filename().string()},
       {"MODEL_HASH", model_hash},
       {"GENERATOR_VERSION", KANEGEN_VERSION},
@@ -109,8 +116,8 @@ TemplateValues model_values(const model::Model& model, const kane::Equations& eq
       {"INPUT_NAMES", quoted_list(eq.input_names)},
       {"OUTPUT_NAMES", quoted_list(eq.output_names)},
       {"PARAMETER_NAMES", quoted_list(parameter_names)},
-      {"Q0", number_list(eq.q0)},
-      {"U0", number_list(eq.u0)},
+      {"Q0", number_list(eq.q0, scalar)},
+      {"U0", number_list(eq.u0, scalar)},
   };
 }
 
@@ -134,12 +141,12 @@ void add_loop_values(TemplateValues& values, const kane::Equations& eq) {
 /// Declarations, definitions, System forwarders, the function-pointer table
 /// and the operation counts, each kernel printed from its table entry.
 void add_kernel_values(TemplateValues& values, const std::vector<KernelCode>& kernels,
-                       const std::string& model_name) {
+                       const std::string& model_name, const ScalarType& scalar) {
   std::string declarations, definitions, forwarders, table, counts;
   for (const KernelCode& code : kernels) {
     const KernelSignature& s = signature(code.kernel);
-    declarations += declaration(s) + "\n";
-    definitions += "\n" + definition(s, code.body);
+    declarations += declaration(s, scalar) + "\n";
+    definitions += "\n" + definition(s, code.body, scalar);
     forwarders += system_forwarder(s, model_name);
     if (s.in_runtime_table) table += table_entry(s);
     if (s.counted)
@@ -151,6 +158,11 @@ void add_kernel_values(TemplateValues& values, const std::vector<KernelCode>& ke
   values["SYSTEM_FORWARDERS"] = forwarders;
   values["TABLE_ENTRIES"] = table;
   values["OPERATION_COUNTS"] = counts;
+  // The runtime's face (kernel_table, System) is double: a float model has none.
+  values["RUNTIME_FACE"] =
+      scalar.is_double()
+          ? fill_template(template_sections(embedded::runtime_face_template).at("RUNTIME_FACE"), values)
+          : "";
 }
 
 /// Every kernel the table promises to a model of this kind, and no other.
@@ -165,6 +177,10 @@ void check_presence(const std::vector<KernelCode>& kernels, bool loops, bool jac
 }
 
 }  // namespace
+
+std::string emitted_name(const std::string& model_name, const ScalarType& scalar) {
+  return scalar.is_double() ? model_name : model_name + "_float";
+}
 
 std::string fill_template(const std::string& text, const std::map<std::string, std::string>& values) {
   std::string out;
@@ -189,19 +205,25 @@ std::string fill_template(const std::string& text, const std::map<std::string, s
 EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, const symbolic::Variables& vars,
                         const symbolic::Program& program, const std::string& model_hash,
                         const EmitOptions& options) {
+  const ScalarType scalar(options.precision);
+  // The loop parts (the saddle-point solve) and the Jacobians are written in double.
+  if (!scalar.is_double() && (eq.loops.size() > 0 || options.jacobians))
+    throw std::logic_error("float kernels for a model with loops or with Jacobians");
   ExpressionGraph graph(vars, program);
-  const std::vector<KernelCode> kernels = derive_kernels(model, eq, vars, graph, options.jacobians);
+  const std::vector<KernelCode> kernels = derive_kernels(model, eq, vars, graph, options.jacobians, scalar);
   check_presence(kernels, eq.loops.size() > 0, options.jacobians);
-  TemplateValues values = model_values(model, eq, model_hash);
+  TemplateValues values = model_values(model, eq, model_hash, scalar);
   add_moved_bodies(values, eq);
   add_loop_values(values, eq);
-  add_kernel_values(values, kernels, model.name);
+  add_kernel_values(values, kernels, model.name, scalar);
   EmittedModel emitted;
   for (const KernelCode& code : kernels)
     if (signature(code.kernel).counted) emitted.operations[code.kernel] = code.operations;
-  emitted.files[model.name + ".hpp"] = fill_template(embedded::model_hpp_template, values);
-  emitted.files[model.name + ".cpp"] = fill_template(embedded::model_cpp_template, values);
-  emitted.files[model.name + "_runner.cpp"] = fill_template(embedded::runner_cpp_template, values);
+  const std::string name = emitted_name(model.name, scalar);
+  emitted.files[name + ".hpp"] = fill_template(embedded::model_hpp_template, values);
+  emitted.files[name + ".cpp"] = fill_template(embedded::model_cpp_template, values);
+  if (scalar.is_double())  // the runner is the runtime's, which is double
+    emitted.files[name + "_runner.cpp"] = fill_template(embedded::runner_cpp_template, values);
   return emitted;
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "codegen/kernel_table.hpp"
+#include "codegen/scalar_type.hpp"
 #include "kane/equations.hpp"
 #include "model/model.hpp"
 #include "symbolic/program.hpp"
@@ -24,7 +25,13 @@ struct EmitOptions {
   /// The Jacobian kernels of implicit integration (forcing_jacobian, ...):
   /// optional because they can take longer to compile than the rest.
   bool jacobians = false;
+  /// The floating-point type of the kernels. Float models (not with loops or
+  /// Jacobians) are named <name>_float and have no runner and no runtime face.
+  Precision precision = Precision::double_precision;
 };
+
+/// The name of the emitted files and namespace: the model's, "_float" added for float.
+std::string emitted_name(const std::string& model_name, const ScalarType& scalar);
 
 /// model_hash: a digest of the model file, quoted in the header comment.
 EmittedModel emit_model(const model::Model& model, const kane::Equations& equations,

@@ -11,11 +11,11 @@ constexpr std::size_t kColumnLimit = 110;  // as .clang-format
 bool identifier_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
 
 std::vector<std::string> typed_arguments(const KernelSignature& signature, bool mark_unused,
-                                         const std::string& body) {
+                                         const std::string& body, const ScalarType& scalar) {
   std::vector<std::string> out;
   for (const KernelArgument& a : arguments(signature)) {
     const bool unused = mark_unused && !names_identifier(body, a.name);
-    out.push_back((unused ? "[[maybe_unused]] " : "") + a.type + " " + a.name);
+    out.push_back((unused ? "[[maybe_unused]] " : "") + scalar.in_type(a.type) + " " + a.name);
   }
   return out;
 }
@@ -82,22 +82,22 @@ std::string prototype(const std::string& head, const std::vector<std::string>& a
   return text;
 }
 
-std::string declaration(const KernelSignature& signature) {
+std::string declaration(const KernelSignature& signature, const ScalarType& scalar) {
   return std::string(signature.doc) + "\n" +
-         prototype(std::string(signature.returns) + " " + signature.name,
-                   typed_arguments(signature, false, ""), ";") +
+         prototype(scalar.in_type(signature.returns) + " " + signature.name,
+                   typed_arguments(signature, false, "", scalar), ";") +
          "\n";
 }
 
-std::string definition(const KernelSignature& signature, const std::string& body) {
-  return prototype(std::string(signature.returns) + " " + signature.name,
-                   typed_arguments(signature, true, body), " {") +
+std::string definition(const KernelSignature& signature, const std::string& body, const ScalarType& scalar) {
+  return prototype(scalar.in_type(signature.returns) + " " + signature.name,
+                   typed_arguments(signature, true, body, scalar), " {") +
          "\n" + body + "}\n";
 }
 
 std::string system_forwarder(const KernelSignature& signature, const std::string& model_name) {
   return prototype(std::string("static ") + signature.returns + " " + signature.name,
-                   typed_arguments(signature, false, ""), " {", "  ") +
+                   typed_arguments(signature, false, "", ScalarType()), " {", "  ") +
          "\n    " + returning(signature) + call(signature, "::kanegen_models::" + model_name + "::", false) +
          ";\n  }\n";
 }

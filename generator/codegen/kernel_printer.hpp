@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "codegen/kernel_table.hpp"
+#include "codegen/scalar_type.hpp"
 
 namespace kanegen::codegen {
 
@@ -25,11 +26,12 @@ struct KernelCode {
 std::string prototype(const std::string& head, const std::vector<std::string>& arguments,
                       const std::string& tail, const std::string& indent = "");
 
-/// The documented declaration, ending in ";\n".
-std::string declaration(const KernelSignature& signature);
+/// The documented declaration, ending in ";\n", in the floating-point type `scalar`.
+std::string declaration(const KernelSignature& signature, const ScalarType& scalar = ScalarType());
 /// The definition; arguments the body never names are [[maybe_unused]].
-std::string definition(const KernelSignature& signature, const std::string& body);
-/// The static member of `System` that calls the kernel of `model_name`.
+std::string definition(const KernelSignature& signature, const std::string& body,
+                       const ScalarType& scalar = ScalarType());
+/// The static member of `System` that calls the kernel of `model_name` (double only: the runtime's face).
 std::string system_forwarder(const KernelSignature& signature, const std::string& model_name);
 /// The statement of kernel_table<Table>() that stores the kernel, with the
 /// Params argument passed as `const void*` (or `void*`).

@@ -20,6 +20,7 @@ struct Derivation {
   const kane::Equations& eq;
   const symbolic::Variables& vars;
   ExpressionGraph& graph;
+  ScalarType scalar;  ///< of the emitted code
   /// The speeds solved for (not prescribed), and each speed's index among
   /// them (-1 for a prescribed one).
   std::vector<int> solved, local;
@@ -37,8 +38,8 @@ struct Derivation {
   }
 };
 
-KernelCode printed(Kernel kernel, const ExpressionGraph& graph, const std::vector<Assignment>& assignments) {
-  const PrintedKernel p = print_kernel(graph, assignments);
+KernelCode printed(Kernel kernel, const Derivation& d, const std::vector<Assignment>& assignments) {
+  const PrintedKernel p = print_kernel(d.graph, assignments, d.scalar);
   return {kernel, p.body, p.operations, ""};
 }
 
@@ -51,19 +52,20 @@ void split_speeds(Derivation& d) {
     }
 }
 
-/// `double ap<i> = 0.0;` then the acceleration of the piece in force.
+/// `double ap<i> = 0.0;` (or float) then the acceleration of the piece in force.
 void print_prescribed_accelerations(Derivation& d) {
   for (const kane::PrescribedSpeed& ps : d.eq.prescribed) {
     const std::string a = symbolic::prescribed_acceleration_name(ps.speed);
     std::string& text = d.prescribed.body;
-    text += "  double " + a + " = 0.0;  // prescribed acceleration of " + d.eq.speed_names[ps.speed] + "\n";
+    text += "  " + std::string(d.scalar.name()) + " " + a + " = " + d.scalar.literal(0.0) +
+            ";  // prescribed acceleration of " + d.eq.speed_names[ps.speed] + "\n";
     for (std::size_t k = 0; k < ps.pieces.size(); ++k) {
       const kane::PrescribedSpeed::Piece& piece = ps.pieces[k];
-      const PrintedKernel p =
-          print_kernel(d.graph, {{a, d.graph.add(piece.acceleration)}}, "    ", "x" + a + "_" + str(k) + "_");
+      const PrintedKernel p = print_kernel(d.graph, {{a, d.graph.add(piece.acceleration)}}, d.scalar, "    ",
+                                           "x" + a + "_" + str(k) + "_");
       d.prescribed.operations += p.operations;
       text += std::string(k == 0 ? "  " : " else ") +
-              (piece.has_until ? "if (t < " + format_double(piece.until) + ") " : "") + "{\n" + p.body +
+              (piece.has_until ? "if (t < " + d.scalar.literal(piece.until) + ") " : "") + "{\n" + p.body +
               "  }";
     }
     text += "\n";
@@ -78,11 +80,22 @@ std::string given_accelerations(const Derivation& d) {
   return s;
 }
 
+/// The names compared by a loop of its own rather than strcmp: the kernels
+/// need nothing from the C library beyond <math.h> (freestanding targets).
 KernelCode set_parameter_kernel(const Derivation& d) {
   std::string body;
+  if (!d.model.parameters.empty())
+    body +=
+        "  const auto is = [name](const char* candidate) {\n"
+        "    const char* c = name;\n"
+        "    while (*c != '\\0' && *c == *candidate) {\n"
+        "      ++c;\n"
+        "      ++candidate;\n"
+        "    }\n"
+        "    return *c == *candidate;\n"
+        "  };\n";
   for (const model::Parameter& par : d.model.parameters)
-    body += "  if (std::strcmp(name, \"" + par.name + "\") == 0) {\n    p." + par.name +
-            " = value;\n    return true;\n  }\n";
+    body += "  if (is(\"" + par.name + "\")) {\n    p." + par.name + " = value;\n    return true;\n  }\n";
   return {Kernel::set_parameter, body + "  return false;\n", 0, ""};
 }
 
@@ -90,7 +103,7 @@ KernelCode get_parameter_kernel(const Derivation& d) {
   std::string body = "  switch (i) {\n";
   for (std::size_t i = 0; i < d.model.parameters.size(); ++i)
     body += "    case " + str(static_cast<long>(i)) + ": return p." + d.model.parameters[i].name + ";\n";
-  return {Kernel::get_parameter, body + "    default: return 0.0;\n  }\n", 0, ""};
+  return {Kernel::get_parameter, body + "    default: return " + d.scalar.literal(0.0) + ";\n  }\n", 0, ""};
 }
 
 KernelCode initial_state_kernel(const Derivation& d) {
@@ -101,7 +114,7 @@ KernelCode initial_state_kernel(const Derivation& d) {
   }
   return {Kernel::initial_state,
           "  for (int i = 0; i < NQ; ++i) q[i] = q0[i];\n  for (int i = 0; i < NU; ++i) u[i] = u0[i];\n" +
-              print_kernel(d.graph, initial).body,
+              print_kernel(d.graph, initial, d.scalar).body,
           0, ""};
 }
 
@@ -109,13 +122,13 @@ KernelCode mass_matrix_kernel(const Derivation& d) {
   std::vector<Assignment> mass;
   for (int k = 0; k < d.n() * d.n(); ++k)
     mass.push_back({"M[" + str(k) + "]", d.graph.add(d.eq.mass_matrix[k])});
-  return printed(Kernel::mass_matrix, d.graph, mass);
+  return printed(Kernel::mass_matrix, d, mass);
 }
 
 KernelCode forcing_kernel(const Derivation& d) {
   std::vector<Assignment> force;
   for (int i = 0; i < d.n(); ++i) force.push_back({"f[" + str(i) + "]", d.graph.add(d.eq.forcing[i])});
-  return printed(Kernel::forcing, d.graph, force);
+  return printed(Kernel::forcing, d, force);
 }
 
 /// An open tree: M and the right-hand side as locals, then the LDL^T
@@ -130,7 +143,8 @@ KernelCode tree_dynamics_kernel(const Derivation& d) {
       if (li < 0 || lj < 0 || lj > li) continue;
       const Node& entry = d.graph.node(node);
       nonzero[li * d.ns() + lj] = !(entry.op == Op::number && entry.value == 0.0);
-      if (nonzero[li * d.ns() + lj]) dynamics.push_back({"const double m" + str(li) + "_" + str(lj), node});
+      if (nonzero[li * d.ns() + lj])
+        dynamics.push_back({"const " + std::string(d.scalar.name()) + " m" + str(li) + "_" + str(lj), node});
     }
   for (int i = 0; i < d.n(); ++i) {
     const int node = d.graph.add(d.eq.forcing[i]);
@@ -138,8 +152,8 @@ KernelCode tree_dynamics_kernel(const Derivation& d) {
     dynamics.push_back({"udot[" + str(i) + "]",
                         d.vars.prescribed_acceleration.empty() ? node : d.graph.add(d.solved_rhs(i))});
   }
-  const PrintedKernel body = print_kernel(d.graph, dynamics);
-  const UnrolledLdlt solve = unrolled_ldlt(nonzero, d.solved);
+  const PrintedKernel body = print_kernel(d.graph, dynamics, d.scalar);
+  const UnrolledLdlt solve = unrolled_ldlt(nonzero, d.solved, d.scalar);
   return {Kernel::forward_dynamics,
           d.prescribed.body + body.body + solve.text + given_accelerations(d) + "  return 0;\n",
           body.operations + solve.operations + d.prescribed.operations,
@@ -150,21 +164,21 @@ KernelCode constraints_kernel(const Derivation& d) {
   std::vector<Assignment> phi;
   for (int c = 0; c < d.eq.loops.size(); ++c)
     phi.push_back({"phi[" + str(c) + "]", d.graph.add(d.eq.loops.phi[c])});
-  return printed(Kernel::constraints, d.graph, phi);
+  return printed(Kernel::constraints, d, phi);
 }
 
 KernelCode constraint_jacobian_kernel(const Derivation& d) {
   std::vector<Assignment> jacobian;
   for (int k = 0; k < d.eq.loops.size() * d.n(); ++k)
     jacobian.push_back({"C[" + str(k) + "]", d.graph.add(d.eq.loops.jacobian[k])});
-  return printed(Kernel::constraint_jacobian, d.graph, jacobian);
+  return printed(Kernel::constraint_jacobian, d, jacobian);
 }
 
 KernelCode constraint_bias_kernel(const Derivation& d) {
   std::vector<Assignment> bias;
   for (int c = 0; c < d.eq.loops.size(); ++c)
     bias.push_back({"gamma[" + str(c) + "]", d.graph.add(d.eq.loops.bias[c])});
-  return printed(Kernel::constraint_bias, d.graph, bias);
+  return printed(Kernel::constraint_bias, d, bias);
 }
 
 /// Closed loops: M, C and the right-hand sides over the solved speeds, then
@@ -189,7 +203,7 @@ KernelCode constrained_dynamics_kernel(const Derivation& d) {
           {"Ms[" + str(i * ns + j) + "]", d.graph.add(d.eq.mass_matrix[d.solved[i] * n + d.solved[j]])});
   for (int i = 0; i < ns; ++i)
     saddle.push_back({"b[" + str(i) + "]", d.graph.add(d.solved_rhs(d.solved[i]))});
-  const PrintedKernel body = print_kernel(d.graph, saddle);
+  const PrintedKernel body = print_kernel(d.graph, saddle, d.scalar);
   std::string unpack;  // the solved accelerations back into udot, the prescribed ones given
   for (int i = 0; i < ns; ++i) unpack += "  udot[" + str(d.solved[i]) + "] = b[" + str(i) + "];\n";
   return {Kernel::constrained_dynamics,
@@ -211,13 +225,13 @@ KernelCode coordinate_rates_kernel(const Derivation& d) {
   std::vector<Assignment> rates;
   for (int i = 0; i < d.eq.nq; ++i)
     rates.push_back({"qdot[" + str(i) + "]", d.graph.add(d.eq.coordinate_rates[i])});
-  return printed(Kernel::coordinate_rates, d.graph, rates);
+  return printed(Kernel::coordinate_rates, d, rates);
 }
 
-KernelCode energy_kernel(Kernel kernel, const char* variable, const GiNaC::ex& energy,
-                         ExpressionGraph& graph) {
-  KernelCode code = printed(kernel, graph, {{variable, graph.add(energy)}});
-  code.body = "  double " + std::string(variable) + ";\n" + code.body + "  return " + variable + ";\n";
+KernelCode energy_kernel(Kernel kernel, const char* variable, const GiNaC::ex& energy, const Derivation& d) {
+  KernelCode code = printed(kernel, d, {{variable, d.graph.add(energy)}});
+  code.body = "  " + std::string(d.scalar.name()) + " " + std::string(variable) + ";\n" + code.body +
+              "  return " + variable + ";\n";
   return code;
 }
 
@@ -228,7 +242,7 @@ KernelCode generalized_momentum_kernel(const Derivation& d) {
     for (int s = 0; s < d.n(); ++s) h += d.eq.mass_matrix[r * d.n() + s] * d.vars.u[s];
     momentum.push_back({"h[" + str(r) + "]", d.graph.add(h)});
   }
-  return printed(Kernel::generalized_momentum, d.graph, momentum);
+  return printed(Kernel::generalized_momentum, d, momentum);
 }
 
 /// The loop forces among the outputs: lambda of the dynamics at zero inputs.
@@ -242,7 +256,7 @@ std::string reaction_outputs(const Derivation& d) {
       "] = {};\n"
       "  const bool solved = constrained_dynamics(p, t, q, u, no_inputs, reaction_udot, lambda) == 0;\n";
   for (const auto& [index, row] : d.eq.reaction_outputs)
-    s += "  y[" + str(index) + "] = solved ? lambda[" + str(row) + "] : std::nan(\"\");\n";
+    s += "  y[" + str(index) + "] = solved ? lambda[" + str(row) + "] : NAN;\n";
   return s;
 }
 
@@ -250,7 +264,7 @@ KernelCode outputs_kernel(const Derivation& d) {
   std::vector<Assignment> outputs;
   for (std::size_t i = 0; i < d.eq.outputs.size(); ++i)
     outputs.push_back({"y[" + str(static_cast<long>(i)) + "]", d.graph.add(d.eq.outputs[i])});
-  KernelCode code = printed(Kernel::outputs, d.graph, outputs);
+  KernelCode code = printed(Kernel::outputs, d, outputs);
   code.body += reaction_outputs(d);
   return code;
 }
@@ -296,7 +310,7 @@ KernelCode forcing_jacobian_kernel(const Derivation& d) {
   const std::vector<Assignment> by_speed =
       jacobian_entries(d.graph, forcing, input_nodes(d.graph, d.vars.u), "dfdu", "NU * NU", fill);
   entries.insert(entries.end(), by_speed.begin(), by_speed.end());
-  const PrintedKernel p = print_kernel(d.graph, entries);
+  const PrintedKernel p = print_kernel(d.graph, entries, d.scalar);
   return {Kernel::forcing_jacobian, fill + p.body, p.operations, ""};
 }
 
@@ -313,7 +327,7 @@ KernelCode mass_matrix_product_jacobian_kernel(const Derivation& d) {
   std::string fill;
   const std::vector<Assignment> entries =
       jacobian_entries(d.graph, products, input_nodes(d.graph, d.vars.q), "dMa_dq", "NU * NQ", fill);
-  const PrintedKernel p = print_kernel(d.graph, entries);
+  const PrintedKernel p = print_kernel(d.graph, entries, d.scalar);
   return {Kernel::mass_matrix_product_jacobian, fill + p.body, p.operations, ""};
 }
 
@@ -331,7 +345,7 @@ KernelCode constraint_force_jacobian_kernel(const Derivation& d) {
   std::string fill;
   const std::vector<Assignment> entries =
       jacobian_entries(d.graph, forces, input_nodes(d.graph, d.vars.q), "dCl_dq", "NU * NQ", fill);
-  const PrintedKernel p = print_kernel(d.graph, entries);
+  const PrintedKernel p = print_kernel(d.graph, entries, d.scalar);
   return {Kernel::constraint_force_jacobian, fill + p.body, p.operations, ""};
 }
 
@@ -339,8 +353,8 @@ KernelCode constraint_force_jacobian_kernel(const Derivation& d) {
 
 std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Equations& eq,
                                        const symbolic::Variables& vars, ExpressionGraph& graph,
-                                       bool jacobians) {
-  Derivation d{model, eq, vars, graph, {}, {}, {}};
+                                       bool jacobians, const ScalarType& scalar) {
+  Derivation d{model, eq, vars, graph, scalar, {}, {}, {}};
   split_speeds(d);
   print_prescribed_accelerations(d);
   std::vector<KernelCode> kernels{set_parameter_kernel(d), get_parameter_kernel(d), initial_state_kernel(d),
@@ -348,8 +362,8 @@ std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Eq
   const KernelCode constrained = d.loops() ? constrained_dynamics_kernel(d) : KernelCode{};
   kernels.push_back(d.loops() ? loop_dynamics_kernel(constrained) : tree_dynamics_kernel(d));
   kernels.push_back(coordinate_rates_kernel(d));
-  kernels.push_back(energy_kernel(Kernel::kinetic_energy, "T", eq.kinetic_energy, graph));
-  kernels.push_back(energy_kernel(Kernel::potential_energy, "V", eq.potential_energy, graph));
+  kernels.push_back(energy_kernel(Kernel::kinetic_energy, "T", eq.kinetic_energy, d));
+  kernels.push_back(energy_kernel(Kernel::potential_energy, "V", eq.potential_energy, d));
   kernels.push_back(generalized_momentum_kernel(d));
   kernels.push_back(outputs_kernel(d));
   if (d.loops()) {

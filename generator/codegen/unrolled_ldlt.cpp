@@ -3,7 +3,9 @@
 
 namespace kanegen::codegen {
 
-UnrolledLdlt unrolled_ldlt(const std::vector<bool>& nonzero_m, const std::vector<int>& solved) {
+UnrolledLdlt unrolled_ldlt(const std::vector<bool>& nonzero_m, const std::vector<int>& solved,
+                           const ScalarType& scalar) {
+  const std::string real = std::string("  const ") + scalar.name() + " ";
   const int n = static_cast<int>(solved.size());
   auto u = [&](int i) { return "udot[" + std::to_string(solved[i]) + "]"; };
   std::vector<bool> nz(nonzero_m);  // structure of L, lower triangle, row-major
@@ -17,13 +19,13 @@ UnrolledLdlt unrolled_ldlt(const std::vector<bool>& nonzero_m, const std::vector
     std::string pivot = m(j, j);
     for (int k = 0; k < j; ++k)
       if (nz[j * n + k]) {
-        s += "  const double " + ld(j, k) + " = " + l(j, k) + "*" + d(k) + ";\n";
+        s += real + ld(j, k) + " = " + l(j, k) + "*" + d(k) + ";\n";
         pivot += " - " + l(j, k) + "*" + ld(j, k);
         ops += 3;
       }
-    s += "  const double " + d(j) + " = " + pivot + ";\n";
-    s += "  if (!(" + d(j) + " > 0.0)) return " + std::to_string(j + 1) + ";\n";
-    s += "  const double inv_" + d(j) + " = 1.0/" + d(j) + ";\n";
+    s += real + d(j) + " = " + pivot + ";\n";
+    s += "  if (!(" + d(j) + " > " + scalar.literal(0.0) + ")) return " + std::to_string(j + 1) + ";\n";
+    s += real + "inv_" + d(j) + " = " + scalar.literal(1.0) + "/" + d(j) + ";\n";
     ops += 1;
     for (int i = j + 1; i < n; ++i) {
       std::string entry = nonzero_m[i * n + j] ? m(i, j) : "";
@@ -34,7 +36,7 @@ UnrolledLdlt unrolled_ldlt(const std::vector<bool>& nonzero_m, const std::vector
         }
       if (entry.empty()) continue;
       nz[i * n + j] = true;
-      s += "  const double " + l(i, j) + " = (" + entry + ")*inv_" + d(j) + ";\n";
+      s += real + l(i, j) + " = (" + entry + ")*inv_" + d(j) + ";\n";
       ops += 1;
     }
   }

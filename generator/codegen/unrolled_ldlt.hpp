@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "codegen/scalar_type.hpp"
+
 namespace kanegen::codegen {
 
 struct UnrolledLdlt {
@@ -17,7 +19,8 @@ struct UnrolledLdlt {
 /// right-hand side on entry; `nonzero_m` (row-major, ns*ns) marks the
 /// entries that are not zero by the tree's structure, and entries that stay
 /// zero in L are left out. Returns k from the kernel when pivot k is not
-/// positive.
-UnrolledLdlt unrolled_ldlt(const std::vector<bool>& nonzero_m, const std::vector<int>& solved);
+/// positive. The locals are of type `scalar`.
+UnrolledLdlt unrolled_ldlt(const std::vector<bool>& nonzero_m, const std::vector<int>& solved,
+                           const ScalarType& scalar);
 
 }  // namespace kanegen::codegen

@@ -11,6 +11,7 @@
 #include "codegen/emitter.hpp"
 #include "kane/equations.hpp"
 #include "model/fnv1a.hpp"
+#include "model/model_error.hpp"
 #include "symbolic/program.hpp"
 #include "symbolic/shape_function.hpp"
 #include "symbolic/variables.hpp"
@@ -20,6 +21,20 @@ namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// Float kernels are written for open trees: the saddle-point solve of the
+/// loops and the Jacobian kernels exist in double only.
+void check_precision(const model::Model& model, const GenerateOptions& options) {
+  if (options.precision == codegen::Precision::double_precision) return;
+  if (options.jacobians)
+    throw model::ModelError(model.source_file, "", "--precision float cannot be combined with --jacobians",
+                            "generate the Jacobian kernels in double (leave out --precision)");
+  if (!model.loops.empty())
+    throw model::ModelError(model.source_file, "",
+                            "--precision float is for open trees, and this model closes " +
+                                std::to_string(model.loops.size()) + " loop(s)",
+                            "generate it in double (leave out --precision)");
 }
 
 }  // namespace
@@ -45,6 +60,7 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
   const model::Model model = model::load_model(model_path, options);
   const std::string hash = digest(read_file(model_path));
   out.seconds.load = seconds_since(start);
+  check_precision(model, generate_options);
 
   // The finite-element bodies: element matrices, invariants, modal bases.
   kane::FlexibleBodies flexible;
@@ -68,7 +84,8 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
     kane::Equations equations = kane::derive_equations(model, vars, program, method, flexible);
     out.seconds.derive += seconds_since(start);
     start = std::chrono::steady_clock::now();
-    codegen::EmittedModel candidate = codegen::emit_model(model, equations, vars, program, hash);
+    codegen::EmittedModel candidate =
+        codegen::emit_model(model, equations, vars, program, hash, {false, generate_options.precision});
     out.seconds.emit += seconds_since(start);
     if (emitted.files.empty() || candidate.operations.at(codegen::Kernel::forward_dynamics) <
                                      emitted.operations.at(codegen::Kernel::forward_dynamics)) {
@@ -81,7 +98,8 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
   // double the cost of the option for code that is thrown away.
   if (generate_options.jacobians) {
     start = std::chrono::steady_clock::now();
-    emitted = codegen::emit_model(model, chosen, vars, chosen_program, hash, {true});
+    emitted =
+        codegen::emit_model(model, chosen, vars, chosen_program, hash, {true, generate_options.precision});
     out.seconds.jacobians = seconds_since(start);
   }
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "codegen/kernel_table.hpp"
+#include "codegen/scalar_type.hpp"
 #include "model/load.hpp"
 
 namespace kanegen::pipeline {
@@ -30,6 +31,9 @@ struct GenerateOptions {
   /// The Jacobian kernels of implicit integration (`kanegen generate
   /// --jacobians`); off by default, since they can take longer to compile than the rest.
   bool jacobians = false;
+  /// The kernels' floating-point type (`--precision float`: <name>_float.hpp
+  /// and .cpp, no runner; not for models with loops or with Jacobians).
+  codegen::Precision precision = codegen::Precision::double_precision;
 };
 
 /// Runs every stage on the model file. Throws model::ModelError for a bad

@@ -67,6 +67,45 @@ TEST_CASE("generate writes a header, a source and a runner", "[cli]") {
   CHECK(slurp(dir / "double_pendulum.hpp").find("struct Params") != std::string::npos);
 }
 
+TEST_CASE("generate --precision float writes float kernels, the same on every run, and no runner", "[cli]") {
+  const fs::path first = scratch() / "gen_float_1", second = scratch() / "gen_float_2";
+  for (const fs::path& dir : {first, second})
+    REQUIRE(kanegen("generate " + model("double_pendulum.json") + " -o " + dir.string() +
+                    " --quiet --precision float")
+                .status == 0);
+  CHECK(!fs::exists(first / "double_pendulum_float_runner.cpp"));
+  for (const char* f : {"double_pendulum_float.hpp", "double_pendulum_float.cpp"}) {
+    INFO(f);
+    const std::string text = slurp(first / f);
+    CHECK(text == slurp(second / f));
+    CHECK(text.find("double ") == std::string::npos);  // "double_pendulum" is the name
+    CHECK(text.find("std::") == std::string::npos);
+    CHECK(text.find("namespace double_pendulum_float") != std::string::npos);
+  }
+  const std::string source = slurp(first / "double_pendulum_float.cpp");
+  CHECK(source.find("sinf(q[0])") != std::string::npos);
+  CHECK(source.find("float m1 = ") == std::string::npos);  // parameters live in the header
+  CHECK(slurp(first / "double_pendulum_float.hpp").find("float m1 = 1.0f;") != std::string::npos);
+  CHECK(kanegen("generate --help").out.find("--precision") != std::string::npos);
+}
+
+TEST_CASE("generate --precision float refuses loops and Jacobians, and writes nothing", "[cli]") {
+  const fs::path dir = scratch() / "gen_float_refused";
+  const Result loops =
+      kanegen("generate " + model("four_bar.json") + " -o " + dir.string() + " --precision float");
+  CHECK(loops.status != 0);
+  CHECK(loops.err.find(
+            "four_bar.json: /: --precision float is for open trees, and this model closes 1 loop(s); "
+            "generate it in double (leave out --precision)") != std::string::npos);
+  const Result jacobians =
+      kanegen("generate " + model("arm7.urdf") + " -o " + dir.string() + " --precision float --jacobians");
+  CHECK(jacobians.status != 0);
+  CHECK(jacobians.err.find("--precision float cannot be combined with --jacobians") != std::string::npos);
+  CHECK(kanegen("generate " + model("arm7.urdf") + " -o " + dir.string() + " --precision half").status != 0);
+  CHECK(!fs::exists(dir / "four_bar_float.cpp"));
+  CHECK(!fs::exists(dir / "arm7_float.cpp"));
+}
+
 TEST_CASE("generate --jacobians adds the Jacobian kernels, and only then", "[cli][jacobians]") {
   const fs::path plain = scratch() / "gen_plain", with = scratch() / "gen_jacobians";
   REQUIRE(kanegen("generate " + model("four_bar.json") + " -o " + plain.string() + " --quiet").status == 0);

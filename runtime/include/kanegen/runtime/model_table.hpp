@@ -7,6 +7,8 @@
 #pragma once
 
 #include <cstddef>
+#include <new>
+#include <type_traits>
 
 namespace kanegen::runtime {
 
@@ -35,6 +37,15 @@ struct ModelTable {
   /// The size of Params, and its default construction in storage of that size.
   std::size_t parameters_size = 0;
   void (*default_parameters)(void* p) = nullptr;
+
+  /// The default P in the storage p, for a generated kernel_table's
+  /// default_parameters (here, so that the generated header includes nothing).
+  template <class P>
+  static void construct_parameters(void* p) {
+    static_assert(std::is_trivially_copyable<P>::value && alignof(P) <= alignof(double),
+                  "the runtime keeps Params in storage of doubles");
+    new (p) P();
+  }
 
   // The kernels (the generated header documents each).
   bool (*set_parameter)(void* p, const char* name, double value) = nullptr;
