@@ -1,17 +1,18 @@
 # SPDX-License-Identifier: MIT
-# kanegen_add_model(<target> <model file> [NAME <model name>] [RUNNER] [JACOBIANS])
+# kanegen_add_model(<target> <model file> [NAME <model name>] [RUNNER] [JACOBIANS] [CONTROLLER])
 #
 # Generates the model's kernels at build time (again whenever the model file
 # or the kanegen generator changes) and makes <target> a static library with
 # them: include "<model name>.hpp" and call kanegen_models::<model name>::...
 # With RUNNER, also builds <target>_runner, the simulate/eval/info program.
 # With JACOBIANS, the model also has the Jacobian kernels of implicit
-# integration (kanegen generate --jacobians).
+# integration (kanegen generate --jacobians); with CONTROLLER, the quadratic
+# kernels for controllers too (kanegen generate --controller).
 #
 # The model name is read from the file (JSON "name", URDF <robot name>, made
 # a C++ identifier as kanegen does); NAME overrides it if your file is unusual.
 function(kanegen_add_model target model)
-  cmake_parse_arguments(ARG "RUNNER;JACOBIANS" "NAME" "" ${ARGN})
+  cmake_parse_arguments(ARG "RUNNER;JACOBIANS;CONTROLLER" "NAME" "" ${ARGN})
   get_filename_component(model_path ${model} ABSOLUTE)
   if(NOT EXISTS ${model_path})
     message(FATAL_ERROR "kanegen_add_model(${target}): model file ${model_path} does not exist")
@@ -41,7 +42,10 @@ function(kanegen_add_model target model)
   set(out ${CMAKE_CURRENT_BINARY_DIR}/kanegen_generated/${target})
   set(options)
   if(ARG_JACOBIANS)
-    set(options --jacobians)
+    list(APPEND options --jacobians)
+  endif()
+  if(ARG_CONTROLLER)
+    list(APPEND options --controller)
   endif()
   add_custom_command(
     OUTPUT ${out}/${name}.hpp ${out}/${name}.cpp ${out}/${name}_runner.cpp

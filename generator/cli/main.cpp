@@ -141,7 +141,14 @@ struct GenerateCommand {
   RunOptions run;
   std::string out_dir;
   bool jacobians = false;
+  bool controller = false;
 };
+
+constexpr const char* kControllerHelp =
+    "also emit the quadratic kernels for controllers (coriolis_matrix, output_jacobian, "
+    "output_jacobian_rate, "
+    "linearize) and the Jacobian kernels they use; trees without prescribed motions only "
+    "(docs/controllers.md)";
 
 constexpr const char* kJacobiansHelp =
     "also emit the Jacobian kernels of implicit integration (forcing_jacobian, "
@@ -153,17 +160,21 @@ void add_generate(CLI::App& app, GenerateCommand& c) {
   add_common(c.command, c.run);
   c.command->add_option("-o,--output", c.out_dir, "output directory (created if needed)")->required();
   c.command->add_flag("--jacobians", c.jacobians, kJacobiansHelp);
+  c.command->add_flag("--controller", c.controller, kControllerHelp);
 }
 
 int run_generate(const GenerateCommand& c) {
   const BuildOptions b = build_options(c.run);
   kanegen::cli::check_output_directory(c.out_dir);
-  const kanegen::pipeline::GeneratedModel g = kanegen::pipeline::generate(c.run.model, b.load, {c.jacobians});
+  const kanegen::pipeline::GeneratedModel g =
+      kanegen::pipeline::generate(c.run.model, b.load, {c.jacobians, c.controller});
   kanegen::codegen::write_files_atomically(c.out_dir, g.files);
   if (!c.run.quiet) {
     std::printf("%s: %d coordinates, %zu intermediates; load %.3f s, derive %.3f s, emit %.3f s",
                 g.name.c_str(), g.nq, g.intermediates, g.seconds.load, g.seconds.derive, g.seconds.emit);
-    if (c.jacobians) std::printf(", emit with jacobians %.3f s", g.seconds.jacobians);
+    if (c.jacobians || c.controller)
+      std::printf(", emit with %s %.3f s", c.controller ? "controller kernels" : "jacobians",
+                  g.seconds.jacobians);
     std::printf("\n");
     for (const auto& [kernel, count] : g.operations)
       std::printf("  %-28s %8ld operations\n", kanegen::codegen::signature(kernel).name, count);

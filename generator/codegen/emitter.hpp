@@ -24,6 +24,9 @@ struct EmitOptions {
   /// The Jacobian kernels of implicit integration (forcing_jacobian, ...):
   /// optional because they can take longer to compile than the rest.
   bool jacobians = false;
+  /// The quadratic controller kernels (coriolis_matrix, output Jacobians,
+  /// linearize); they need `jacobians` too.
+  bool controller = false;
 };
 
 /// model_hash: a digest of the model file, quoted in the header comment.

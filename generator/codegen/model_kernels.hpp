@@ -14,10 +14,11 @@
 
 namespace kanegen::codegen {
 
-/// In kernel-table order; the Jacobian kernels only with `jacobians`.
+/// In kernel-table order; the Jacobian kernels only with `jacobians`, the
+/// quadratic controller kernels only with `controller` (which needs `jacobians`).
 std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Equations& equations,
                                        const symbolic::Variables& vars, ExpressionGraph& graph,
-                                       bool jacobians = false);
+                                       bool jacobians = false, bool controller = false);
 
 /// The code of `kernel` in `kernels`; throws std::logic_error if it is missing.
 const KernelCode& find_kernel(const std::vector<KernelCode>& kernels, Kernel kernel);

@@ -11,6 +11,7 @@
 #include "codegen/emitter.hpp"
 #include "kane/equations.hpp"
 #include "model/fnv1a.hpp"
+#include "model/model_error.hpp"
 #include "symbolic/program.hpp"
 #include "symbolic/shape_function.hpp"
 #include "symbolic/variables.hpp"
@@ -20,6 +21,21 @@ namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// The controller kernels linearize and solve the tree's own M: a loop's
+/// constraint forces or a prescribed acceleration would make them wrong.
+void refuse_controller_kernels(const model::Model& model) {
+  const std::string why = "--controller supports trees without prescribed motions (docs/controllers.md)";
+  if (!model.loops.empty())
+    throw model::ModelError(model.source_file, model.loops.front().where,
+                            "the controller kernels are not made for closed loops",
+                            "generate without --controller; " + why);
+  for (const model::Joint& joint : model.joints)
+    if (joint.is_prescribed())
+      throw model::ModelError(model.source_file, joint.where + "/prescribed",
+                              "the controller kernels are not made for prescribed motions",
+                              "generate without --controller; " + why);
 }
 
 }  // namespace
@@ -45,6 +61,8 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
   const model::Model model = model::load_model(model_path, options);
   const std::string hash = digest(read_file(model_path));
   out.seconds.load = seconds_since(start);
+
+  if (generate_options.controller) refuse_controller_kernels(model);
 
   // The finite-element bodies: element matrices, invariants, modal bases.
   kane::FlexibleBodies flexible;
@@ -79,9 +97,10 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
   }
   // The Jacobians only for the equations kept: differentiating both would
   // double the cost of the option for code that is thrown away.
-  if (generate_options.jacobians) {
+  if (generate_options.jacobians || generate_options.controller) {
     start = std::chrono::steady_clock::now();
-    emitted = codegen::emit_model(model, chosen, vars, chosen_program, hash, {true});
+    emitted =
+        codegen::emit_model(model, chosen, vars, chosen_program, hash, {true, generate_options.controller});
     out.seconds.jacobians = seconds_since(start);
   }
 
