@@ -20,8 +20,17 @@
 //   mass_matrix       mj_kinematics, mj_comPos, mj_crb (qM, MuJoCo's sparse
 //                     lower triangle; for a chain that is all of it);
 //   bias              mj_kinematics, mj_comPos, mj_comVel, mj_rne (qfrc_bias).
+// Inverse dynamics (tau for given q, u, udot; udot in [-2, 2] per state):
+//   kanegen/inverse_dynamics      the recursive kernel (M never formed);
+//   kanegen/M_udot_minus_f        the same from the existing kernels:
+//                                 mass_matrix, forcing (tau = 0), M udot - f;
+//   mujoco/mj_inverse             MuJoCo's inverse pipeline (qfrc_inverse),
+//                                 contacts disabled;
+//   mujoco/rne                    only what inverse_dynamics computes:
+//                                 mj_kinematics, mj_comPos, mj_comVel,
+//                                 mj_rne with accelerations.
 // Before timing, each model checks that the kernels and the MuJoCo variants
-// compute the same udot at the benchmark states; it aborts otherwise.
+// compute the same udot and tau at the benchmark states; it aborts otherwise.
 #include <benchmark/benchmark.h>
 #include <mujoco/mujoco.h>
 
@@ -81,8 +90,8 @@ struct Fixture {
   mjData* d = nullptr;
   typename S::Params p{};
   std::vector<int> qadr, dadr;  // MuJoCo qpos / dof address of coordinate i
-  std::vector<double> q, u;     // kStates x nu, kanegen order
-  std::vector<double> mq, mu;   // kStates x nv, MuJoCo qpos / qvel layout
+  std::vector<double> q, u, a;  // kStates x nu, kanegen order (a: the udot given to inverse dynamics)
+  std::vector<double> mq, mu, ma;  // kStates x nv, MuJoCo qpos / qvel / qacc layout
   std::vector<double> M, f, udot, tau, tmp;
 
   Fixture(std::string label_, const std::string& urdf) : label(std::move(label_)) {
@@ -101,8 +110,10 @@ struct Fixture {
     const int n = S::nu;
     q.resize(kStates * n);
     u.resize(kStates * n);
+    a.resize(kStates * n);
     mq.assign(kStates * m->nq, 0.0);
     mu.assign(kStates * m->nv, 0.0);
+    ma.assign(kStates * m->nv, 0.0);
     for (int k = 0; k < kStates; ++k) {
       for (int i = 0; i < n; ++i) {
         const int j = mj_name2id(m, mjOBJ_JOINT, S::coordinate_names()[i]);
@@ -116,6 +127,10 @@ struct Fixture {
         mq[k * m->nq + qadr[i]] = q[k * n + i];
         mu[k * m->nv + dadr[i]] = u[k * n + i];
       }
+      for (int i = 0; i < n; ++i) {  // after q and u: their draws stay those of the forward benchmarks
+        a[k * n + i] = -2.0 + 4.0 * unit(rng);
+        ma[k * m->nv + dadr[i]] = a[k * n + i];
+      }
     }
     M.assign(n * n, 0.0);
     f.assign(n, 0.0);
@@ -124,6 +139,7 @@ struct Fixture {
     tmp.assign(m->nv, 0.0);
     set_flags(false);
     verify();
+    verify_inverse();
   }
   ~Fixture() {
     mj_deleteData(d);
@@ -139,6 +155,50 @@ struct Fixture {
   void load_state(int k) {
     mju_copy(d->qpos, &mq[k * m->nq], m->nq);
     mju_copy(d->qvel, &mu[k * m->nv], m->nv);
+  }
+  void load_acceleration(int k) { mju_copy(d->qacc, &ma[k * m->nv], m->nv); }
+  void rne() {
+    mj_kinematics(m, d);
+    mj_comPos(m, d);
+    mj_comVel(m, d);
+    mj_rne(m, d, 1, tmp.data());
+  }
+  // M udot - f from the existing kernels.
+  void m_udot_minus_f(int k) {
+    const int n = S::nu;
+    S::mass_matrix(p, &q[k * n], M.data());
+    S::forcing(p, 0.0, &q[k * n], &u[k * n], tau.data(), f.data());
+    for (int i = 0; i < n; ++i) {
+      double s = -f[i];
+      for (int j = 0; j < n; ++j) s += M[i * n + j] * a[k * n + j];
+      udot[i] = s;  // the buffer holds the efforts here
+    }
+  }
+
+  // The inverse variants agree: inverse_dynamics, M udot - f, mj_inverse's
+  // qfrc_inverse and mj_rne with accelerations.
+  void verify_inverse() {
+    const int n = S::nu;
+    std::vector<double> effort(n);
+    double worst = 0.0;
+    for (int k = 0; k < kStates; ++k) {
+      S::inverse_dynamics(p, 0.0, &q[k * n], &u[k * n], &a[k * n], effort.data());
+      m_udot_minus_f(k);
+      load_state(k);
+      load_acceleration(k);
+      mj_inverse(m, d);
+      rne();
+      double scale = 1.0;
+      for (int i = 0; i < n; ++i) scale = std::max(scale, std::abs(d->qfrc_inverse[dadr[i]]));
+      for (int i = 0; i < n; ++i) {
+        const double ref = d->qfrc_inverse[dadr[i]];
+        worst = std::max({worst, std::abs(effort[i] - ref) / scale, std::abs(udot[i] - ref) / scale,
+                          std::abs(tmp[dadr[i]] - ref) / scale});
+      }
+    }
+    if (worst > 1e-6)
+      die(label + ": kanegen and MuJoCo inverse dynamics disagree, max rel. error " + std::to_string(worst));
+    std::fprintf(stderr, "%s: kanegen vs MuJoCo inverse dynamics max rel. error %.1e\n", label.c_str(), worst);
   }
   void smooth() {
     mj_kinematics(m, d);
@@ -247,6 +307,46 @@ void register_model(Fixture<S>* fx) {
       mj_comPos(fx->m, fx->d);
       mj_crb(fx->m, fx->d);
       benchmark::DoNotOptimize(fx->d->qM);
+      benchmark::ClobberMemory();
+      k = (k + 1) & (kStates - 1);
+    }
+  });
+  benchmark::RegisterBenchmark((l + "kanegen/inverse_dynamics").c_str(), [fx, n](benchmark::State& st) {
+    int k = 0;
+    for (auto _ : st) {
+      S::inverse_dynamics(fx->p, 0.0, &fx->q[k * n], &fx->u[k * n], &fx->a[k * n], fx->udot.data());
+      benchmark::DoNotOptimize(fx->udot.data());
+      benchmark::ClobberMemory();
+      k = (k + 1) & (kStates - 1);
+    }
+  });
+  benchmark::RegisterBenchmark((l + "kanegen/M_udot_minus_f").c_str(), [fx](benchmark::State& st) {
+    int k = 0;
+    for (auto _ : st) {
+      fx->m_udot_minus_f(k);
+      benchmark::DoNotOptimize(fx->udot.data());
+      benchmark::ClobberMemory();
+      k = (k + 1) & (kStates - 1);
+    }
+  });
+  benchmark::RegisterBenchmark((l + "mujoco/mj_inverse").c_str(), [fx](benchmark::State& st) {
+    int k = 0;
+    for (auto _ : st) {
+      fx->load_state(k);
+      fx->load_acceleration(k);
+      mj_inverse(fx->m, fx->d);
+      benchmark::DoNotOptimize(fx->d->qfrc_inverse);
+      benchmark::ClobberMemory();
+      k = (k + 1) & (kStates - 1);
+    }
+  });
+  benchmark::RegisterBenchmark((l + "mujoco/rne").c_str(), [fx](benchmark::State& st) {
+    int k = 0;
+    for (auto _ : st) {
+      fx->load_state(k);
+      fx->load_acceleration(k);
+      fx->rne();
+      benchmark::DoNotOptimize(fx->tmp.data());
       benchmark::ClobberMemory();
       k = (k + 1) & (kStates - 1);
     }

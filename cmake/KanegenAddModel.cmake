@@ -1,12 +1,13 @@
 # SPDX-License-Identifier: MIT
-# kanegen_add_model(<target> <model file> [NAME <model name>] [RUNNER] [JACOBIANS] [PRECISION float])
+# kanegen_add_model(<target> <model file> [NAME <model name>] [RUNNER] [JACOBIANS] [CONTROLLER] [PRECISION float])
 #
 # Generates the model's kernels at build time (again whenever the model file
 # or the kanegen generator changes) and makes <target> a static library with
 # them: include "<model name>.hpp" and call kanegen_models::<model name>::...
 # With RUNNER, also builds <target>_runner, the simulate/eval/info program.
 # With JACOBIANS, the model also has the Jacobian kernels of implicit
-# integration (kanegen generate --jacobians). With PRECISION float, the
+# integration (kanegen generate --jacobians); with CONTROLLER, the quadratic
+# kernels for controllers too (kanegen generate --controller). With PRECISION float, the
 # kernels are float (kanegen generate --precision float): include
 # "<model name>_float.hpp" and call kanegen_models::<model name>_float::...;
 # such a model has no runner (docs/embedded.md).
@@ -14,7 +15,7 @@
 # The model name is read from the file (JSON "name", URDF <robot name>, made
 # a C++ identifier as kanegen does); NAME overrides it if your file is unusual.
 function(kanegen_add_model target model)
-  cmake_parse_arguments(ARG "RUNNER;JACOBIANS" "NAME;PRECISION" "" ${ARGN})
+  cmake_parse_arguments(ARG "RUNNER;JACOBIANS;CONTROLLER" "NAME;PRECISION" "" ${ARGN})
   get_filename_component(model_path ${model} ABSOLUTE)
   if(NOT EXISTS ${model_path})
     message(FATAL_ERROR "kanegen_add_model(${target}): model file ${model_path} does not exist")
@@ -44,7 +45,10 @@ function(kanegen_add_model target model)
   set(out ${CMAKE_CURRENT_BINARY_DIR}/kanegen_generated/${target})
   set(options)
   if(ARG_JACOBIANS)
-    set(options --jacobians)
+    list(APPEND options --jacobians)
+  endif()
+  if(ARG_CONTROLLER)
+    list(APPEND options --controller)
   endif()
   set(runner_source ${out}/${name}_runner.cpp)
   if(ARG_PRECISION STREQUAL "float")

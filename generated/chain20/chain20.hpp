@@ -10,6 +10,8 @@
 //   kinetic_energy: 2137
 //   potential_energy: 941
 //   outputs: 0
+//   inverse_dynamics: 6627 (recursive; M udot - f from M and f: 12230)
+//   gravity: 1790
 //
 // Arrays are plain C arrays with their sizes in the comments; no function
 // allocates, throws or keeps state, and nothing beyond <math.h> is needed.
@@ -76,6 +78,18 @@ void generalized_momentum(const Params& p, const double* q, const double* u, dou
 
 /// y: NY, in output_names order.
 void outputs(const Params& p, double t, const double* q, const double* u, double* y);
+
+/// tau: NU, the generalized forces that give the accelerations udot (NU) at
+/// (t, q, u): tau = M udot - f with the inputs 0, by Newton and Euler's
+/// recursion over the tree (M is never formed; a model with flexible bodies
+/// forms M udot - f). On an actuated joint's row, the input it needs; with
+/// loops, the constraint forces are not included (docs/controllers.md).
+void inverse_dynamics(const Params& p, double t, const double* q, const double* u, const double* udot,
+                      double* tau);
+
+/// g: NU, the generalized gravity forces g = dV_gravity/dq, with the sign of
+/// M udot + C u + g = tau (what a controller compensates).
+void gravity(const Params& p, const double* q, double* g);
 
 /// Every kernel as a table of function pointers, for code that picks its
 /// model at run time: kanegen's runtime instantiates it with
@@ -183,6 +197,13 @@ struct System {
   }
   static void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
     ::kanegen_models::chain20::outputs(p, t, q, u, y);
+  }
+  static void inverse_dynamics(const Params& p, double t, const double* q, const double* u,
+                               const double* udot, double* tau) {
+    ::kanegen_models::chain20::inverse_dynamics(p, t, q, u, udot, tau);
+  }
+  static void gravity(const Params& p, const double* q, double* g) {
+    ::kanegen_models::chain20::gravity(p, q, g);
   }
   template <class Table>
   static Table kernel_table() {

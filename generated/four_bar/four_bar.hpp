@@ -10,6 +10,8 @@
 //   kinetic_energy: 43
 //   potential_energy: 22
 //   outputs: 23
+//   inverse_dynamics: 71 (recursive; M udot - f from M and f: 69)
+//   gravity: 33
 //   constraints: 23
 //   constraint_jacobian: 21
 //   constraint_bias: 45
@@ -93,6 +95,18 @@ void generalized_momentum(const Params& p, const double* q, const double* u, dou
 
 /// y: NY, in output_names order.
 void outputs(const Params& p, double t, const double* q, const double* u, double* y);
+
+/// tau: NU, the generalized forces that give the accelerations udot (NU) at
+/// (t, q, u): tau = M udot - f with the inputs 0, by Newton and Euler's
+/// recursion over the tree (M is never formed; a model with flexible bodies
+/// forms M udot - f). On an actuated joint's row, the input it needs; with
+/// loops, the constraint forces are not included (docs/controllers.md).
+void inverse_dynamics(const Params& p, double t, const double* q, const double* u, const double* udot,
+                      double* tau);
+
+/// g: NU, the generalized gravity forces g = dV_gravity/dq, with the sign of
+/// M udot + C u + g = tau (what a controller compensates).
+void gravity(const Params& p, const double* q, double* g);
 
 /// phi: NC, the loop-closure residuals Phi(q) (position rows in m; the hinge
 /// alignment rows of a spatial revolute are cosines).
@@ -237,6 +251,13 @@ struct System {
   }
   static void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
     ::kanegen_models::four_bar::outputs(p, t, q, u, y);
+  }
+  static void inverse_dynamics(const Params& p, double t, const double* q, const double* u,
+                               const double* udot, double* tau) {
+    ::kanegen_models::four_bar::inverse_dynamics(p, t, q, u, udot, tau);
+  }
+  static void gravity(const Params& p, const double* q, double* g) {
+    ::kanegen_models::four_bar::gravity(p, q, g);
   }
   static void constraints(const Params& p, const double* q, double* phi) {
     ::kanegen_models::four_bar::constraints(p, q, phi);

@@ -10,6 +10,8 @@
 //   kinetic_energy: 4
 //   potential_energy: 4
 //   outputs: 4
+//   inverse_dynamics: 8 (recursive; M udot - f from M and f: 8)
+//   gravity: 4
 //
 // Arrays are plain C arrays with their sizes in the comments; no function
 // allocates, throws or keeps state, and nothing beyond <math.h> is needed.
@@ -79,6 +81,18 @@ void generalized_momentum(const Params& p, const double* q, const double* u, dou
 
 /// y: NY, in output_names order.
 void outputs(const Params& p, double t, const double* q, const double* u, double* y);
+
+/// tau: NU, the generalized forces that give the accelerations udot (NU) at
+/// (t, q, u): tau = M udot - f with the inputs 0, by Newton and Euler's
+/// recursion over the tree (M is never formed; a model with flexible bodies
+/// forms M udot - f). On an actuated joint's row, the input it needs; with
+/// loops, the constraint forces are not included (docs/controllers.md).
+void inverse_dynamics(const Params& p, double t, const double* q, const double* u, const double* udot,
+                      double* tau);
+
+/// g: NU, the generalized gravity forces g = dV_gravity/dq, with the sign of
+/// M udot + C u + g = tau (what a controller compensates).
+void gravity(const Params& p, const double* q, double* g);
 
 /// Every kernel as a table of function pointers, for code that picks its
 /// model at run time: kanegen's runtime instantiates it with
@@ -186,6 +200,13 @@ struct System {
   }
   static void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
     ::kanegen_models::simple_pendulum::outputs(p, t, q, u, y);
+  }
+  static void inverse_dynamics(const Params& p, double t, const double* q, const double* u,
+                               const double* udot, double* tau) {
+    ::kanegen_models::simple_pendulum::inverse_dynamics(p, t, q, u, udot, tau);
+  }
+  static void gravity(const Params& p, const double* q, double* g) {
+    ::kanegen_models::simple_pendulum::gravity(p, q, g);
   }
   template <class Table>
   static Table kernel_table() {

@@ -251,6 +251,27 @@ void outputs(const Params& p, double t, const double* q, const double* u, double
   y[10] = solved ? lambda[1] : NAN;
 }
 
+void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
+                      const double* udot, double* tau) {
+  const double x0 = sin(q[1]);
+  const double x1 = u[1] + u[0];
+  const double x2 = cos(q[1]);
+  const double x3 = u[0]*u[0];
+  const double x4 = x2*udot[0]*p.L1;
+  const double x5 = udot[0] + udot[1];
+  const double x6 = x3*x0*p.L1;
+  const double x7 = x5*p.J2 + 0.5*(x4*p.m2*p.L2) + 0.5*(p.m2*x6*p.L2);
+  tau[0] = p.J1*udot[0] + p.L1*(((x0*udot[0]*p.L1)*p.m2 - (p.m2*(0.5*(x1*x1*p.L2) + x2*x3*p.L1)))*x0 + x2*(x4*p.m2 + 0.5*(x5*p.m2*p.L2) + p.m2*x6)) + x7;
+  tau[1] = x7;
+  tau[2] = p.m3*udot[2];
+}
+
+void gravity([[maybe_unused]] const Params& p, [[maybe_unused]] const double* q, double* g) {
+  g[0] = 0.0;
+  g[1] = 0.0;
+  g[2] = 0.0;
+}
+
 void constraints(const Params& p, const double* q, double* phi) {
   const double x0 = cos(q[0]);
   const double x1 = cos(q[1]);

@@ -10,6 +10,8 @@
 //   kinetic_energy: 40
 //   potential_energy: 0
 //   outputs: 18
+//   inverse_dynamics: 44 (recursive; M udot - f from M and f: 41)
+//   gravity: 0
 //   constraints: 17
 //   constraint_jacobian: 17
 //   constraint_bias: 36
@@ -94,6 +96,18 @@ void generalized_momentum(const Params& p, const double* q, const double* u, dou
 
 /// y: NY, in output_names order.
 void outputs(const Params& p, double t, const double* q, const double* u, double* y);
+
+/// tau: NU, the generalized forces that give the accelerations udot (NU) at
+/// (t, q, u): tau = M udot - f with the inputs 0, by Newton and Euler's
+/// recursion over the tree (M is never formed; a model with flexible bodies
+/// forms M udot - f). On an actuated joint's row, the input it needs; with
+/// loops, the constraint forces are not included (docs/controllers.md).
+void inverse_dynamics(const Params& p, double t, const double* q, const double* u, const double* udot,
+                      double* tau);
+
+/// g: NU, the generalized gravity forces g = dV_gravity/dq, with the sign of
+/// M udot + C u + g = tau (what a controller compensates).
+void gravity(const Params& p, const double* q, double* g);
 
 /// phi: NC, the loop-closure residuals Phi(q) (position rows in m; the hinge
 /// alignment rows of a spatial revolute are cosines).
@@ -238,6 +252,13 @@ struct System {
   }
   static void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
     ::kanegen_models::slider_crank::outputs(p, t, q, u, y);
+  }
+  static void inverse_dynamics(const Params& p, double t, const double* q, const double* u,
+                               const double* udot, double* tau) {
+    ::kanegen_models::slider_crank::inverse_dynamics(p, t, q, u, udot, tau);
+  }
+  static void gravity(const Params& p, const double* q, double* g) {
+    ::kanegen_models::slider_crank::gravity(p, q, g);
   }
   static void constraints(const Params& p, const double* q, double* phi) {
     ::kanegen_models::slider_crank::constraints(p, q, phi);

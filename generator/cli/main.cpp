@@ -143,7 +143,14 @@ struct GenerateCommand {
   std::string out_dir;
   bool jacobians = false;
   std::string precision = "double";
+  bool controller = false;
 };
+
+constexpr const char* kControllerHelp =
+    "also emit the quadratic kernels for controllers (coriolis_matrix, output_jacobian, "
+    "output_jacobian_rate, "
+    "linearize) and the Jacobian kernels they use; trees without prescribed motions only "
+    "(docs/controllers.md)";
 
 constexpr const char* kJacobiansHelp =
     "also emit the Jacobian kernels of implicit integration (forcing_jacobian, "
@@ -161,6 +168,7 @@ void add_generate(CLI::App& app, GenerateCommand& c) {
                    "precision only (writes <name>_float.hpp and .cpp, no runner; open trees without "
                    "--jacobians; docs/embedded.md)")
       ->check(CLI::IsMember({"double", "float"}));
+  c.command->add_flag("--controller", c.controller, kControllerHelp);
 }
 
 int run_generate(const GenerateCommand& c) {
@@ -170,14 +178,17 @@ int run_generate(const GenerateCommand& c) {
     const kanegen::cli::StopWhileGenerating stop(c.run.model, "written");
     return kanegen::pipeline::generate(
         c.run.model, b.load,
-        {c.jacobians, c.precision == "float" ? kanegen::codegen::Precision::single_precision
-                                             : kanegen::codegen::Precision::double_precision});
+        {c.jacobians, c.controller,
+         c.precision == "float" ? kanegen::codegen::Precision::single_precision
+                                : kanegen::codegen::Precision::double_precision});
   }();
   kanegen::codegen::write_files_atomically(c.out_dir, g.files);
   if (!c.run.quiet) {
     std::printf("%s: %d coordinates, %zu intermediates; load %.3f s, derive %.3f s, emit %.3f s",
                 g.name.c_str(), g.nq, g.intermediates, g.seconds.load, g.seconds.derive, g.seconds.emit);
-    if (c.jacobians) std::printf(", emit with jacobians %.3f s", g.seconds.jacobians);
+    if (c.jacobians || c.controller)
+      std::printf(", emit with %s %.3f s", c.controller ? "controller kernels" : "jacobians",
+                  g.seconds.jacobians);
     std::printf("\n");
     for (const auto& [kernel, count] : g.operations)
       std::printf("  %-28s %8ld operations\n", kanegen::codegen::signature(kernel).name, count);

@@ -25,6 +25,9 @@ struct EmitOptions {
   /// The Jacobian kernels of implicit integration (forcing_jacobian, ...):
   /// optional because they can take longer to compile than the rest.
   bool jacobians = false;
+  /// The quadratic controller kernels (coriolis_matrix, output Jacobians,
+  /// linearize); they need `jacobians` too.
+  bool controller = false;
   /// The floating-point type of the kernels. Float models (not with loops or
   /// Jacobians) are named <name>_float and have no runner and no runtime face.
   Precision precision = Precision::double_precision;

@@ -46,6 +46,18 @@ const std::vector<KernelSignature> kTable = {
   {Kernel::outputs, "outputs", "void", "const Params& p, double t, const double* q, const double* u, double* y",
    "/// y: NY, in output_names order.",
    Presence::always, true, true},
+  {Kernel::inverse_dynamics, "inverse_dynamics", "void",
+   "const Params& p, double t, const double* q, const double* u, const double* udot, double* tau",
+   "/// tau: NU, the generalized forces that give the accelerations udot (NU) at\n"
+   "/// (t, q, u): tau = M udot - f with the inputs 0, by Newton and Euler's\n"
+   "/// recursion over the tree (M is never formed; a model with flexible bodies\n"
+   "/// forms M udot - f). On an actuated joint's row, the input it needs; with\n"
+   "/// loops, the constraint forces are not included (docs/controllers.md).",
+   Presence::always, true, false},
+  {Kernel::gravity, "gravity", "void", "const Params& p, const double* q, double* g",
+   "/// g: NU, the generalized gravity forces g = dV_gravity/dq, with the sign of\n"
+   "/// M udot + C u + g = tau (what a controller compensates).",
+   Presence::always, true, false},
   {Kernel::constraints, "constraints", "void", "const Params& p, const double* q, double* phi",
    "/// phi: NC, the loop-closure residuals Phi(q) (position rows in m; the hinge\n"
    "/// alignment rows of a spatial revolute are cosines).",
@@ -81,6 +93,26 @@ const std::vector<KernelSignature> kTable = {
    "const Params& p, const double* q, const double* lambda, double* dCl_dq",
    "/// dCl_dq: NU*NQ, row-major, d(C(q)^T lambda)/dq for a fixed lambda (NC).",
    Presence::with_loops_and_jacobians, true, true},
+  {Kernel::coriolis_matrix, "coriolis_matrix", "void", "const Params& p, const double* q, const double* u, double* C",
+   "/// C: NU*NU, row-major, the Coriolis matrix from the Christoffel symbols of M:\n"
+   "/// C u is the velocity terms of M udot + C u + g = tau, and Mdot - 2C is\n"
+   "/// skew-symmetric (generated with --controller).",
+   Presence::with_controller, true, false},
+  {Kernel::output_jacobian, "output_jacobian", "void", "const Params& p, double t, const double* q, double* J",
+   "/// J: NY*NU, row-major, d(outputs)/dq, so that ydot = J u for the outputs of\n"
+   "/// position (points, joint coordinates, node displacements); the rows of\n"
+   "/// outputs that depend on u (speeds, loop forces) are 0 (generated with --controller).",
+   Presence::with_controller, true, false},
+  {Kernel::output_jacobian_rate, "output_jacobian_rate", "void",
+   "const Params& p, double t, const double* q, const double* u, double* Jdot_u",
+   "/// Jdot_u: NY, the bias (dJ/dt) u of ydd = J udot + Jdot_u (generated with --controller).",
+   Presence::with_controller, true, false},
+  {Kernel::linearize, "linearize", "int",
+   "const Params& p, double t, const double* q, const double* u, const double* tau, double* A, double* B",
+   "/// A: 2NU*2NU and B: 2NU*NTAU, row-major, the exact state-space matrices of\n"
+   "/// x = (q, u) about (t, q, u, tau): xdot ~ A dx + B dtau. Returns 0, or k > 0\n"
+   "/// when the k-th pivot of M is not positive (generated with --controller).",
+   Presence::with_controller, false, false},
 };
 // clang-format on
 
@@ -88,7 +120,7 @@ const std::vector<KernelSignature> kTable = {
 
 const std::vector<KernelSignature>& kernel_table() { return kTable; }
 
-bool present(Presence presence, bool loops, bool jacobians) {
+bool present(Presence presence, bool loops, bool jacobians, bool controller) {
   switch (presence) {
     case Presence::always:
       return true;
@@ -98,6 +130,8 @@ bool present(Presence presence, bool loops, bool jacobians) {
       return jacobians;
     case Presence::with_loops_and_jacobians:
       return loops && jacobians;
+    case Presence::with_controller:
+      return controller;
   }
   return false;
 }

@@ -25,6 +25,8 @@ enum class Kernel {
   potential_energy,
   generalized_momentum,
   outputs,
+  inverse_dynamics,
+  gravity,
   constraints,
   constraint_jacobian,
   constraint_bias,
@@ -32,16 +34,21 @@ enum class Kernel {
   forcing_jacobian,
   mass_matrix_product_jacobian,
   constraint_force_jacobian,
+  coriolis_matrix,
+  output_jacobian,
+  output_jacobian_rate,
+  linearize,
 };
 
 /// Which models have a kernel: the Jacobians only those generated with
 /// them (an option, for implicit integration), and of those the loop one
-/// only closed loops.
-enum class Presence { always, with_loops, with_jacobians, with_loops_and_jacobians };
+/// only closed loops; the quadratic controller kernels only those generated
+/// with --controller (which brings the Jacobians too: linearize calls them).
+enum class Presence { always, with_loops, with_jacobians, with_loops_and_jacobians, with_controller };
 
 /// Whether a model with (or without) loops, generated with (or without)
-/// Jacobians, has a kernel of this presence.
-bool present(Presence presence, bool loops, bool jacobians);
+/// Jacobians and controller kernels, has a kernel of this presence.
+bool present(Presence presence, bool loops, bool jacobians, bool controller = false);
 
 struct KernelArgument {
   std::string type;  ///< e.g. "const double*"

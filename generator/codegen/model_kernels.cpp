@@ -349,11 +349,229 @@ KernelCode constraint_force_jacobian_kernel(const Derivation& d) {
   return {Kernel::constraint_force_jacobian, fill + p.body, p.operations, ""};
 }
 
+/// f with the inputs 0: what the model's own forces give.
+GiNaC::ex unforced(const Derivation& d, int r) {
+  GiNaC::exmap no_inputs;
+  for (const GiNaC::symbol& tau : d.vars.tau) no_inputs[tau] = 0;
+  return d.eq.forcing[r].subs(no_inputs);
+}
+
+/// tau = M udot - f(tau = 0): on a rigid tree Newton and Euler's recursion
+/// (Equations::inverse_dynamics); M udot - f formed from M and f is
+/// printed too, for its count in the header (and is the body with flexible bodies).
+KernelCode inverse_dynamics_kernel(const Derivation& d) {
+  std::vector<Assignment> recursive, formed;
+  for (int r = 0; r < d.n(); ++r) {
+    const GiNaC::ex f = unforced(d, r);
+    GiNaC::ex m_udot = 0;
+    for (int s = 0; s < d.n(); ++s) m_udot += d.eq.mass_matrix[r * d.n() + s] * d.vars.udot[s];
+    const std::string target = "tau[" + str(r) + "]";
+    formed.push_back({target, d.graph.add(m_udot - f)});
+    if (!d.eq.inverse_dynamics.empty()) {
+      GiNaC::exmap no_inputs;
+      for (const GiNaC::symbol& tau : d.vars.tau) no_inputs[tau] = 0;
+      recursive.push_back({target, d.graph.add(d.eq.inverse_dynamics[r].subs(no_inputs))});
+    }
+  }
+  const PrintedKernel from_m = print_kernel(d.graph, formed, d.scalar);
+  if (recursive.empty())
+    return {Kernel::inverse_dynamics, from_m.body, from_m.operations, " (M udot - f: flexible bodies)"};
+  const PrintedKernel p = print_kernel(d.graph, recursive, d.scalar);
+  return {Kernel::inverse_dynamics, p.body, p.operations,
+          " (recursive; M udot - f from M and f: " + str(from_m.operations) + ")"};
+}
+
+/// g = dV_gravity/dq: the recursion's on a rigid tree, else the gradient of
+/// the gravity potential in the graph (q_dot = u).
+KernelCode gravity_kernel(const Derivation& d) {
+  std::vector<Assignment> g;
+  if (!d.eq.gravity_forces.empty()) {
+    for (int r = 0; r < d.n(); ++r) g.push_back({"g[" + str(r) + "]", d.graph.add(d.eq.gravity_forces[r])});
+    return printed(Kernel::gravity, d, g);
+  }
+  const int potential = d.graph.add(d.eq.gravity_potential);
+  for (int r = 0; r < d.n(); ++r)
+    g.push_back({"g[" + str(r) + "]", GraphDerivative(d.graph, d.graph.add(d.vars.q[r])).of(potential)});
+  return printed(Kernel::gravity, d, g);
+}
+
+/// Entries of M and their derivatives: dm[k][i * n + j] = dM_ij/dq_k.
+std::vector<std::vector<int>> mass_matrix_derivatives(const Derivation& d) {
+  const int n = d.n();
+  std::vector<int> entries;
+  for (int k = 0; k < n * n; ++k) entries.push_back(d.graph.add(d.eq.mass_matrix[k]));
+  std::vector<std::vector<int>> dm(n);
+  for (int k = 0; k < n; ++k) {
+    GraphDerivative derivative(d.graph, d.graph.add(d.vars.q[k]));
+    for (int e : entries) dm[k].push_back(derivative.of(e));
+  }
+  return dm;
+}
+
+/// C_ij = sum_k G_ijk u_k with the Christoffel symbols of the first kind
+/// G_ijk = (dM_ij/dq_k + dM_ik/dq_j - dM_jk/dq_i) / 2: then Mdot - 2C is
+/// skew-symmetric and C u is the velocity terms of Kane's equations.
+KernelCode coriolis_matrix_kernel(const Derivation& d) {
+  const int n = d.n();
+  const std::vector<std::vector<int>> dm = mass_matrix_derivatives(d);
+  ExpressionGraph& graph = d.graph;
+  const int half = graph.constant(0.5), minus_half = graph.constant(-0.5);
+  std::vector<Assignment> entries;
+  std::string fill;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      std::vector<int> terms;
+      for (int k = 0; k < n; ++k) {
+        const int uk = graph.add(d.vars.u[k]);
+        for (const auto& [factor, node] :
+             {std::pair{half, dm[k][i * n + j]}, std::pair{half, dm[j][i * n + k]},
+              std::pair{minus_half, dm[i][j * n + k]}})
+          if (!is_zero(graph, node)) terms.push_back(graph.product({factor, node, uk}));
+      }
+      const int c = graph.sum(std::move(terms));
+      if (!is_zero(graph, c)) entries.push_back({"C[" + str(i * n + j) + "]", c});
+    }
+  if (static_cast<int>(entries.size()) < n * n) fill = "  for (int k = 0; k < NU * NU; ++k) C[k] = 0.0;\n";
+  const PrintedKernel p = print_kernel(graph, entries, d.scalar);
+  return {Kernel::coriolis_matrix, fill + p.body, p.operations, ""};
+}
+
+/// The outputs of position (independent of u) as nodes; 0 for the others.
+std::vector<int> position_outputs(const Derivation& d) {
+  std::vector<int> rows;
+  for (const GiNaC::ex& y : d.eq.outputs) rows.push_back(d.graph.add(y));
+  for (const GiNaC::symbol& u : d.vars.u) {
+    GraphDerivative derivative(d.graph, d.graph.add(u));
+    for (int& row : rows)
+      if (!is_zero(d.graph, derivative.of(row))) row = d.graph.constant(0.0);
+  }
+  return rows;
+}
+
+/// J[i][j] = dy_i/dq_j over the outputs of position (row-major nodes).
+std::vector<int> output_jacobian_entries(const Derivation& d, const std::vector<int>& rows) {
+  const std::size_t n = static_cast<std::size_t>(d.n());
+  std::vector<int> entry(rows.size() * n);
+  for (std::size_t j = 0; j < n; ++j) {
+    GraphDerivative derivative(d.graph, d.graph.add(d.vars.q[j]));
+    for (std::size_t i = 0; i < rows.size(); ++i) entry[i * n + j] = derivative.of(rows[i]);
+  }
+  return entry;
+}
+
+KernelCode output_jacobian_kernel(const Derivation& d) {
+  const std::vector<int> entry = output_jacobian_entries(d, position_outputs(d));
+  std::vector<Assignment> out;
+  for (std::size_t k = 0; k < entry.size(); ++k)
+    if (!is_zero(d.graph, entry[k])) out.push_back({"J[" + str(static_cast<long>(k)) + "]", entry[k]});
+  const std::string fill =
+      out.size() < entry.size() ? "  for (int k = 0; k < NY * NU; ++k) J[k] = 0.0;\n" : std::string();
+  const PrintedKernel p = print_kernel(d.graph, out, d.scalar);
+  return {Kernel::output_jacobian, fill + p.body, p.operations, ""};
+}
+
+/// Jdot_u = d(J u)/dq u + d(J u)/dt with u held: the directional derivative
+/// of the output velocity J u along the motion.
+KernelCode output_jacobian_rate_kernel(const Derivation& d) {
+  ExpressionGraph& graph = d.graph;
+  const std::vector<int> rows = position_outputs(d);
+  const std::vector<int> entry = output_jacobian_entries(d, rows);
+  const std::size_t n = static_cast<std::size_t>(d.n());
+  std::vector<int> velocity(rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    std::vector<int> terms;
+    for (std::size_t j = 0; j < n; ++j)
+      if (!is_zero(graph, entry[i * n + j]))
+        terms.push_back(graph.product({entry[i * n + j], graph.add(d.vars.u[j])}));
+    velocity[i] = graph.sum(std::move(terms));
+  }
+  std::vector<std::vector<int>> terms(rows.size());
+  for (std::size_t k = 0; k < n; ++k) {
+    GraphDerivative derivative(graph, graph.add(d.vars.q[k]));
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const int dv = derivative.of(velocity[i]);
+      if (!is_zero(graph, dv)) terms[i].push_back(graph.product({dv, graph.add(d.vars.u[k])}));
+    }
+  }
+  GraphDerivative by_time(graph, graph.add(d.vars.t));
+  std::vector<Assignment> out;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const int dt = by_time.of(velocity[i]);
+    if (!is_zero(graph, dt)) terms[i].push_back(dt);
+    out.push_back({"Jdot_u[" + str(static_cast<long>(i)) + "]", graph.sum(std::move(terms[i]))});
+  }
+  const PrintedKernel p = print_kernel(graph, out, d.scalar);
+  return {Kernel::output_jacobian_rate, p.body, p.operations, ""};
+}
+
+/// x = (q, u), xdot = (u, udot): A = [0 I; dudot/dq dudot/du], B = [0; dudot/dtau]
+/// from M dudot/dq = df/dq - d(M a)/dq (a = udot), M dudot/du = df/du and
+/// M dudot/dtau = df/dtau, solved by a Cholesky factor of M; df/dtau is
+/// derived here, the rest are the Jacobian kernels.
+KernelCode linearize_kernel(const Derivation& d) {
+  std::vector<int> forcing;
+  for (int i = 0; i < d.n(); ++i) forcing.push_back(d.graph.add(d.eq.forcing[i]));
+  const int ntau = static_cast<int>(d.vars.tau.size());
+  std::string text =
+      "  constexpr int NX = 2 * NU;\n"
+      "  double udot[NU], M[NU * NU], dfdq[NU * NQ], dfdu[NU * NU], dMa_dq[NU * NQ];\n"
+      "  const int status = forward_dynamics(p, t, q, u, tau, udot);\n"
+      "  if (status != 0) return status;\n"
+      "  mass_matrix(p, q, M);\n"
+      "  forcing_jacobian(p, t, q, u, tau, dfdq, dfdu);\n"
+      "  mass_matrix_product_jacobian(p, q, udot, dMa_dq);\n"
+      "  for (int k = 0; k < NX * NX; ++k) A[k] = 0.0;\n"
+      "  for (int k = 0; k < NX * NTAU; ++k) B[k] = 0.0;\n"
+      "  for (int i = 0; i < NU; ++i) {\n"
+      "    A[i * NX + NU + i] = 1.0;  // qdot = u\n"
+      "    for (int j = 0; j < NU; ++j) {\n"
+      "      A[(NU + i) * NX + j] = dfdq[i * NQ + j] - dMa_dq[i * NQ + j];\n"
+      "      A[(NU + i) * NX + NU + j] = dfdu[i * NU + j];\n"
+      "    }\n"
+      "  }\n";
+  if (ntau > 0) {
+    std::string fill;
+    const std::vector<Assignment> by_input =
+        jacobian_entries(d.graph, forcing, input_nodes(d.graph, d.vars.tau), "dfdtau", "NU * NTAU", fill);
+    const PrintedKernel p = print_kernel(d.graph, by_input, d.scalar);
+    text += "  double dfdtau[NU * NTAU];\n" + fill + p.body +
+            "  for (int i = 0; i < NU; ++i)\n"
+            "    for (int j = 0; j < NTAU; ++j) B[(NU + i) * NTAU + j] = dfdtau[i * NTAU + j];\n";
+  }
+  text +=
+      "  // M = L L^T in place (lower triangle), then each column of the lower rows solved.\n"
+      "  for (int j = 0; j < NU; ++j) {\n"
+      "    double pivot = M[j * NU + j];\n"
+      "    for (int k = 0; k < j; ++k) pivot -= M[j * NU + k] * M[j * NU + k];\n"
+      "    if (!(pivot > 0.0)) return j + 1;\n"
+      "    M[j * NU + j] = sqrt(pivot);\n"
+      "    for (int i = j + 1; i < NU; ++i) {\n"
+      "      double s = M[i * NU + j];\n"
+      "      for (int k = 0; k < j; ++k) s -= M[i * NU + k] * M[j * NU + k];\n"
+      "      M[i * NU + j] = s / M[j * NU + j];\n"
+      "    }\n"
+      "  }\n"
+      "  const auto solve = [&M](double* x, int stride) {\n"
+      "    for (int i = 0; i < NU; ++i) {\n"
+      "      for (int k = 0; k < i; ++k) x[i * stride] -= M[i * NU + k] * x[k * stride];\n"
+      "      x[i * stride] /= M[i * NU + i];\n"
+      "    }\n"
+      "    for (int i = NU - 1; i >= 0; --i) {\n"
+      "      for (int k = i + 1; k < NU; ++k) x[i * stride] -= M[k * NU + i] * x[k * stride];\n"
+      "      x[i * stride] /= M[i * NU + i];\n"
+      "    }\n"
+      "  };\n"
+      "  for (int c = 0; c < NX; ++c) solve(A + NU * NX + c, NX);\n"
+      "  for (int c = 0; c < NTAU; ++c) solve(B + NU * NTAU + c, NTAU);\n"
+      "  return 0;\n";
+  return {Kernel::linearize, text, 0, ""};
+}
+
 }  // namespace
 
 std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Equations& eq,
                                        const symbolic::Variables& vars, ExpressionGraph& graph,
-                                       bool jacobians, const ScalarType& scalar) {
+                                       bool jacobians, bool controller, const ScalarType& scalar) {
   Derivation d{model, eq, vars, graph, scalar, {}, {}, {}};
   split_speeds(d);
   print_prescribed_accelerations(d);
@@ -366,6 +584,8 @@ std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Eq
   kernels.push_back(energy_kernel(Kernel::potential_energy, "V", eq.potential_energy, d));
   kernels.push_back(generalized_momentum_kernel(d));
   kernels.push_back(outputs_kernel(d));
+  kernels.push_back(inverse_dynamics_kernel(d));
+  kernels.push_back(gravity_kernel(d));
   if (d.loops()) {
     kernels.push_back(constraints_kernel(d));
     kernels.push_back(constraint_jacobian_kernel(d));
@@ -378,6 +598,15 @@ std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Eq
     kernels.push_back(forcing_jacobian_kernel(d));
     kernels.push_back(mass_matrix_product_jacobian_kernel(d));
     if (d.loops()) kernels.push_back(constraint_force_jacobian_kernel(d));
+  }
+  if (controller) {
+    // linearize calls the Jacobian kernels; loops and prescribed speeds are refused by the pipeline.
+    if (!jacobians || d.loops() || !d.eq.prescribed.empty())
+      throw std::logic_error("the controller kernels need the Jacobians, no loops and no prescribed speeds");
+    kernels.push_back(coriolis_matrix_kernel(d));
+    kernels.push_back(output_jacobian_kernel(d));
+    kernels.push_back(output_jacobian_rate_kernel(d));
+    kernels.push_back(linearize_kernel(d));
   }
   return kernels;
 }

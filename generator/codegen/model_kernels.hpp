@@ -15,11 +15,13 @@
 
 namespace kanegen::codegen {
 
-/// In kernel-table order; the Jacobian kernels only with `jacobians`; the
-/// bodies in the floating-point type `scalar`.
+/// In kernel-table order; the Jacobian kernels only with `jacobians`, the
+/// quadratic controller kernels only with `controller` (which needs
+/// `jacobians`); the bodies in the floating-point type `scalar`.
 std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Equations& equations,
                                        const symbolic::Variables& vars, ExpressionGraph& graph,
-                                       bool jacobians = false, const ScalarType& scalar = ScalarType());
+                                       bool jacobians = false, bool controller = false,
+                                       const ScalarType& scalar = ScalarType());
 
 /// The code of `kernel` in `kernels`; throws std::logic_error if it is missing.
 const KernelCode& find_kernel(const std::vector<KernelCode>& kernels, Kernel kernel);

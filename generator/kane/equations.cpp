@@ -194,7 +194,9 @@ void add_rigid_body(Derivation& d, BodySums& sums, std::size_t i) {
           central[3 * r + c] + mass * ((r == c ? dot(com, com) : ex(0)) - com[r] * com[c]);
 
   d.eq.kinetic_energy += (mass * dot(com_velocity, com_velocity) + dot(b.omega, spin)) / 2;
-  d.eq.potential_energy -= mass * dot(d.gravity, d.tree.world_point(b, com));
+  const ex weight_potential = -mass * dot(d.gravity, d.tree.world_point(b, com));
+  d.eq.potential_energy += weight_potential;
+  d.eq.gravity_potential += weight_potential;
 }
 
 /// State i's flexible body (after add_rigid_body for its link): the deformed
@@ -232,8 +234,9 @@ void add_flexible_body(Derivation& d, BodySums& sums, std::size_t i) {
   inertia.moment = inertia.moment + terms.first_moment;
   for (int k = 0; k < 9; ++k) inertia.second[k] += terms.second_moment[k];
   d.eq.kinetic_energy += terms.kinetic_energy;
-  d.eq.potential_energy +=
-      terms.strain_energy - dot(d.gravity, terms.mass * b.origin + mul(b.rotation, terms.first_moment));
+  const ex weight_potential = -dot(d.gravity, terms.mass * b.origin + mul(b.rotation, terms.first_moment));
+  d.eq.potential_energy += terms.strain_energy + weight_potential;
+  d.eq.gravity_potential += weight_potential;
   sums.elastic.emplace(i, std::move(terms));
 }
 
@@ -395,6 +398,69 @@ void elastic_rows(Derivation& d, const BodySums& sums, MassRows& rows) {
       for (int l = 0; l < count; ++l) d.eq.mass_matrix[r * n + first + l] = terms.elastic_mass[k * count + l];
       rows.spread(r, i, terms.angular_momentum[k], terms.linear_momentum[k]);
     }
+  }
+}
+
+/// Rigid trees: M u_dot - f (u_dot = Variables::udot, without the joints'
+/// own forces) and the gravity g(q) = dV_gravity/dq by Newton and Euler's
+/// recursion, without M. Outward, the accelerations that u_dot alone gives
+/// (the rest accelerations are the forcing's):
+///   alpha_i = E_i alpha_p + a_k udot_k (revolute),
+///   a_i = E_i (a_p + alpha_p x r_i) + a_k udot_k (prismatic);
+/// each body's rate of momentum about its origin, (K alpha + h x a, m a + alpha x h),
+/// and its weight (h x g, m g), g in its axes; inward, the subtree sums
+/// projected on each joint, the rate of momentum less the applied-plus-inertia
+/// wrench of the forcing, in one sum. `own`: each body's inertia and wrench
+/// before the composites.
+void newton_euler(Derivation& d, const BodySums& own) {
+  Program& program = d.program;
+  const auto& states = d.tree.bodies();
+  const std::size_t count = states.size();
+  std::vector<Vec3> alpha(count), accel(count);
+  std::vector<Wrench> inertial(count), weight(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const kinematics::BodyState& b = states[i];
+    const kinematics::JointFrame& joint = d.tree.joints()[b.joint];
+    Vec3 angular = zero_vec(), linear = zero_vec();
+    if (b.parent_state >= 0) {
+      const Vec3& parent_alpha = alpha[b.parent_state];
+      angular = mul(b.to_child, parent_alpha);
+      linear = mul(b.to_child, accel[b.parent_state] + cross(parent_alpha, b.offset));
+    }
+    if (joint.speed >= 0) {
+      const ex udot = d.vars.udot[joint.speed];
+      if (joint.prismatic)
+        linear = linear + udot * joint.axis;
+      else
+        angular = angular + udot * joint.axis;
+    }
+    alpha[i] = named(program, angular);
+    accel[i] = named(program, linear);
+    const SpatialInertia& m = own.inertia[i];
+    const Wrench& applied = own.wrench[i];
+    inertial[i] = {mul(m.second, alpha[i]) + cross(m.moment, accel[i]) - applied.moment,
+                   m.mass * accel[i] + cross(alpha[i], m.moment) - applied.force};
+    const Vec3 g = named(program, mul_transposed(b.rotation, d.gravity));
+    weight[i] = {cross(m.moment, g), m.mass * g};
+  }
+  for (std::size_t i = count; i-- > 0;) {
+    inertial[i] = {named(program, inertial[i].moment), named(program, inertial[i].force)};
+    weight[i] = {named(program, weight[i].moment), named(program, weight[i].force)};
+    const int parent = states[i].parent_state;
+    if (parent < 0) continue;
+    for (auto* sums : {&inertial, &weight}) {
+      const Wrench w = to_parent(program, (*sums)[i], states[i].to_child, states[i].offset);
+      (*sums)[parent].moment = (*sums)[parent].moment + w.moment;
+      (*sums)[parent].force = (*sums)[parent].force + w.force;
+    }
+  }
+  d.eq.inverse_dynamics.assign(d.eq.nu, 0);
+  d.eq.gravity_forces.assign(d.eq.nu, 0);
+  for (std::size_t i = 0; i < count; ++i) {
+    const kinematics::JointFrame& joint = d.tree.joints()[states[i].joint];
+    if (joint.speed < 0) continue;
+    d.eq.inverse_dynamics[joint.speed] = project(joint, inertial[i].moment, inertial[i].force);
+    d.eq.gravity_forces[joint.speed] = -project(joint, weight[i].moment, weight[i].force);
   }
 }
 
@@ -570,7 +636,7 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
   eq.nq = eq.nu = static_cast<int>(vars.q.size());
   eq.mass_matrix.assign(eq.nu * eq.nu, 0);
   eq.forcing.assign(eq.nu, 0);
-  eq.kinetic_energy = eq.potential_energy = 0;
+  eq.kinetic_energy = eq.potential_energy = eq.gravity_potential = 0;
   Derivation d{model, vars, program, flexible, tree, method, gravity, eq};
 
   const std::size_t count = tree.bodies().size();
@@ -580,13 +646,20 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
     if (model.bodies[tree.bodies()[i].body].flexible) add_flexible_body(d, sums, i);
   }
   add_springs(d, sums);
+  const BodySums own = sums;  // before the composites
   composite_bodies(d, sums);
   MassRows rows(d);
   joint_rows(d, sums, rows);
   elastic_rows(d, sums, rows);
 
+  const std::vector<ex> body_forcing = eq.forcing;
   joint_coordinates(d);
   elastic_coordinates(d);
+  if (flexible.empty()) {
+    newton_euler(d, own);
+    // The joints' own forces (springs, dampers, inputs, efforts) join f after the bodies'.
+    for (int r = 0; r < eq.nu; ++r) eq.inverse_dynamics[r] -= eq.forcing[r] - body_forcing[r];
+  }
   eq.loops = derive_loop_constraints(model, vars, program, tree, flexible);
   coordinate_roles(d);
   expand_outputs(d);

@@ -50,6 +50,13 @@ struct Equations {
   LoopConstraints loops;
   /// Per coordinate: 0 free, 1 marked independent (assembly keeps it), 2 prescribed.
   std::vector<int> coordinate_role;
+  /// The potential energy of gravity alone (its gradient is the gravity kernel's g(q)).
+  GiNaC::ex gravity_potential;
+  /// Rigid trees only (empty with flexible bodies): M u_dot - f for the
+  /// accelerations Variables::udot, and the generalized gravity g(q) =
+  /// dV_gravity/dq, both by the recursion of Newton and Euler over the tree
+  /// (accelerations outward, subtree wrenches inward): O(n), M never formed.
+  std::vector<GiNaC::ex> inverse_dynamics, gravity_forces;
   /// Outputs that are constraint forces: (index in outputs, row of lambda).
   std::vector<std::pair<int, int>> reaction_outputs;
 };

@@ -27,14 +27,30 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 /// loops and the Jacobian kernels exist in double only.
 void check_precision(const model::Model& model, const GenerateOptions& options) {
   if (options.precision == codegen::Precision::double_precision) return;
-  if (options.jacobians)
-    throw model::ModelError(model.source_file, "", "--precision float cannot be combined with --jacobians",
-                            "generate the Jacobian kernels in double (leave out --precision)");
+  if (options.jacobians || options.controller)
+    throw model::ModelError(model.source_file, "",
+                            "--precision float cannot be combined with --jacobians or --controller",
+                            "generate the Jacobian and controller kernels in double (leave out --precision)");
   if (!model.loops.empty())
     throw model::ModelError(model.source_file, "",
                             "--precision float is for open trees, and this model closes " +
                                 std::to_string(model.loops.size()) + " loop(s)",
                             "generate it in double (leave out --precision)");
+}
+
+/// The controller kernels linearize and solve the tree's own M: a loop's
+/// constraint forces or a prescribed acceleration would make them wrong.
+void refuse_controller_kernels(const model::Model& model) {
+  const std::string why = "--controller supports trees without prescribed motions (docs/controllers.md)";
+  if (!model.loops.empty())
+    throw model::ModelError(model.source_file, model.loops.front().where,
+                            "the controller kernels are not made for closed loops",
+                            "generate without --controller; " + why);
+  for (const model::Joint& joint : model.joints)
+    if (joint.is_prescribed())
+      throw model::ModelError(model.source_file, joint.where + "/prescribed",
+                              "the controller kernels are not made for prescribed motions",
+                              "generate without --controller; " + why);
 }
 
 }  // namespace
@@ -62,6 +78,8 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
   out.seconds.load = seconds_since(start);
   check_precision(model, generate_options);
 
+  if (generate_options.controller) refuse_controller_kernels(model);
+
   // The finite-element bodies: element matrices, invariants, modal bases.
   kane::FlexibleBodies flexible;
   std::vector<int> elastic_counts(model.bodies.size(), 0);
@@ -84,8 +102,8 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
     kane::Equations equations = kane::derive_equations(model, vars, program, method, flexible);
     out.seconds.derive += seconds_since(start);
     start = std::chrono::steady_clock::now();
-    codegen::EmittedModel candidate =
-        codegen::emit_model(model, equations, vars, program, hash, {false, generate_options.precision});
+    codegen::EmittedModel candidate = codegen::emit_model(model, equations, vars, program, hash,
+                                                          {false, false, generate_options.precision});
     out.seconds.emit += seconds_since(start);
     if (emitted.files.empty() || candidate.operations.at(codegen::Kernel::forward_dynamics) <
                                      emitted.operations.at(codegen::Kernel::forward_dynamics)) {
@@ -96,10 +114,10 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
   }
   // The Jacobians only for the equations kept: differentiating both would
   // double the cost of the option for code that is thrown away.
-  if (generate_options.jacobians) {
+  if (generate_options.jacobians || generate_options.controller) {
     start = std::chrono::steady_clock::now();
-    emitted =
-        codegen::emit_model(model, chosen, vars, chosen_program, hash, {true, generate_options.precision});
+    emitted = codegen::emit_model(model, chosen, vars, chosen_program, hash,
+                                  {true, generate_options.controller, generate_options.precision});
     out.seconds.jacobians = seconds_since(start);
   }
 

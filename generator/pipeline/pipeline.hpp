@@ -31,6 +31,10 @@ struct GenerateOptions {
   /// The Jacobian kernels of implicit integration (`kanegen generate
   /// --jacobians`); off by default, since they can take longer to compile than the rest.
   bool jacobians = false;
+  /// The quadratic controller kernels (`kanegen generate --controller`:
+  /// coriolis_matrix, output_jacobian, output_jacobian_rate, linearize), with
+  /// the Jacobian kernels they use; not for loops or prescribed motions.
+  bool controller = false;
   /// The kernels' floating-point type (`--precision float`: <name>_float.hpp
   /// and .cpp, no runner; not for models with loops or with Jacobians).
   codegen::Precision precision = codegen::Precision::double_precision;

@@ -26,6 +26,8 @@ Variables::Variables(const model::Model& model, const std::vector<int>& elastic_
     u.emplace_back("u" + i);
     cpp_names_[q.back()] = "q[" + i + "]";
     cpp_names_[u.back()] = "u[" + i + "]";
+    udot.emplace_back("udot" + i);
+    cpp_names_[udot.back()] = "udot[" + i + "]";
   };
   for (const auto& joint : model.joints) {
     if (!joint.moves()) continue;

@@ -31,6 +31,8 @@ class Variables {
 
   GiNaC::symbol t{"t"};
   std::vector<GiNaC::symbol> q, u, tau, params;
+  /// One per speed: the accelerations given to inverse_dynamics ("udot[i]").
+  std::vector<GiNaC::symbol> udot;
   int joint_coordinates = 0;       ///< q[0 .. joint_coordinates) belong to joints
   std::vector<int> elastic_first;  ///< per body: index in q of its first elastic coordinate, or -1
   std::vector<int> elastic_count;  ///< per body: its number of elastic coordinates
