@@ -430,7 +430,7 @@ class Radau {
     std::string why;
     switch (failure_) {
       case Failure::kNone:
-        why = "no progress";
+        why = "accepted steps shrank to round-off (a singularity of the solution?)";
         break;
       case Failure::kSingular:
         why = "the iteration matrix I - h J was singular";
