@@ -284,7 +284,7 @@ TEST_CASE("simulate refuses what the runner refuses, as the runner says it, befo
       {"--max-steps 1.5", "--max-steps needs a positive integer, got '1.5'"},
       {"--dt 0", "--dt must be positive"},
       {"--dt 0.1 --dt=0.2", "option --dt given more than once"},
-      {"--integrator euler", "unknown integrator 'euler'; known: rk4, dopri5, implicit, genalpha"},
+      {"--integrator euler", "unknown integrator 'euler'; known: rk4, dopri5, implicit, radau, bdf, genalpha"},
       {"--set m", "--set expects NAME=VALUE, got 'm'"},
   };
   for (const auto& [args, message] : cases) {
