@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "cholesky.hpp"
+#include "kanegen/runtime/loops.hpp"
 
 namespace kanegen::runtime {
 
@@ -62,7 +63,13 @@ StateJacobian::StateJacobian(const Model& model)
 }
 
 bool StateJacobian::accelerations(double t, const double* q, const double* u, const double* tau) {
-  if (nc_ > 0) return model_.constrained_dynamics(t, q, u, tau, udot_.data(), lambda_.data()) == 0;
+  if (nc_ > 0) {
+    if (model_.constrained_dynamics(t, q, u, tau, udot_.data(), lambda_.data()) == 0) return true;
+    // At a singular position the generated solve gives up: the right-hand
+    // side's own fallbacks (the augmented Lagrangian; they allocate, but
+    // only there) give the udot and lambda the derivatives are taken at.
+    return LoopSolver(model_).dynamics(t, q, u, tau, udot_.data(), lambda_.data()) == 0;
+  }
   return model_.forward_dynamics(t, q, u, tau, udot_.data()) == 0;
 }
 
