@@ -23,8 +23,8 @@ const std::vector<OptionSpec> kSimulate = {
     {"--dt", "", "H", "0.01", nullptr, "output interval, also the rk4 and genalpha step", K::kPositive},
     {"--integrator", "", "NAME", "dopri5", "",
      "dopri5 (adaptive explicit, default), implicit (adaptive implicit for stiff models: use it for elastic "
-     "links, with --rtol 1e-4 to 1e-6; it is radau), radau (Radau IIA of order 5), bdf (SUNDIALS CVODE's "
-     "BDF), genalpha (fixed step dt, real time) or rk4 (fixed step dt)",
+     "links, with --rtol 1e-2 to 1e-4 and --atol 100 times smaller; it is radau), radau (Radau IIA of order "
+     "5), bdf (SUNDIALS CVODE's BDF), genalpha (fixed step dt, real time) or rk4 (fixed step dt)",
      K::kChoice, false, false, "rk4,dopri5,implicit,radau,bdf,genalpha"},
     {"--rho-inf", "", "R", "0.8", nullptr, "genalpha: spectral radius at infinity in [0, 1] (1: no damping)",
      K::kNonNegative},
