@@ -141,7 +141,7 @@ TEST_CASE("simulate writes the CSV with the documented header", "[cli]") {
   CHECK(s.out.rfind("t,pivot,pivot_dot", 0) == 0);
 }
 
-TEST_CASE("simulate --integrator implicit, bdf and genalpha build a runner with Jacobians and CVODE",
+TEST_CASE("simulate --integrator implicit and bdf and genalpha build a runner with Jacobians and CVODE",
           "[cli]") {
   // The runner links the runtime's CVODE and the model's Jacobian kernels,
   // which kanegen turns on itself; the swing follows DOPRI5's.
