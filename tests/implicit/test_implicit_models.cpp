@@ -143,7 +143,9 @@ TEST_CASE("implicit: Simeon's finite-element crank matches the IVP test set at t
     return a[2] * 4 * xi * (1 - xi) + a[3] * xi * (2 * xi - 1);
   };
   const int nq = model.info().nq;
-  const Run run = simulate(model, method, 0.1, 0.01, 1e-3, [&](double* x) {
+  // Each at the tolerance bench/implicit.py times it at.
+  const double rtol = method == Method::kRadau ? 1e-2 : 1e-3;
+  const Run run = simulate(model, method, 0.1, 0.01, rtol, [&](double* x) {
     x[1] = q0[1] - q0[0];
     x[nq + 1] = u0[1] - u0[0];
     x[nq + 2] = u0[2];
