@@ -78,7 +78,7 @@ std::string cache_key(const std::string& model_path, const RuntimeLocation& runt
 }  // namespace
 
 bool integrator_needs_jacobians(const std::string& integrator) {
-  return integrator == "implicit" || integrator == "genalpha";
+  return integrator == "implicit" || integrator == "radau" || integrator == "bdf" || integrator == "genalpha";
 }
 
 namespace {

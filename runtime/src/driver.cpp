@@ -9,7 +9,6 @@
 #include <stdexcept>
 
 #include "batch.hpp"
-#include "run_report.hpp"
 #include "kanegen/runtime/csv.hpp"
 #include "kanegen/runtime/integrators.hpp"
 #include "kanegen/runtime/loops.hpp"
@@ -17,6 +16,7 @@
 #include "kanegen/runtime/state_jacobian.hpp"
 #include "kanegen/runtime/text.hpp"
 #include "model_integrators.hpp"
+#include "run_report.hpp"
 
 namespace kanegen::runtime {
 namespace {
@@ -236,11 +236,13 @@ std::vector<std::string> state_names(const ModelInfo& info) {
   return names;
 }
 
-bool is_implicit(Method method) { return method == Method::kImplicit || method == Method::kGenAlpha; }
+bool is_implicit(Method method) { return is_adaptive_implicit(method) || method == Method::kGenAlpha; }
 
 // --stats: the counters of every method, and the Newton counters of the implicit ones.
 void print_stats(std::FILE* err, Method method, const IntegrationResult& r) {
   const StepStats& s = r.stats;
+  // "implicit" is reported as the method it selected.
+  if (method == Method::kImplicit) method = implicit_method();
   std::string line = std::string("stats: integrator=") + method_name(method) +
                      " accepted=" + std::to_string(s.accepted) + " rejected=" + std::to_string(s.rejected);
   // genalpha evaluates residuals, not the right-hand side.
@@ -260,7 +262,8 @@ IntegrationResult run_method(const Model& model, const SimulateArgs& a, const Rh
                              const IntegrationOptions& opt, const Observer& observer, const double* tau) {
   const int n = model.info().nq + model.info().nu;
   try {
-    if (a.method == Method::kImplicit) return detail::integrate_implicit(model, rhs, tau, x, opt, observer);
+    if (is_adaptive_implicit(a.method))
+      return detail::integrate_implicit(a.method, model, rhs, tau, x, opt, observer);
     if (a.method == Method::kGenAlpha)
       return detail::integrate_genalpha(model, a.rho_inf, tau, x, opt, observer);
   } catch (const std::invalid_argument& e) {

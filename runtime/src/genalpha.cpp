@@ -7,8 +7,14 @@
 #include <limits>
 #include <stdexcept>
 
+#include "cholesky.hpp"
+
 namespace kanegen::runtime {
 namespace {
+
+using detail::cholesky_factor;
+using detail::cholesky_solve;
+using detail::factor_gram;
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 /// Within a step, a contraction rate above this with a stale iteration
@@ -71,52 +77,6 @@ void lu_solve(const double* LUt, int n, const int* pivots, double* b) {
     const double* column = &LUt[k * n];
     b[k] /= column[k];
     for (int i = 0; i < k; ++i) b[i] -= column[i] * b[k];
-  }
-}
-
-/// In-place Cholesky L L^T of the m x m row-major A (lower triangle used).
-/// Rows whose pivot falls below `drop` times their diagonal are skipped
-/// (used[j] = 0; dependent loop equations) if `used` is given, else fail.
-bool cholesky(double* A, int m, char* used, double drop) {
-  for (int j = 0; j < m; ++j) {
-    const double diagonal = A[j * m + j];
-    double s = diagonal;
-    for (int k = 0; k < j; ++k)
-      if (!used || used[k]) s -= A[j * m + k] * A[j * m + k];
-    const bool ok = s > drop * diagonal && diagonal > 0.0;
-    if (used) used[j] = ok;
-    if (!ok) {
-      if (used) continue;
-      return false;
-    }
-    const double l = std::sqrt(s);
-    A[j * m + j] = l;
-    for (int i = j + 1; i < m; ++i) {
-      double v = A[i * m + j];
-      for (int k = 0; k < j; ++k)
-        if (!used || used[k]) v -= A[i * m + k] * A[j * m + k];
-      A[i * m + j] = v / l;
-    }
-  }
-  return true;
-}
-
-/// x := (L L^T)^-1 x, skipping the rows not used.
-void cholesky_solve(const double* L, int m, const char* used, double* x) {
-  for (int i = 0; i < m; ++i) {
-    if (used && !used[i]) {
-      x[i] = 0.0;
-      continue;
-    }
-    for (int k = 0; k < i; ++k)
-      if (!used || used[k]) x[i] -= L[i * m + k] * x[k];
-    x[i] /= L[i * m + i];
-  }
-  for (int i = m - 1; i >= 0; --i) {
-    if (used && !used[i]) continue;
-    for (int k = i + 1; k < m; ++k)
-      if (!used || used[k]) x[i] -= L[k * m + i] * x[k];
-    x[i] /= L[i * m + i];
   }
 }
 
@@ -395,7 +355,7 @@ bool GenAlpha::correct_speeds(const double* q, double* u, std::string* reason) {
   model_.constraint_jacobian(q, C_.data());
   for (int i = 0; i < m; ++i)
     for (int j = 0; j <= i; ++j) chol_[i * m + j] = M_[free_[i] * n + free_[j]];
-  if (!cholesky(chol_.data(), m, nullptr, 0.0))
+  if (!cholesky_factor(chol_.data(), m))
     return refuse(reason, "the mass matrix of the free coordinates is not positive definite");
   // w_k = M_ff^-1 C_kf^T, G = C_f M_ff^-1 C_f^T, y = G^-1 (C u): the change
   // -M_ff^-1 C_f^T y of least kinetic energy with C u = 0. Dependent rows
@@ -403,7 +363,7 @@ bool GenAlpha::correct_speeds(const double* q, double* u, std::string* reason) {
   for (int k = 0; k < nc_; ++k) {
     double* wk = &w_[static_cast<size_t>(k) * n];
     for (int i = 0; i < m; ++i) wk[i] = C_[k * n + free_[i]];
-    cholesky_solve(chol_.data(), m, nullptr, wk);
+    cholesky_solve(chol_.data(), m, wk);
     y_[k] = 0.0;
     for (int j = 0; j < n; ++j) y_[k] += C_[k * n + j] * u[j];
   }
@@ -413,8 +373,8 @@ bool GenAlpha::correct_speeds(const double* q, double* u, std::string* reason) {
       for (int i = 0; i < m; ++i) s += C_[k * n + free_[i]] * w_[static_cast<size_t>(l) * n + i];
       g_[k * nc_ + l] = s;
     }
-  cholesky(g_.data(), nc_, used_.data(), 1e-12);
-  cholesky_solve(g_.data(), nc_, used_.data(), y_.data());
+  factor_gram(g_.data(), nc_, used_.data());
+  cholesky_solve(g_.data(), nc_, y_.data(), used_.data());
   for (int k = 0; k < nc_; ++k)
     for (int i = 0; i < m; ++i) u[free_[i]] -= w_[static_cast<size_t>(k) * n + i] * y_[k];
   return true;

@@ -177,9 +177,10 @@ class Run {
   IntegrationResult result_;
 };
 
-/// The adaptive implicit method (cvode.cpp); returns the result with the
-/// time of the state left in x.
+/// The adaptive implicit methods, CVODE's BDF (cvode.cpp) and Radau IIA
+/// (radau.cpp); return the result with the time of the state left in x.
 IntegrationResult integrate_cvode(Run& run, const Jacobian& jacobian, double t0, double* x);
+IntegrationResult integrate_radau(Run& run, const Jacobian& jacobian, double t0, double* x);
 
 /// "reached max_steps = N before t_end = T".
 inline std::string max_steps_message(const IntegrationOptions& opt) {

@@ -17,10 +17,9 @@ struct MethodName {
   Method method;
   const char* name;
 };
-constexpr MethodName kMethodNames[] = {{Method::kRk4, "rk4"},
-                                       {Method::kDopri5, "dopri5"},
-                                       {Method::kImplicit, "implicit"},
-                                       {Method::kGenAlpha, "genalpha"}};
+constexpr MethodName kMethodNames[] = {{Method::kRk4, "rk4"},           {Method::kDopri5, "dopri5"},
+                                       {Method::kImplicit, "implicit"}, {Method::kGenAlpha, "genalpha"},
+                                       {Method::kRadau, "radau"},       {Method::kBdf, "bdf"}};
 
 }  // namespace
 
@@ -28,6 +27,12 @@ const char* method_name(Method method) {
   for (const MethodName& m : kMethodNames)
     if (m.method == method) return m.name;
   return "unknown";
+}
+
+Method implicit_method() { return Method::kRadau; }
+
+bool is_adaptive_implicit(Method method) {
+  return method == Method::kImplicit || method == Method::kRadau || method == Method::kBdf;
 }
 
 bool parse_method(std::string_view text, Method* method) {
@@ -321,8 +326,8 @@ IntegrationResult integrate(Method method, const Rhs& rhs, double t0, double* x,
                             const Jacobian& jacobian) {
   Run run(rhs, opt, n, observer);
   std::string bad = check_options(method, opt, t0, n);
-  if (bad.empty() && method == Method::kImplicit && !jacobian)
-    bad = "the implicit method needs the Jacobian of the right-hand side";
+  if (bad.empty() && is_adaptive_implicit(method) && !jacobian)
+    bad = "the implicit methods need the Jacobian of the right-hand side";
   if (bad.empty() && method == Method::kGenAlpha)
     bad = "genalpha integrates a Model, not an ODE x' = f(t, x) (genalpha.hpp)";
   if (!bad.empty() || !rhs || (n > 0 && !x)) {
@@ -336,7 +341,9 @@ IntegrationResult integrate(Method method, const Rhs& rhs, double t0, double* x,
     run.fail(Status::kNonFinite, "initial state is not finite", t0, x);
     return run.finish(t0);
   }
-  if (method == Method::kImplicit) return integrate_cvode(run, jacobian, t0, x);
+  if (method == Method::kImplicit) method = implicit_method();
+  if (method == Method::kRadau) return integrate_radau(run, jacobian, t0, x);
+  if (method == Method::kBdf) return integrate_cvode(run, jacobian, t0, x);
   const double t = method == Method::kRk4 ? integrate_rk4(run, t0, x) : Dopri5(run, x).integrate(t0);
   return run.finish(t);
 }

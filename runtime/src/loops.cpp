@@ -5,40 +5,16 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "cholesky.hpp"
 #include "kanegen/runtime/text.hpp"
 
 namespace kanegen::runtime {
 
 namespace {
 
-/// In place, the lower Cholesky factor of the symmetric n*n matrix A
-/// (row-major, lower triangle read); false if A is not positive definite.
-bool cholesky(std::vector<double>& A, int n) {
-  for (int j = 0; j < n; ++j) {
-    double s = A[j * n + j];
-    for (int k = 0; k < j; ++k) s -= A[j * n + k] * A[j * n + k];
-    if (!(s > 0.0)) return false;
-    A[j * n + j] = std::sqrt(s);
-    for (int i = j + 1; i < n; ++i) {
-      double v = A[i * n + j];
-      for (int k = 0; k < j; ++k) v -= A[i * n + k] * A[j * n + k];
-      A[i * n + j] = v / A[j * n + j];
-    }
-  }
-  return true;
-}
-
-/// x := (L L^T)^-1 x with L from cholesky().
-void cholesky_solve(const std::vector<double>& L, int n, double* x) {
-  for (int i = 0; i < n; ++i) {
-    for (int k = 0; k < i; ++k) x[i] -= L[i * n + k] * x[k];
-    x[i] /= L[i * n + i];
-  }
-  for (int i = n - 1; i >= 0; --i) {
-    for (int k = i + 1; k < n; ++k) x[i] -= L[k * n + i] * x[k];
-    x[i] /= L[i * n + i];
-  }
-}
+using detail::cholesky_factor;
+using detail::cholesky_solve;
+using detail::factor_gram;
 
 }  // namespace
 
@@ -54,7 +30,7 @@ class Metric {
     L_.assign(static_cast<size_t>(m) * m, 0.0);
     for (int i = 0; i < m; ++i)
       for (int j = 0; j <= i; ++j) L_[i * m + j] = M[cols[i] * n_ + cols[j]];
-    ok_ = cholesky(L_, m);
+    ok_ = cholesky_factor(L_.data(), m);
   }
   bool ok() const { return ok_; }
   /// v (length nu, entries at cols) := M_cols^-1 v.
@@ -62,7 +38,7 @@ class Metric {
     const int m = static_cast<int>(cols_.size());
     std::vector<double> x(m);
     for (int i = 0; i < m; ++i) x[i] = v[cols_[i]];
-    cholesky_solve(L_, m, x.data());
+    cholesky_solve(L_.data(), m, x.data());
     for (int i = 0; i < m; ++i) v[cols_[i]] = x[i];
   }
 
@@ -105,7 +81,7 @@ class Projector {
         for (int c = 0; c < nc_; ++c) v += alpha_ * C_[c * nu_ + cols[i]] * C_[c * nu_ + cols[j]];
         L_[i * m + j] = v;
       }
-    ok_ = alpha_ > 0.0 && cholesky(L_, m);
+    ok_ = alpha_ > 0.0 && cholesky_factor(L_.data(), m);
   }
   bool ok() const { return ok_; }
   /// x (nu; zero outside the moving columns) := the correction for r (nc).
@@ -114,7 +90,7 @@ class Projector {
     std::vector<double> y(m, 0.0);
     for (int i = 0; i < m; ++i)
       for (int c = 0; c < nc_; ++c) y[i] += alpha_ * C_[c * nu_ + cols_[i]] * r[c];
-    cholesky_solve(L_, m, y.data());
+    cholesky_solve(L_.data(), m, y.data());
     std::fill(x, x + nu_, 0.0);
     for (int i = 0; i < m; ++i) x[cols_[i]] = y[i];
   }
@@ -168,45 +144,15 @@ bool least_norm(const std::vector<double>& C, int nc, int nu, const std::vector<
       for (int c : cols) v += C[i * nu + c] * WA[j * nu + c];
       G[i * nc + j] = v;
     }
-  std::vector<bool> used(nc, false);
+  std::vector<char> used(nc, 0);
   std::vector<double> diagonal(nc);
   for (int j = 0; j < nc; ++j) diagonal[j] = G[j * nc + j];
-  bool any = false;
-  for (int j = 0; j < nc; ++j) {
-    const double scale = G[j * nc + j];
-    double s = scale;
-    for (int k = 0; k < j; ++k)
-      if (used[k]) s -= G[j * nc + k] * G[j * nc + k];
-    if (!(s > 1e-12 * scale) || !(scale > 0.0)) continue;
-    used[j] = any = true;
-    const double l = std::sqrt(s);
-    G[j * nc + j] = l;
-    for (int i = j + 1; i < nc; ++i) {
-      double v = G[i * nc + j];
-      for (int k = 0; k < j; ++k)
-        if (used[k]) v -= G[i * nc + k] * G[j * nc + k];
-      G[i * nc + j] = v / l;
-    }
-  }
+  const bool any = factor_gram(G.data(), nc, used.data());
   std::vector<double> y(r);
-  for (int i = 0; i < nc; ++i) {
-    if (!used[i]) {
-      y[i] = 0.0;
-      continue;
-    }
-    for (int k = 0; k < i; ++k)
-      if (used[k]) y[i] -= G[i * nc + k] * y[k];
-    y[i] /= G[i * nc + i];
-  }
-  for (int i = nc - 1; i >= 0; --i) {
-    if (!used[i]) continue;
-    for (int k = i + 1; k < nc; ++k)
-      if (used[k]) y[i] -= G[k * nc + i] * y[k];
-    y[i] /= G[i * nc + i];
-  }
+  cholesky_solve(G.data(), nc, y.data(), used.data());
   if (multipliers) std::copy(y.begin(), y.end(), multipliers);
   if (rank) {
-    rank->dropped = static_cast<int>(std::count(used.begin(), used.end(), false));
+    rank->dropped = static_cast<int>(std::count(used.begin(), used.end(), 0));
     double largest = 0.0, smallest = INFINITY;
     for (int j = 0; j < nc; ++j) largest = std::max(largest, diagonal[j]);
     for (int j = 0; j < nc; ++j)
@@ -435,7 +381,7 @@ bool LoopSolver::augmented_dynamics(double t, const double* q, const double* u, 
   for (int i = 0; i < nu; ++i)
     for (int j = 0; j <= i; ++j)
       for (int c = 0; c < nc_; ++c) W[i * nu + j] += alpha * C[c * nu + i] * C[c * nu + j];
-  if (!cholesky(W, nu)) return false;
+  if (!cholesky_factor(W.data(), nu)) return false;
   // W udot_k = f + C^T (lambda_k + alpha gamma), then
   // lambda_{k+1} = lambda_k - alpha (C udot_k - gamma), so that
   // M udot_k = f + C^T lambda_{k+1}.
@@ -446,7 +392,7 @@ bool LoopSolver::augmented_dynamics(double t, const double* q, const double* u, 
       udot[i] = f[i];
       for (int c = 0; c < nc_; ++c) udot[i] += C[c * nu + i] * (lambda[c] + alpha * gamma[c]);
     }
-    cholesky_solve(W, nu, udot);
+    cholesky_solve(W.data(), nu, udot);
     double worst = 0.0, scale = 0.0;
     for (int c = 0; c < nc_; ++c) {
       violation[c] = -gamma[c];

@@ -13,13 +13,13 @@
 
 namespace kanegen::runtime::detail {
 
-IntegrationResult integrate_implicit(const Model& model, const Rhs& rhs, const double* tau, double* x,
-                                     const IntegrationOptions& opt, const Observer& observer) {
+IntegrationResult integrate_implicit(Method method, const Model& model, const Rhs& rhs, const double* tau,
+                                     double* x, const IntegrationOptions& opt, const Observer& observer) {
   StateJacobian jacobian(model);
   const Jacobian jac = [&](double t, const double* xs, double* J) {
     return jacobian.evaluate(t, xs, tau, J);
   };
-  return integrate(Method::kImplicit, rhs, 0.0, x, model.info().nq + model.info().nu, opt, observer, jac);
+  return integrate(method, rhs, 0.0, x, model.info().nq + model.info().nu, opt, observer, jac);
 }
 
 long genalpha_steps(const IntegrationOptions& opt) {

@@ -13,11 +13,12 @@
 
 namespace kanegen::runtime::detail {
 
-/// Method::kImplicit on x = (q, u): `rhs` as for the explicit methods, the
-/// Jacobian from the model's kernels with the inputs tau. Throws
-/// std::invalid_argument if the model has no Jacobian kernels.
-IntegrationResult integrate_implicit(const Model& model, const Rhs& rhs, const double* tau, double* x,
-                                     const IntegrationOptions& opt, const Observer& observer);
+/// An adaptive implicit method (kImplicit, kRadau, kBdf) on x = (q, u):
+/// `rhs` as for the explicit methods, the Jacobian from the model's kernels
+/// with the inputs tau. Throws std::invalid_argument if the model has no
+/// Jacobian kernels.
+IntegrationResult integrate_implicit(Method method, const Model& model, const Rhs& rhs, const double* tau,
+                                     double* x, const IntegrationOptions& opt, const Observer& observer);
 
 /// The number of genalpha steps of opt.dt to opt.t_end; throws
 /// std::invalid_argument if it is not whole.

@@ -22,20 +22,21 @@ const std::vector<OptionSpec> kSimulate = {
     {"--t-end", "", "T", "", nullptr, "final time", K::kNonNegative, true},
     {"--dt", "", "H", "0.01", nullptr, "output interval, also the rk4 and genalpha step", K::kPositive},
     {"--integrator", "", "NAME", "dopri5", "",
-     "dopri5 (adaptive explicit, default), implicit (adaptive BDF for stiff models: use it for elastic "
-     "links, with --rtol 1e-3 to 1e-4), genalpha (fixed step dt, real time) or rk4 (fixed step dt)",
-     K::kChoice, false, false, "rk4,dopri5,implicit,genalpha"},
+     "dopri5 (adaptive explicit, default), implicit (adaptive implicit for stiff models: use it for elastic "
+     "links, with --rtol 1e-2 to 1e-4 and --atol 100 times smaller; it is radau), radau (Radau IIA of order "
+     "5), bdf (SUNDIALS CVODE's BDF), genalpha (fixed step dt, real time) or rk4 (fixed step dt)",
+     K::kChoice, false, false, "rk4,dopri5,implicit,radau,bdf,genalpha"},
     {"--rho-inf", "", "R", "0.8", nullptr, "genalpha: spectral radius at infinity in [0, 1] (1: no damping)",
      K::kNonNegative},
     {"--max-order", "", "K", "2", nullptr,
-     "implicit: highest BDF order, 1 to 5 (orders above 2 are not A-stable: elastic links crawl)",
+     "bdf: highest BDF order, 1 to 5 (orders above 2 are not A-stable: elastic links crawl)",
      K::kPositiveInteger},
-    {"--rtol", "", "R", "1e-8", nullptr, "dopri5/implicit relative tolerance", K::kNonNegative},
-    {"--atol", "", "A", "1e-10", nullptr, "dopri5/implicit absolute tolerance", K::kNonNegative},
-    {"--h0", "", "H", "0", "estimated", "dopri5/implicit initial step", K::kNonNegative},
-    {"--h-min", "", "H", "0", "round-off limit", "dopri5/implicit: fail if the step must go below H",
-     K::kNonNegative},
-    {"--h-max", "", "H", "0", "T", "dopri5/implicit largest step", K::kNonNegative},
+    {"--rtol", "", "R", "1e-8", nullptr, "dopri5/implicit/radau/bdf relative tolerance", K::kNonNegative},
+    {"--atol", "", "A", "1e-10", nullptr, "dopri5/implicit/radau/bdf absolute tolerance", K::kNonNegative},
+    {"--h0", "", "H", "0", "estimated", "dopri5/implicit/radau/bdf initial step", K::kNonNegative},
+    {"--h-min", "", "H", "0", "round-off limit",
+     "dopri5/implicit/radau/bdf: fail if the step must go below H", K::kNonNegative},
+    {"--h-max", "", "H", "0", "T", "dopri5/implicit/radau/bdf largest step", K::kNonNegative},
     {"--max-steps", "", "N", "10000000", nullptr, "fail after N attempted steps", K::kPositiveInteger},
     {"--set", "", "NAME=VALUE", "", nullptr, "set a parameter", K::kAssignment, false, true},
     {"--q0", "", "NAME=VALUE", "", "the model's q0", "initial coordinate", K::kAssignment, false, true},
@@ -43,9 +44,10 @@ const std::vector<OptionSpec> kSimulate = {
     {"--output", "-o", "FILE", "-", "", "write the CSV to FILE instead of stdout", K::kText},
     {"--stats", "", "", "", nullptr,
      "print step statistics on stderr (and Newton iterations, Jacobian evaluations and LU factorizations "
-     "for implicit and genalpha)",
+     "for implicit, radau, bdf and genalpha)",
      K::kFlag},
-    {"--energies", "", "", "", nullptr, "add kinetic_energy, potential_energy and total_energy columns", K::kFlag},
+    {"--energies", "", "", "", nullptr, "add kinetic_energy, potential_energy and total_energy columns",
+     K::kFlag},
 };
 
 const std::vector<OptionSpec> kEval = {

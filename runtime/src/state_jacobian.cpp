@@ -5,6 +5,9 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "cholesky.hpp"
+#include "kanegen/runtime/loops.hpp"
+
 namespace kanegen::runtime {
 
 std::string missing_jacobians_message(const ModelInfo& info) {
@@ -60,7 +63,13 @@ StateJacobian::StateJacobian(const Model& model)
 }
 
 bool StateJacobian::accelerations(double t, const double* q, const double* u, const double* tau) {
-  if (nc_ > 0) return model_.constrained_dynamics(t, q, u, tau, udot_.data(), lambda_.data()) == 0;
+  if (nc_ > 0) {
+    if (model_.constrained_dynamics(t, q, u, tau, udot_.data(), lambda_.data()) == 0) return true;
+    // At a singular position the generated solve gives up: the right-hand
+    // side's own fallbacks (the augmented Lagrangian; they allocate, but
+    // only there) give the udot and lambda the derivatives are taken at.
+    return LoopSolver(model_).dynamics(t, q, u, tau, udot_.data(), lambda_.data()) == 0;
+  }
   return model_.forward_dynamics(t, q, u, tau, udot_.data()) == 0;
 }
 
@@ -70,35 +79,14 @@ bool StateJacobian::factor_mass_block(const double* q) {
   const int n = nf_;
   for (int i = 0; i < n; ++i)
     for (int j = 0; j <= i; ++j) L_[i * n + j] = M_[free_[i] * m_ + free_[j]];
-  for (int j = 0; j < n; ++j) {
-    double s = L_[j * n + j];
-    for (int k = 0; k < j; ++k) s -= L_[j * n + k] * L_[j * n + k];
-    if (!(s > 0.0)) return false;
-    L_[j * n + j] = std::sqrt(s);
-    for (int i = j + 1; i < n; ++i) {
-      double v = L_[i * n + j];
-      for (int k = 0; k < j; ++k) v -= L_[i * n + k] * L_[j * n + k];
-      L_[i * n + j] = v / L_[j * n + j];
-    }
-  }
-  return true;
+  return detail::cholesky_factor(L_.data(), n);
 }
 
-void StateJacobian::solve_mass_block(double* v) const {
-  const int n = nf_;
-  for (int i = 0; i < n; ++i) {
-    for (int k = 0; k < i; ++k) v[i] -= L_[i * n + k] * v[k];
-    v[i] /= L_[i * n + i];
-  }
-  for (int i = n - 1; i >= 0; --i) {
-    for (int k = i + 1; k < n; ++k) v[i] -= L_[k * n + i] * v[k];
-    v[i] /= L_[i * n + i];
-  }
-}
+void StateJacobian::solve_mass_block(double* v) const { detail::cholesky_solve(L_.data(), nf_, v); }
 
 // G = C_F M_FF^-1 C_F^T in place as its Cholesky factor, rows that depend
-// on earlier ones (redundant loop equations) marked unused, as in
-// LoopSolver's least-norm steps.
+// on earlier ones (redundant loop equations) marked unused, by the routine
+// of LoopSolver's least-norm steps.
 bool StateJacobian::factor_gram() {
   for (int i = 0; i < nc_; ++i) {
     double* w = &W_[static_cast<size_t>(i) * nf_];
@@ -111,25 +99,7 @@ bool StateJacobian::factor_gram() {
       for (int a = 0; a < nf_; ++a) v += C_[i * m_ + free_[a]] * W_[j * nf_ + a];
       G_[i * nc_ + j] = v;
     }
-  bool any = false;
-  for (int j = 0; j < nc_; ++j) {
-    const double scale = G_[j * nc_ + j];
-    double s = scale;
-    for (int k = 0; k < j; ++k)
-      if (used_[k]) s -= G_[j * nc_ + k] * G_[j * nc_ + k];
-    used_[j] = scale > 0.0 && s > 1e-12 * scale;
-    if (!used_[j]) continue;
-    any = true;
-    const double l = std::sqrt(s);
-    G_[j * nc_ + j] = l;
-    for (int i = j + 1; i < nc_; ++i) {
-      double v = G_[i * nc_ + j];
-      for (int k = 0; k < j; ++k)
-        if (used_[k]) v -= G_[i * nc_ + k] * G_[j * nc_ + k];
-      G_[i * nc_ + j] = v / l;
-    }
-  }
-  return any;
+  return detail::factor_gram(G_.data(), nc_, used_.data());
 }
 
 // Each column y of Y (free rows) := y - M_FF^-1 C_F^T G^+ C_F y.
@@ -141,22 +111,7 @@ void StateJacobian::project_columns() {
       for (int a = 0; a < nf_; ++a) v += C_[i * m_ + free_[a]] * y[a];
       z_[i] = v;
     }
-    // G w = z by the factor of the kept rows; w = 0 on the others.
-    for (int i = 0; i < nc_; ++i) {
-      if (!used_[i]) {
-        z_[i] = 0.0;
-        continue;
-      }
-      for (int j = 0; j < i; ++j)
-        if (used_[j]) z_[i] -= G_[i * nc_ + j] * z_[j];
-      z_[i] /= G_[i * nc_ + i];
-    }
-    for (int i = nc_ - 1; i >= 0; --i) {
-      if (!used_[i]) continue;
-      for (int j = i + 1; j < nc_; ++j)
-        if (used_[j]) z_[i] -= G_[j * nc_ + i] * z_[j];
-      z_[i] /= G_[i * nc_ + i];
-    }
+    detail::cholesky_solve(G_.data(), nc_, z_.data(), used_.data());  // w = 0 on the dropped rows
     for (int i = 0; i < nc_; ++i)
       if (used_[i])
         for (int a = 0; a < nf_; ++a) y[a] -= W_[static_cast<size_t>(i) * nf_ + a] * z_[i];

@@ -181,7 +181,8 @@ TEST_CASE("simulate writes the CSV with the documented header", "[cli]") {
   CHECK(s.out.rfind("t,pivot,pivot_dot", 0) == 0);
 }
 
-TEST_CASE("simulate --integrator implicit and genalpha build a runner with Jacobians and CVODE", "[cli]") {
+TEST_CASE("simulate --integrator implicit and bdf and genalpha build a runner with Jacobians and CVODE",
+          "[cli]") {
   // The runner links the runtime's CVODE and the model's Jacobian kernels,
   // which kanegen turns on itself; the swing follows DOPRI5's.
   const auto last_angle = [](const Result& r) {
@@ -192,15 +193,19 @@ TEST_CASE("simulate --integrator implicit and genalpha build a runner with Jacob
       "simulate " + model("simple_pendulum.json") + " --t-end 1 --dt 0.001 --quiet --stats ";
   const Result reference = kanegen(run + "--rtol 1e-12 --atol 1e-14");
   const Result implicit = kanegen(run + "--integrator implicit --rtol 1e-9 --atol 1e-11");
+  const Result bdf = kanegen(run + "--integrator bdf --rtol 1e-9 --atol 1e-11");
   const Result genalpha = kanegen(run + "--integrator genalpha --rho-inf 1");
-  INFO(implicit.err << genalpha.err);
+  INFO(implicit.err << bdf.err << genalpha.err);
   REQUIRE(reference.status == 0);
   REQUIRE(implicit.status == 0);
+  REQUIRE(bdf.status == 0);
   REQUIRE(genalpha.status == 0);
-  CHECK(implicit.err.find("stats: integrator=implicit") != std::string::npos);
+  CHECK(implicit.err.find("stats: integrator=radau ") != std::string::npos);  // implicit is Radau
+  CHECK(bdf.err.find("stats: integrator=bdf ") != std::string::npos);
   CHECK(implicit.err.find("jacobian_evals=") != std::string::npos);
   CHECK(genalpha.err.find("stats: integrator=genalpha accepted=1000 ") != std::string::npos);
   CHECK(last_angle(implicit) == Approx(last_angle(reference)).margin(1e-6));
+  CHECK(last_angle(bdf) == Approx(last_angle(reference)).margin(1e-6));
   CHECK(last_angle(genalpha) == Approx(last_angle(reference)).margin(1e-4));  // second order, h = 1 ms
 }
 
@@ -324,7 +329,8 @@ TEST_CASE("simulate refuses what the runner refuses, as the runner says it, befo
       {"--max-steps 1.5", "--max-steps needs a positive integer, got '1.5'"},
       {"--dt 0", "--dt must be positive"},
       {"--dt 0.1 --dt=0.2", "option --dt given more than once"},
-      {"--integrator euler", "unknown integrator 'euler'; known: rk4, dopri5, implicit, genalpha"},
+      {"--integrator euler",
+       "unknown integrator 'euler'; known: rk4, dopri5, implicit, radau, bdf, genalpha"},
       {"--set m", "--set expects NAME=VALUE, got 'm'"},
   };
   for (const auto& [args, message] : cases) {

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
-# The adaptive implicit method (--integrator implicit) on real models
+# The adaptive implicit methods (--integrator radau and bdf) on real models
 # generated with Jacobian kernels (tests/jacobians generates them): the
 # state Jacobian against finite differences, Simeon's finite-element crank
 # against the IVP test set reference, the spin-up beam against DOPRI5, and a

@@ -374,7 +374,7 @@ TEST_CASE("Command-line errors name what is expected", "[driver]") {
       {{"simulate", "--t-end", "1", "--stats=yes"}, "option --stats takes no value"},
       {{"simulate", "--t-end", "1", "--t-end", "2"}, "--t-end given more than once"},
       {{"simulate", "--t-end", "1", "--integrator", "euler"},
-       "unknown integrator 'euler'; known: rk4, dopri5, implicit, genalpha"},
+       "unknown integrator 'euler'; known: rk4, dopri5, implicit, radau, bdf, genalpha"},
       {{"simulate", "--t-end", "1", "--max-steps", "1.5"}, "--max-steps needs a positive integer"},
       {{"simulate", "--t-end"}, "option --t-end needs a value"},
       {{"simulate", "--t-end", "1", "--bogus"}, "unknown option '--bogus' for pendulum_runner simulate"},

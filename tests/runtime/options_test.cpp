@@ -109,7 +109,7 @@ TEST_CASE("the parser's messages name the option and the rule", "[options]") {
   CHECK(parse_error("simulate", {"--t-end", "1", "--max-steps", "0"}) ==
         "--max-steps needs a positive integer, got '0'");
   CHECK(parse_error("simulate", {"--t-end", "1", "--integrator", "euler"}) ==
-        "unknown integrator 'euler'; known: rk4, dopri5, implicit, genalpha");
+        "unknown integrator 'euler'; known: rk4, dopri5, implicit, radau, bdf, genalpha");
   CHECK(parse_error("simulate", {"--t-end", "1", "--stats=1"}) == "option --stats takes no value");
   CHECK(parse_error("simulate", {"--t-end", "1", "-o", "a", "--output", "b"}) ==
         "option --output given more than once");

@@ -18,10 +18,17 @@
 
 namespace kanegen::runtime {
 
-enum class Method { kRk4, kDopri5, kImplicit, kGenAlpha };
+/// kImplicit is the adaptive implicit method of choice: implicit_method()
+/// says which of kRadau (Radau IIA of order 5, ours) and kBdf (SUNDIALS
+/// CVODE's BDF) it is.
+enum class Method { kRk4, kDopri5, kImplicit, kGenAlpha, kRadau, kBdf };
 
-/// "rk4", "dopri5", "implicit" or "genalpha".
+/// "rk4", "dopri5", "implicit", "genalpha", "radau" or "bdf".
 const char* method_name(Method method);
+/// The method that kImplicit selects (kRadau or kBdf; bench/implicit.py).
+Method implicit_method();
+/// kImplicit, kRadau or kBdf: an adaptive implicit method, which needs the Jacobian.
+bool is_adaptive_implicit(Method method);
 /// Parses the names of method_name; false if unknown.
 bool parse_method(std::string_view text, Method* method);
 
@@ -101,10 +108,13 @@ struct IntegrationResult {
 
 /// Integrates x' = rhs(t, x) from t0 to opt.t_end, calling `observer` (if
 /// set) at the output times t0, t0 + dt, t0 + 2 dt, ..., t_end; the last
-/// interval may be shorter. DOPRI5 and the implicit method step freely and
-/// reach interior output times by dense output. The implicit method (CVODE's
-/// variable-order BDF, Newton with a dense LU of I - gamma J) needs
-/// `jacobian`; Method::kGenAlpha is not an ODE method (kInvalidArgument).
+/// interval may be shorter. DOPRI5 and the implicit methods step freely and
+/// reach interior output times by dense output. The implicit methods (kRadau:
+/// Radau IIA of order 5, simplified Newton with the LU factors of its real
+/// and complex iteration matrices; kBdf: CVODE's variable-order BDF, Newton
+/// with a dense LU of I - gamma J; kImplicit: the better of the two,
+/// implicit_method()) need `jacobian`; Method::kGenAlpha is not an ODE method
+/// (kInvalidArgument).
 /// On return x holds the state at result.t: t_end on success, else the last
 /// accepted state. Never throws for numerical failures; they come back in
 /// the result.

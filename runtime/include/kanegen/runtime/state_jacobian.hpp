@@ -50,7 +50,8 @@ class StateJacobian {
 
   /// J: n*n, row-major, at (t, x) with the inputs tau (ntau values; may be
   /// null if ntau == 0). False if the mass matrix is not positive definite
-  /// there. Allocates nothing.
+  /// there. Allocates nothing, except at a singular position of the loops,
+  /// where udot and lambda come from LoopSolver::dynamics's fallbacks.
   bool evaluate(double t, const double* x, const double* tau, double* J);
 
  private:
