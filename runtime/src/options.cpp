@@ -47,7 +47,7 @@ const std::vector<OptionSpec> kSimulate = {
      K::kFlag},
     {"--energies", "", "", "", nullptr,
      "add kinetic_energy, potential_energy and total_energy columns, and nonconservative_work (the work "
-     "W_nc of dampers, inputs, efforts, body-fixed forces and prescribed motions since t = 0; "
+     "W_nc of dampers, joint efforts, body-fixed forces and prescribed motions since t = 0; "
      "total_energy - nonconservative_work stays constant) for a model that has any",
      K::kFlag},
 };
