@@ -117,7 +117,7 @@ TEST_CASE("damped pendulum: W_nc is the integral of -c u^2 and T + V - W_nc is c
   CHECK(worst < 1e-7 * scale);
 }
 
-TEST_CASE("--stats names the balance T+V-W_nc for a model with a damper", "[energies]") {
+TEST_CASE("the --stats summary names the balance T+V-W_nc for a model with a damper", "[energies]") {
   const Result r =
       kanegen("simulate " + damped_pendulum(0.4).string() + " --t-end 1 --energies --stats --quiet");
   REQUIRE(r.status == 0);
