@@ -482,6 +482,13 @@ double potential_energy(const Params& p, const double* q) {
   return V;
 }
 
+double nonconservative_power(const Params& p, [[maybe_unused]] double t, [[maybe_unused]] const double* q,
+                             const double* u, const double* tau) {
+  double P;
+  P = u[0]*(tau[0] + p.mom) + u[6]*tau[6] + tau[2]*u[2] + tau[3]*u[3] + u[4]*tau[4] + tau[1]*u[1] + u[5]*tau[5];
+  return P;
+}
+
 void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
   const double x0 = p.i2 + p.m2*p.da*p.da;
   const double x1 = p.m2*cos(q[1])*p.da*p.rr;

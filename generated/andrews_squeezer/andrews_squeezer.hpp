@@ -9,6 +9,7 @@
 //   forward_dynamics: 313 (and the saddle-point solve)
 //   kinetic_energy: 103
 //   potential_energy: 20
+//   nonconservative_power: 14
 //   outputs: 38
 //   inverse_dynamics: 214 (recursive; M udot - f from M and f: 211)
 //   gravity: 0
@@ -74,6 +75,9 @@ constexpr int NU = 7;      ///< generalized speeds
 constexpr int NTAU = 7;  ///< inputs (joint torques and forces)
 constexpr int NY = 23;      ///< outputs
 constexpr int NP = 42;      ///< parameters
+/// Whether forces not from a potential other than the inputs tau can do
+/// work: dampers, joint efforts, body-fixed forces, prescribed motions.
+constexpr bool NONCONSERVATIVE = true;
 
 extern const char* const coordinate_names[7];
 extern const char* const speed_names[7];
@@ -124,6 +128,11 @@ double kinetic_energy(const Params& p, const double* q, const double* u);
 
 /// V, the potential energy (gravity, springs, strain).
 double potential_energy(const Params& p, const double* q);
+
+/// P, the power of the forces not from V (dampers, inputs tau, joint efforts,
+/// body-fixed forces): d(T + V)/dt = P plus the power of the drivers of
+/// prescribed motions. 0 for a conservative model.
+double nonconservative_power(const Params& p, double t, const double* q, const double* u, const double* tau);
 
 /// h: NU, the generalized momenta h = M(q) u = dT/du.
 void generalized_momentum(const Params& p, const double* q, const double* u, double* h);
@@ -184,6 +193,7 @@ Table kernel_table() {
   table.coordinate_joints = coordinate_joints;
   table.moved_bodies_first = moved_bodies_first;
   table.moved_bodies = moved_bodies;
+  table.nonconservative = NONCONSERVATIVE;
   table.nc = NC;
   table.constraint_names = constraint_names;
   table.coordinate_roles = coordinate_roles;
@@ -217,6 +227,10 @@ Table kernel_table() {
   };
   table.potential_energy = [](const void* p, const double* q) {
     return potential_energy(*static_cast<const Params*>(p), q);
+  };
+  table.nonconservative_power = [](const void* p, double t, const double* q, const double* u,
+                                   const double* tau) {
+    return nonconservative_power(*static_cast<const Params*>(p), t, q, u, tau);
   };
   table.outputs = [](const void* p, double t, const double* q, const double* u, double* y) {
     outputs(*static_cast<const Params*>(p), t, q, u, y);
@@ -280,6 +294,10 @@ struct System {
   }
   static double potential_energy(const Params& p, const double* q) {
     return ::kanegen_models::andrews_squeezer::potential_energy(p, q);
+  }
+  static double nonconservative_power(const Params& p, double t, const double* q, const double* u,
+                                      const double* tau) {
+    return ::kanegen_models::andrews_squeezer::nonconservative_power(p, t, q, u, tau);
   }
   static void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
     ::kanegen_models::andrews_squeezer::generalized_momentum(p, q, u, h);

@@ -1042,6 +1042,13 @@ double potential_energy([[maybe_unused]] const Params& p, const double* q) {
   return V;
 }
 
+double nonconservative_power([[maybe_unused]] const Params& p, [[maybe_unused]] double t,
+                             [[maybe_unused]] const double* q, const double* u, const double* tau) {
+  double P;
+  P = u[6]*tau[6] + u[0]*tau[0] + tau[2]*u[2] + tau[3]*u[3] + u[4]*tau[4] + tau[1]*u[1] + u[5]*tau[5];
+  return P;
+}
+
 void generalized_momentum([[maybe_unused]] const Params& p, const double* q, const double* u, double* h) {
   const double x0 = sin(q[1]);
   const double x1 = cos(q[6]);

@@ -9,6 +9,7 @@
 //   forward_dynamics: 1851 (252 of them in LDL^T)
 //   kinetic_energy: 473
 //   potential_energy: 137
+//   nonconservative_power: 13
 //   outputs: 0
 //   inverse_dynamics: 1527 (recursive; M udot - f from M and f: 1690)
 //   gravity: 294
@@ -29,6 +30,9 @@ constexpr int NU = 7;      ///< generalized speeds
 constexpr int NTAU = 7;  ///< inputs (joint torques and forces)
 constexpr int NY = 0;      ///< outputs
 constexpr int NP = 0;      ///< parameters
+/// Whether forces not from a potential other than the inputs tau can do
+/// work: dampers, joint efforts, body-fixed forces, prescribed motions.
+constexpr bool NONCONSERVATIVE = false;
 
 extern const char* const coordinate_names[7];
 extern const char* const speed_names[7];
@@ -73,6 +77,11 @@ double kinetic_energy(const Params& p, const double* q, const double* u);
 /// V, the potential energy (gravity, springs, strain).
 double potential_energy(const Params& p, const double* q);
 
+/// P, the power of the forces not from V (dampers, inputs tau, joint efforts,
+/// body-fixed forces): d(T + V)/dt = P plus the power of the drivers of
+/// prescribed motions. 0 for a conservative model.
+double nonconservative_power(const Params& p, double t, const double* q, const double* u, const double* tau);
+
 /// h: NU, the generalized momenta h = M(q) u = dT/du.
 void generalized_momentum(const Params& p, const double* q, const double* u, double* h);
 
@@ -114,6 +123,7 @@ Table kernel_table() {
   table.coordinate_joints = coordinate_joints;
   table.moved_bodies_first = moved_bodies_first;
   table.moved_bodies = moved_bodies;
+  table.nonconservative = NONCONSERVATIVE;
   table.parameters_size = sizeof(Params);
   table.default_parameters = [](void* p) { Table::template construct_parameters<Params>(p); };
   table.set_parameter = [](void* p, const char* name, double value) {
@@ -144,6 +154,10 @@ Table kernel_table() {
   };
   table.potential_energy = [](const void* p, const double* q) {
     return potential_energy(*static_cast<const Params*>(p), q);
+  };
+  table.nonconservative_power = [](const void* p, double t, const double* q, const double* u,
+                                   const double* tau) {
+    return nonconservative_power(*static_cast<const Params*>(p), t, q, u, tau);
   };
   table.outputs = [](const void* p, double t, const double* q, const double* u, double* y) {
     outputs(*static_cast<const Params*>(p), t, q, u, y);
@@ -191,6 +205,10 @@ struct System {
   }
   static double potential_energy(const Params& p, const double* q) {
     return ::kanegen_models::arm7::potential_energy(p, q);
+  }
+  static double nonconservative_power(const Params& p, double t, const double* q, const double* u,
+                                      const double* tau) {
+    return ::kanegen_models::arm7::nonconservative_power(p, t, q, u, tau);
   }
   static void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
     ::kanegen_models::arm7::generalized_momentum(p, q, u, h);

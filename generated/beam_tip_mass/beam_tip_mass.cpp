@@ -3713,6 +3713,13 @@ double potential_energy([[maybe_unused]] const Params& p, const double* q) {
   return V;
 }
 
+double nonconservative_power(const Params& p, [[maybe_unused]] double t, [[maybe_unused]] const double* q,
+                             const double* u, const double* tau) {
+  double P;
+  P = -u[0]*(p.c_hub*u[0] - tau[0]);
+  return P;
+}
+
 void generalized_momentum([[maybe_unused]] const Params& p, const double* q, const double* u, double* h) {
   const double x0 = 0.0001674666666666667*q[7] + 2.6794666666666663e-05 - 0.0001674666666666668*q[1];
   const double x1 = -0.009420000000000006*q[5] + 0.0001674666666666668*q[6] - 0.04396*q[2];

@@ -1846,6 +1846,13 @@ double potential_energy([[maybe_unused]] const Params& p, const double* q) {
   return V;
 }
 
+double nonconservative_power(const Params& p, [[maybe_unused]] double t, [[maybe_unused]] const double* q,
+                             const double* u, [[maybe_unused]] const double* tau) {
+  double P;
+  P = -u[28]*p.P;
+  return P;
+}
+
 void generalized_momentum([[maybe_unused]] const Params& p, [[maybe_unused]] const double* q, const double* u,
                           double* h) {
   const double x0 = 0.03925000000000003*u[3];

@@ -5777,6 +5777,13 @@ double potential_energy([[maybe_unused]] const Params& p, const double* q) {
   return V;
 }
 
+double nonconservative_power([[maybe_unused]] const Params& p, [[maybe_unused]] double t,
+                             [[maybe_unused]] const double* q, const double* u, const double* tau) {
+  double P;
+  P = tau[14]*u[14] + u[15]*tau[15] + u[7]*tau[7] + u[12]*tau[12] + u[6]*tau[6] + u[18]*tau[18] + u[0]*tau[0] + tau[8]*u[8] + tau[2]*u[2] + tau[17]*u[17] + tau[13]*u[13] + tau[19]*u[19] + tau[3]*u[3] + tau[9]*u[9] + tau[16]*u[16] + u[11]*tau[11] + u[4]*tau[4] + tau[1]*u[1] + u[10]*tau[10] + u[5]*tau[5];
+  return P;
+}
+
 void generalized_momentum([[maybe_unused]] const Params& p, const double* q, const double* u, double* h) {
   const double x0 = sin(q[1]);
   const double x1 = cos(q[1]);

@@ -154,6 +154,13 @@ double potential_energy(const Params& p, const double* q) {
   return V;
 }
 
+double nonconservative_power(const Params& p, [[maybe_unused]] double t, [[maybe_unused]] const double* q,
+                             const double* u, const double* tau) {
+  double P;
+  P = -(-(u[1]*(tau[1] - (u[1]*p.c2))) + u[0]*(u[0]*p.c1 - tau[0]));
+  return P;
+}
+
 void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
   const double x0 = p.l1*p.l1;
   const double x1 = p.m2*p.l1*p.l2*cos(q[1]);

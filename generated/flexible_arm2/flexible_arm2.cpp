@@ -2922,6 +2922,13 @@ double potential_energy(const Params& p, const double* q) {
   return V;
 }
 
+double nonconservative_power([[maybe_unused]] const Params& p, [[maybe_unused]] double t,
+                             [[maybe_unused]] const double* q, const double* u, const double* tau) {
+  double P;
+  P = u[0]*tau[0] + tau[1]*u[1];
+  return P;
+}
+
 void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
   const double x0 = cos(q[1]);
   const double x1 = sin(q[13]);

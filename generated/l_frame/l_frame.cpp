@@ -17242,6 +17242,14 @@ double potential_energy([[maybe_unused]] const Params& p, const double* q) {
   return V;
 }
 
+double nonconservative_power([[maybe_unused]] const Params& p, [[maybe_unused]] double t,
+                             [[maybe_unused]] const double* q, [[maybe_unused]] const double* u,
+                             [[maybe_unused]] const double* tau) {
+  double P;
+  P = 0.0;
+  return P;
+}
+
 void generalized_momentum([[maybe_unused]] const Params& p, [[maybe_unused]] const double* q, const double* u,
                           double* h) {
   const double x0 = 0.003270833333333335*u[6];

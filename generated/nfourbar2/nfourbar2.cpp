@@ -228,6 +228,13 @@ double potential_energy(const Params& p, const double* q) {
   return V;
 }
 
+double nonconservative_power([[maybe_unused]] const Params& p, [[maybe_unused]] double t,
+                             [[maybe_unused]] const double* q, const double* u, const double* tau) {
+  double P;
+  P = u[0]*tau[0] + tau[2]*u[2] + tau[3]*u[3] + u[4]*tau[4] + tau[1]*u[1];
+  return P;
+}
+
 void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
   const double x0 = p.m*p.l*p.l*cos(q[3]);
   const double x1 = p.l*p.l;

@@ -7448,6 +7448,13 @@ double potential_energy(const Params& p, const double* q) {
   return V;
 }
 
+double nonconservative_power([[maybe_unused]] const Params& p, [[maybe_unused]] double t,
+                             [[maybe_unused]] const double* q, const double* u, const double* tau) {
+  double P;
+  P = u[30]*tau[30] + tau[74]*u[74] + tau[75]*u[75] + tau[39]*u[39] + tau[24]*u[24] + tau[40]*u[40] + tau[72]*u[72] + u[59]*tau[59] + tau[14]*u[14] + u[47]*tau[47] + u[66]*tau[66] + tau[73]*u[73] + u[15]*tau[15] + u[7]*tau[7] + tau[27]*u[27] + tau[36]*u[36] + tau[69]*u[69] + u[65]*tau[65] + tau[55]*u[55] + u[12]*tau[12] + u[50]*tau[50] + u[23]*tau[23] + u[6]*tau[6] + tau[52]*u[52] + tau[71]*u[71] + u[18]*tau[18] + tau[26]*u[26] + u[61]*tau[61] + u[0]*tau[0] + tau[63]*u[63] + tau[57]*u[57] + tau[20]*u[20] + tau[68]*u[68] + tau[8]*u[8] + tau[2]*u[2] + tau[17]*u[17] + u[49]*tau[49] + tau[60]*u[60] + u[51]*tau[51] + tau[13]*u[13] + tau[77]*u[77] + tau[22]*u[22] + u[28]*tau[28] + tau[62]*u[62] + tau[38]*u[38] + tau[41]*u[41] + tau[19]*u[19] + u[21]*tau[21] + u[67]*tau[67] + tau[3]*u[3] + u[31]*tau[31] + tau[9]*u[9] + tau[25]*u[25] + u[32]*tau[32] + u[29]*tau[29] + u[80]*tau[80] + u[48]*tau[48] + tau[16]*u[16] + u[11]*tau[11] + tau[76]*u[76] + u[45]*tau[45] + u[64]*tau[64] + u[78]*tau[78] + u[4]*tau[4] + tau[54]*u[54] + u[42]*tau[42] + u[44]*tau[44] + u[79]*tau[79] + tau[33]*u[33] + u[46]*tau[46] + u[58]*tau[58] + tau[70]*u[70] + tau[53]*u[53] + u[35]*tau[35] + u[34]*tau[34] + tau[1]*u[1] + u[10]*tau[10] + tau[56]*u[56] + u[5]*tau[5] + u[43]*tau[43] + tau[37]*u[37];
+  return P;
+}
+
 void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
   const double x0 = p.m*p.l*p.l*cos(q[41]);
   const double x1 = p.l*p.l;

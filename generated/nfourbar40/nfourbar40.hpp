@@ -9,6 +9,7 @@
 //   forward_dynamics: 3277 (and the saddle-point solve)
 //   kinetic_energy: 1250
 //   potential_energy: 724
+//   nonconservative_power: 161
 //   outputs: 4
 //   inverse_dynamics: 2395 (recursive; M udot - f from M and f: 2051)
 //   gravity: 1164
@@ -34,6 +35,9 @@ constexpr int NU = 81;      ///< generalized speeds
 constexpr int NTAU = 81;  ///< inputs (joint torques and forces)
 constexpr int NY = 3;      ///< outputs
 constexpr int NP = 2;      ///< parameters
+/// Whether forces not from a potential other than the inputs tau can do
+/// work: dampers, joint efforts, body-fixed forces, prescribed motions.
+constexpr bool NONCONSERVATIVE = false;
 
 extern const char* const coordinate_names[81];
 extern const char* const speed_names[81];
@@ -84,6 +88,11 @@ double kinetic_energy(const Params& p, const double* q, const double* u);
 
 /// V, the potential energy (gravity, springs, strain).
 double potential_energy(const Params& p, const double* q);
+
+/// P, the power of the forces not from V (dampers, inputs tau, joint efforts,
+/// body-fixed forces): d(T + V)/dt = P plus the power of the drivers of
+/// prescribed motions. 0 for a conservative model.
+double nonconservative_power(const Params& p, double t, const double* q, const double* u, const double* tau);
 
 /// h: NU, the generalized momenta h = M(q) u = dT/du.
 void generalized_momentum(const Params& p, const double* q, const double* u, double* h);
@@ -144,6 +153,7 @@ Table kernel_table() {
   table.coordinate_joints = coordinate_joints;
   table.moved_bodies_first = moved_bodies_first;
   table.moved_bodies = moved_bodies;
+  table.nonconservative = NONCONSERVATIVE;
   table.nc = NC;
   table.constraint_names = constraint_names;
   table.coordinate_roles = coordinate_roles;
@@ -177,6 +187,10 @@ Table kernel_table() {
   };
   table.potential_energy = [](const void* p, const double* q) {
     return potential_energy(*static_cast<const Params*>(p), q);
+  };
+  table.nonconservative_power = [](const void* p, double t, const double* q, const double* u,
+                                   const double* tau) {
+    return nonconservative_power(*static_cast<const Params*>(p), t, q, u, tau);
   };
   table.outputs = [](const void* p, double t, const double* q, const double* u, double* y) {
     outputs(*static_cast<const Params*>(p), t, q, u, y);
@@ -240,6 +254,10 @@ struct System {
   }
   static double potential_energy(const Params& p, const double* q) {
     return ::kanegen_models::nfourbar40::potential_energy(p, q);
+  }
+  static double nonconservative_power(const Params& p, double t, const double* q, const double* u,
+                                      const double* tau) {
+    return ::kanegen_models::nfourbar40::nonconservative_power(p, t, q, u, tau);
   }
   static void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
     ::kanegen_models::nfourbar40::generalized_momentum(p, q, u, h);

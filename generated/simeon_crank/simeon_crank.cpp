@@ -268,6 +268,13 @@ double potential_energy([[maybe_unused]] const Params& p, const double* q) {
   return V;
 }
 
+double nonconservative_power([[maybe_unused]] const Params& p, [[maybe_unused]] double t,
+                             [[maybe_unused]] const double* q, const double* u, const double* tau) {
+  double P;
+  P = tau[2]*u[2] + tau[1]*u[1];
+  return P;
+}
+
 void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
   const double x0 = 0.004533120000000002 + 0.007555955520000005*q[6] + q[6]*(0.010075278664704*q[5] + 0.020148879067648014*q[6] + 0.007555955520000005) + 0.015108888960000004*q[5] + q[5]*(0.08057536907059201*q[5] + 0.010075278664704*q[6] + 0.015108888960000004) + 8.058879999999997e-07 + 0.07555199979557659*(q[3]*q[3]) + 0.07555199672950157*(q[4]*q[4]);
   const double x1 = cos(q[1]);

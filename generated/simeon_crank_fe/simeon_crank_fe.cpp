@@ -1168,6 +1168,13 @@ double potential_energy([[maybe_unused]] const Params& p, const double* q) {
   return V;
 }
 
+double nonconservative_power([[maybe_unused]] const Params& p, [[maybe_unused]] double t,
+                             [[maybe_unused]] const double* q, const double* u, const double* tau) {
+  double P;
+  P = tau[2]*u[2] + tau[1]*u[1];
+  return P;
+}
+
 void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
   const double x0 = 0.002833200000000001*q[10];
   const double x1 = 0.0132216*q[7] + 0.002833200000000001*q[4] + x0 + 0.0014166;

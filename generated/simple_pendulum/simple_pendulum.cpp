@@ -96,6 +96,13 @@ double potential_energy(const Params& p, const double* q) {
   return V;
 }
 
+double nonconservative_power([[maybe_unused]] const Params& p, [[maybe_unused]] double t,
+                             [[maybe_unused]] const double* q, const double* u, const double* tau) {
+  double P;
+  P = u[0]*tau[0];
+  return P;
+}
+
 void generalized_momentum(const Params& p, [[maybe_unused]] const double* q, const double* u, double* h) {
   h[0] = u[0]*(p.m*p.l*p.l);
 }

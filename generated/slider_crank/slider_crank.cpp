@@ -217,6 +217,13 @@ double potential_energy([[maybe_unused]] const Params& p, [[maybe_unused]] const
   return V;
 }
 
+double nonconservative_power([[maybe_unused]] const Params& p, [[maybe_unused]] double t,
+                             [[maybe_unused]] const double* q, const double* u, const double* tau) {
+  double P;
+  P = tau[2]*u[2] + tau[1]*u[1];
+  return P;
+}
+
 void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
   const double x0 = p.m2*cos(q[1])*p.L1*p.L2;
   const double x1 = p.J2 + 0.5*x0;

@@ -5661,6 +5661,13 @@ double potential_energy(const Params& p, const double* q) {
   return V;
 }
 
+double nonconservative_power([[maybe_unused]] const Params& p, [[maybe_unused]] double t,
+                             [[maybe_unused]] const double* q, const double* u, const double* tau) {
+  double P;
+  P = u[0]*tau[0] + tau[1]*u[1];
+  return P;
+}
+
 void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
   const double x0 = 0.021600000000000015*q[15] + 0.02160000000000001*q[3] + 0.10080000000000003*q[9] + 0.00128*q[7] - 0.001280000000000001*q[19];
   const double x1 = cos(q[19]);

@@ -1445,6 +1445,13 @@ double potential_energy(const Params& p, const double* q) {
   return V;
 }
 
+double nonconservative_power([[maybe_unused]] const Params& p, [[maybe_unused]] double t,
+                             [[maybe_unused]] const double* q, const double* u, const double* tau) {
+  double P;
+  P = tau[2]*u[2] + tau[3]*u[3] + tau[1]*u[1];
+  return P;
+}
+
 void generalized_momentum([[maybe_unused]] const Params& p, const double* q, const double* u, double* h) {
   const double x0 = 0.00016789333333333336*q[16] + 3.357866666666665e-05 - 0.00016789333333333342*q[4];
   const double x1 = cos(q[2]);

@@ -1756,6 +1756,14 @@ double potential_energy([[maybe_unused]] const Params& p, const double* q) {
   return V;
 }
 
+double nonconservative_power([[maybe_unused]] const Params& p, [[maybe_unused]] double t,
+                             [[maybe_unused]] const double* q, [[maybe_unused]] const double* u,
+                             [[maybe_unused]] const double* tau) {
+  double P;
+  P = 0.0;
+  return P;
+}
+
 void generalized_momentum([[maybe_unused]] const Params& p, const double* q, const double* u, double* h) {
   const double x0 = 0.18000000000000005*q[13] + 0.8399999999999999*q[16] + 7.200000000000001 + 0.18000000000000008*q[19];
   const double x1 = -0.040000000000000015*q[12] + 0.04*q[6] + 0.18000000000000005*q[11] + 0.8399999999999999*q[8] + 0.18000000000000008*q[5];

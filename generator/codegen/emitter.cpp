@@ -104,6 +104,7 @@ TemplateValues model_values(const model::Model& model, const kane::Equations& eq
       {"NQ", std::to_string(eq.nq)},
       {"NU", std::to_string(eq.nu)},
       {"NTAU", std::to_string(ntau)},
+      {"NONCONSERVATIVE", eq.nonconservative ? "true" : "false"},
       {"NY", std::to_string(ny)},
       {"NP", std::to_string(parameter_names.size())},
       {"NQ_ARRAY", array_size(eq.nq)},

@@ -39,6 +39,12 @@ const std::vector<KernelSignature> kTable = {
   {Kernel::potential_energy, "potential_energy", "double", "const Params& p, const double* q",
    "/// V, the potential energy (gravity, springs, strain).",
    Presence::always, true, true},
+  {Kernel::nonconservative_power, "nonconservative_power", "double",
+   "const Params& p, double t, const double* q, const double* u, const double* tau",
+   "/// P, the power of the forces not from V (dampers, inputs tau, joint efforts,\n"
+   "/// body-fixed forces): d(T + V)/dt = P plus the power of the drivers of\n"
+   "/// prescribed motions. 0 for a conservative model.",
+   Presence::always, true, true},
   {Kernel::generalized_momentum, "generalized_momentum", "void",
    "const Params& p, const double* q, const double* u, double* h",
    "/// h: NU, the generalized momenta h = M(q) u = dT/du.",

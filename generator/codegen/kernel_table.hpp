@@ -23,6 +23,7 @@ enum class Kernel {
   coordinate_rates,
   kinetic_energy,
   potential_energy,
+  nonconservative_power,
   generalized_momentum,
   outputs,
   inverse_dynamics,

@@ -582,6 +582,7 @@ std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Eq
   kernels.push_back(coordinate_rates_kernel(d));
   kernels.push_back(energy_kernel(Kernel::kinetic_energy, "T", eq.kinetic_energy, d));
   kernels.push_back(energy_kernel(Kernel::potential_energy, "V", eq.potential_energy, d));
+  kernels.push_back(energy_kernel(Kernel::nonconservative_power, "P", eq.nonconservative_power, d));
   kernels.push_back(generalized_momentum_kernel(d));
   kernels.push_back(outputs_kernel(d));
   kernels.push_back(inverse_dynamics_kernel(d));

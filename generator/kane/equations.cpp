@@ -180,7 +180,11 @@ void add_rigid_body(Derivation& d, BodySums& sums, std::size_t i) {
     const Vec3 at = vec(vars, pf.point);
     force = force + f;
     torque = torque + cross(at - com, f);
-    if (pf.frame == model::ForceFrame::world) d.eq.potential_energy -= dot(given, d.tree.world_point(b, at));
+    // A world-fixed force has a potential; one turning with the body does work.
+    if (pf.frame == model::ForceFrame::world)
+      d.eq.potential_energy -= dot(given, d.tree.world_point(b, at));
+    else
+      d.eq.nonconservative_power += dot(f, b.velocity + cross(b.omega, at));
   }
   force = named(program, force);
   sums.wrench[i] = {named(program, torque + cross(com, force)), force};
@@ -224,7 +228,13 @@ void add_flexible_body(Derivation& d, BodySums& sums, std::size_t i) {
     terms.force = terms.force + f;
     terms.moment = terms.moment + cross(at, f);
     for (int k = 0; k < count; ++k) terms.elastic_forcing[k] += dot(node.partial[k], f);
-    if (pf.frame == model::ForceFrame::world) d.eq.potential_energy -= dot(given, d.tree.world_point(b, at));
+    if (pf.frame == model::ForceFrame::world) {
+      d.eq.potential_energy -= dot(given, d.tree.world_point(b, at));
+    } else {
+      Vec3 velocity = b.velocity + cross(b.omega, at);
+      for (int k = 0; k < count; ++k) velocity = velocity + eta_dot[k] * node.partial[k];
+      d.eq.nonconservative_power += dot(f, velocity);
+    }
   }
   Wrench& wrench = sums.wrench[i];
   wrench.force = wrench.force + terms.force;
@@ -234,6 +244,7 @@ void add_flexible_body(Derivation& d, BodySums& sums, std::size_t i) {
   inertia.moment = inertia.moment + terms.first_moment;
   for (int k = 0; k < 9; ++k) inertia.second[k] += terms.second_moment[k];
   d.eq.kinetic_energy += terms.kinetic_energy;
+  d.eq.nonconservative_power += terms.damping_power;
   const ex weight_potential = -dot(d.gravity, terms.mass * b.origin + mul(b.rotation, terms.first_moment));
   d.eq.potential_energy += terms.strain_energy + weight_potential;
   d.eq.gravity_potential += weight_potential;
@@ -251,6 +262,7 @@ void add_springs(Derivation& d, BodySums& sums) {
       w.moment = w.moment + cross(load.at, load.force);
     }
     d.eq.potential_energy += s.energy;
+    d.eq.nonconservative_power += s.damping_power;
   }
 }
 
@@ -470,10 +482,19 @@ void add_joint_forces(Derivation& d, const model::Joint& joint, int r) {
   const ex stiffness = vars.scalar(joint.spring_stiffness);
   const ex stretch = vars.q[r] - vars.scalar(joint.spring_rest);
   d.eq.forcing[r] += -stiffness * stretch - vars.scalar(joint.damping) * vars.u[r];
-  if (joint.actuated) d.eq.forcing[r] += vars.tau[r];
+  ex nonconservative = -vars.scalar(joint.damping) * vars.u[r];
+  if (joint.actuated) {
+    d.eq.forcing[r] += vars.tau[r];
+    nonconservative += vars.tau[r];
+  }
   for (const model::JointEffort& effort : d.model.joint_efforts)
-    if (effort.joint == joint.name) d.eq.forcing[r] += joint_effort_value(effort, vars);
+    if (effort.joint == joint.name) {
+      const ex value = joint_effort_value(effort, vars);
+      d.eq.forcing[r] += value;
+      nonconservative += value;
+    }
   d.eq.potential_energy += stiffness * stretch * stretch / 2;
+  d.eq.nonconservative_power += nonconservative * vars.u[r];
 }
 
 /// A prescribed joint's accelerations piece by piece, and the initial state its motion gives.
@@ -636,7 +657,7 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
   eq.nq = eq.nu = static_cast<int>(vars.q.size());
   eq.mass_matrix.assign(eq.nu * eq.nu, 0);
   eq.forcing.assign(eq.nu, 0);
-  eq.kinetic_energy = eq.potential_energy = eq.gravity_potential = 0;
+  eq.kinetic_energy = eq.potential_energy = eq.gravity_potential = eq.nonconservative_power = 0;
   Derivation d{model, vars, program, flexible, tree, method, gravity, eq};
 
   const std::size_t count = tree.bodies().size();
@@ -663,6 +684,9 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
   eq.loops = derive_loop_constraints(model, vars, program, tree, flexible);
   coordinate_roles(d);
   expand_outputs(d);
+  GiNaC::exmap no_inputs;
+  for (const GiNaC::symbol& tau : vars.tau) no_inputs[tau] = 0;
+  eq.nonconservative = !eq.nonconservative_power.subs(no_inputs).is_zero() || !eq.prescribed.empty();
   return eq;
 }
 

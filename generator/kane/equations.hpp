@@ -38,6 +38,14 @@ struct Equations {
   std::vector<GiNaC::ex> forcing;           ///< nu: gravity, velocity terms, springs, dampers, forces, tau
   std::vector<GiNaC::ex> coordinate_rates;  ///< nq: q_dot as a function of u
   GiNaC::ex kinetic_energy, potential_energy;
+  /// The power of every force not from V: dampers (joint, spring, beam),
+  /// inputs tau, joint efforts, body-fixed applied forces. 0 for a
+  /// conservative model. The drivers of prescribed motions are not in it
+  /// (their effort is known only with u_dot: the runtime adds it).
+  GiNaC::ex nonconservative_power;
+  /// Forces not from V other than the inputs (which simulate leaves at 0),
+  /// or prescribed motions: whether simulate --energies has a W_nc column.
+  bool nonconservative = false;
   std::vector<GiNaC::ex> outputs;
   std::vector<std::string> output_names;
   std::vector<std::string> coordinate_names, speed_names, input_names;
@@ -76,7 +84,8 @@ enum class MassMatrixMethod { body_frames, world_projection };
 /// The finite-element bodies, by index in Model::bodies.
 using FlexibleBodies = std::map<int, fem::ModelBeam>;
 
-Equations derive_equations(const model::Model& model, const symbolic::Variables& vars, symbolic::Program& program,
+Equations derive_equations(const model::Model& model, const symbolic::Variables& vars,
+                           symbolic::Program& program,
                            MassMatrixMethod method = MassMatrixMethod::body_frames,
                            const FlexibleBodies& flexible = {});
 

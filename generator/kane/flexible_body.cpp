@@ -298,6 +298,9 @@ class FlexibleBuilder {
                          linear_combination(C.row(k).transpose(), eta_dot_);
       out_.elastic_forcing.push_back(program_.define(elastic - inertia));
     }
+    out_.damping_power = 0;
+    for (int k = 0; k < n_; ++k)
+      out_.damping_power -= eta_dot_[k] * linear_combination(C.row(k).transpose(), eta_dot_);
     M_ = cleaned(inv_.elastic_mass());
     for (int k = 0; k < n_; ++k)
       for (int l = 0; l < n_; ++l) out_.elastic_mass.push_back(number(M_(k, l)));

@@ -43,6 +43,8 @@ struct FlexibleTerms {
   std::vector<GiNaC::ex> elastic_mass;
   /// Kinetic energy of the body, and its strain energy 1/2 eta^T K eta.
   GiNaC::ex kinetic_energy, strain_energy;
+  /// The power of the structural damping, -eta_dot^T C eta_dot.
+  GiNaC::ex damping_power;
 };
 
 /// `eta`, `eta_dot`: the body's elastic coordinates and speeds; `b`: its

@@ -48,12 +48,13 @@ SpringLoads spring_loads(const model::Spring& spring, const kinematics::TreeKine
   const ex stretch = length - rest;
   // (k (l - l0) + c l_dot) / l with l_dot = d.(v1 - v2) / l; for l0 = 0 and
   // c = 0 GiNaC cancels it to k, and the force -k d stays regular at l = 0.
-  const ex pull = program.define(
-      (stiffness * stretch + damping * dot(d, first.velocity - second.velocity) / length) / length);
+  const ex rate = dot(d, first.velocity - second.velocity) / length;  // l_dot
+  const ex pull = program.define((stiffness * stretch + damping * rate) / length);
   const Vec3 force = named(program, zero_vec() - pull * d);  // on the first point, world axes
 
   SpringLoads out;
   out.energy = stiffness * stretch * stretch / 2;
+  out.damping_power = -damping * rate * rate;
   for (const End* e : {&first, &second}) {
     if (e->state < 0) continue;
     const Vec3 f = mul_transposed(tree.bodies()[e->state].rotation, e == &first ? force : zero_vec() - force);

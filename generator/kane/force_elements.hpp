@@ -24,10 +24,11 @@ struct PointLoad {
 };
 
 /// What a spring does: a force at each end on a body (none on the ground)
-/// and its potential energy k (l - l0)^2 / 2.
+/// and its potential energy k (l - l0)^2 / 2; the damper's power -c l_dot^2.
 struct SpringLoads {
   std::vector<PointLoad> loads;
   GiNaC::ex energy;
+  GiNaC::ex damping_power;
 };
 
 /// The spring's forces F = -(k (l - l0) + c l_dot) d / l on the first point

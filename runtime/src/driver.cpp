@@ -16,6 +16,7 @@
 #include "kanegen/runtime/state_jacobian.hpp"
 #include "kanegen/runtime/text.hpp"
 #include "model_integrators.hpp"
+#include "nonconservative_work.hpp"
 #include "run_report.hpp"
 
 namespace kanegen::runtime {
@@ -269,7 +270,8 @@ IntegrationResult run_method(const Model& model, const SimulateArgs& a, const Rh
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
-  return integrate(a.method, rhs, 0.0, x, n, opt, observer);
+  return integrate(a.method, rhs, 0.0, x, n + (a.energies && model.info().nonconservative ? 1 : 0), opt,
+                   observer);
 }
 
 int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err) {
@@ -296,7 +298,16 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
     print(err, "assembly: " + held + "; loops closed to |phi| = " + format_double(assembly.residual) +
                    " in " + std::to_string(assembly.iterations) + " Newton steps\n");
   }
-  std::vector<double> projected(static_cast<size_t>(std::max(n, 1)));
+  // W_nc (--energies, a model with forces not from V) rides along as state
+  // component n, integrated to the method's tolerance; the implicit methods
+  // own their state layout and take the trapezoid rule over the rows instead.
+  const bool work = a.energies && info.nonconservative;
+  const bool work_in_state = work && a.method != Method::kImplicit && a.method != Method::kGenAlpha;
+  const int n_state = work_in_state ? n + 1 : n;
+  x.resize(static_cast<size_t>(std::max(n_state, 1)));
+  if (work_in_state) x[n] = 0.0;
+  std::vector<double> projected(static_cast<size_t>(std::max(n_state, 1)));
+  NonconservativePower power(model);
 
   const bool to_stdout = a.output.empty() || a.output == "-";
   auto csv = to_stdout ? std::make_unique<CsvWriter>(out) : std::make_unique<CsvWriter>(a.output);
@@ -325,19 +336,37 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
     const int pivot = loops.active() ? loops.dynamics(t, xs, xs + nq, tau.data(), xdot + nq, lambda.data())
                                      : model.forward_dynamics(t, xs, xs + nq, tau.data(), xdot + nq);
     if (pivot != 0) why = pivot_message(info, pivot);
+    if (pivot == 0 && work_in_state) xdot[n] = power(t, xs, xs + nq, tau.data(), xdot + nq, lambda.data());
     return pivot == 0;
+  };
+  // The trapezoid rule's last row (implicit methods): t, dW/dt and W there.
+  double work_t = 0.0, work_rate = 0.0, work_sum = 0.0;
+  bool work_started = false;
+  std::vector<double> row_udot(static_cast<size_t>(std::max(info.nu, 1)));
+  const auto work_at_row = [&](double t, const double* xs) {
+    if (!work) return 0.0;
+    if (work_in_state) return xs[n];
+    const int pivot = loops.active()
+                          ? loops.dynamics(t, xs, xs + nq, tau.data(), row_udot.data(), lambda.data())
+                          : model.forward_dynamics(t, xs, xs + nq, tau.data(), row_udot.data());
+    const double rate = pivot == 0 ? power(t, xs, xs + nq, tau.data(), row_udot.data(), lambda.data()) : 0.0;
+    if (work_started) work_sum += (t - work_t) * (rate + work_rate) / 2;
+    work_started = true;
+    work_t = t;
+    work_rate = rate;
+    return work_sum;
   };
   const Observer observer = [&](double t, const double* xs) {
     if (g_stop_signal != 0) return false;
     row[0] = t;
     if (loops.active()) {  // rows between steps come from the dense output: project them too
-      std::copy(xs, xs + n, projected.begin());
+      std::copy(xs, xs + n_state, projected.begin());
       std::string ignored;
       if (loops.project(projected.data(), projected.data() + nq, &ignored)) xs = projected.data();
     }
     std::copy(xs, xs + n, row.begin() + 1);
     model.outputs(t, xs, xs + nq, row.data() + 1 + n);
-    energy.fill(xs, xs + nq, row.data() + 1 + n + info.ny);
+    energy.fill(xs, xs + nq, work_at_row(t, xs), row.data() + 1 + n + info.ny);
     if (loops.active()) largest_loop_residual = std::max(largest_loop_residual, loops.residual(xs));
     t_last_row = t;
     ++rows;
@@ -345,6 +374,10 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
   };
   IntegrationOptions opt = a.opt;
   opt.state_names = names;
+  if (work_in_state) {
+    opt.state_names.push_back("nonconservative_work");
+    if (!opt.atol_per_component.empty()) opt.atol_per_component.push_back(opt.atol);
+  }
   opt.on_step = [&](double t, long steps) { progress.on_step(t, steps); };
   if (loops.active())
     opt.project = [&](double, double* xs, std::string* why) { return loops.project(xs, xs + nq, why); };

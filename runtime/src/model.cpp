@@ -41,7 +41,8 @@ Model::Model(const ModelTable& table) : table_(table) {
                     table_.coordinate_roles,
                     table_.coordinate_joints,
                     table_.moved_bodies_first,
-                    table_.moved_bodies};
+                    table_.moved_bodies,
+                    table_.nonconservative};
   // Params is a struct of doubles: storage of doubles holds it aligned.
   parameters_.assign(table_.parameters_size / sizeof(double) + 1, 0.0);
   table_.default_parameters(parameters_.data());

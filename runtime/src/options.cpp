@@ -46,7 +46,10 @@ const std::vector<OptionSpec> kSimulate = {
      "print step statistics on stderr (and Newton iterations, Jacobian evaluations and LU factorizations "
      "for implicit, radau, bdf and genalpha)",
      K::kFlag},
-    {"--energies", "", "", "", nullptr, "add kinetic_energy, potential_energy and total_energy columns",
+    {"--energies", "", "", "", nullptr,
+     "add kinetic_energy, potential_energy and total_energy columns, and nonconservative_work (the work "
+     "W_nc of dampers, joint efforts, body-fixed forces and prescribed motions since t = 0; "
+     "total_energy - nonconservative_work stays constant) for a model that has any",
      K::kFlag},
 };
 

@@ -14,19 +14,21 @@ namespace kanegen::runtime {
 
 void EnergyColumns::add_header(std::vector<std::string>& header) const {
   if (enabled_) header.insert(header.end(), {"kinetic_energy", "potential_energy", "total_energy"});
+  if (with_work_) header.push_back("nonconservative_work");
 }
 
-void EnergyColumns::fill(const double* q, const double* u, double* out) {
+void EnergyColumns::fill(const double* q, const double* u, double work, double* out) {
   const double kinetic = model_.kinetic_energy(q, u), potential = model_.potential_energy(q);
   const double total = kinetic + potential;
   if (first_) initial_ = total;
   first_ = false;
-  largest_change_ = std::max(largest_change_, std::abs(total - initial_));
+  largest_change_ = std::max(largest_change_, std::abs(total - work - initial_));
   scale_ = std::max(scale_, kinetic + std::abs(potential));
   if (!enabled_) return;
   out[0] = kinetic;
   out[1] = potential;
   out[2] = total;
+  if (with_work_) out[3] = work;
 }
 
 Progress::Progress(std::FILE* err, double t_end)
@@ -79,14 +81,16 @@ std::string run_summary(long steps, double t_final, const EnergyColumns& energy,
   // Relative to the largest T + |V| of the run: (T + V)(0) can be 0 (a
   // potential's zero at the start, a body at rest) and is no measure then.
   const double scale = energy.scale() > 0 ? energy.scale() : 1.0;
-  char text[320];
+  char text[360];
   // T + V is conserved only without damping, forces, inputs or prescribed
   // motion, which the runner cannot tell: the change is named for what it is.
   std::snprintf(text, sizeof text,
-                "summary: %ld steps to t=%s; T+V changed by at most %.3g (%.3g relative to the largest "
-                "T+|V|), the energy drift if the model is conservative",
-                steps, format_double(t_final).c_str(), energy.largest_change(),
-                energy.largest_change() / scale);
+                "summary: %ld steps to t=%s; %s changed by at most %.3g (%.3g relative to the largest "
+                "T+|V|), %s",
+                steps, format_double(t_final).c_str(), energy.with_work() ? "T+V-W_nc" : "T+V",
+                energy.largest_change(), energy.largest_change() / scale,
+                energy.with_work() ? "the error of the energy balance"
+                                   : "the energy drift if the model is conservative");
   std::string s = text;
   if (loops) {
     std::snprintf(text, sizeof text, "; largest loop residual |phi| %.3g of the rows written",

@@ -15,16 +15,21 @@
 namespace kanegen::runtime {
 
 /// kinetic_energy, potential_energy and total_energy at each row, from the
-/// model's own kernels; also tracks T + V for the summary.
+/// model's own kernels, and nonconservative_work W_nc for a model with
+/// forces not from V; also tracks T + V - W_nc for the summary.
 class EnergyColumns {
  public:
-  EnergyColumns(const Model& model, bool enabled) : model_(model), enabled_(enabled) {}
+  EnergyColumns(const Model& model, bool enabled)
+      : model_(model), enabled_(enabled), with_work_(enabled && model.info().nonconservative) {}
   /// The column names, appended to `header` if enabled.
   void add_header(std::vector<std::string>& header) const;
-  int count() const { return enabled_ ? 3 : 0; }
-  /// Writes count() values to `out` (if enabled) and records T + V.
-  void fill(const double* q, const double* u, double* out);
-  /// Largest |(T + V)(t) - (T + V)(0)| over the rows, and (T + V)(0).
+  int count() const { return enabled_ ? (with_work_ ? 4 : 3) : 0; }
+  /// Whether there is a nonconservative_work column.
+  bool with_work() const { return with_work_; }
+  /// Writes count() values to `out` (if enabled) and records T + V - work
+  /// (work: W_nc up to this row, 0 without the column).
+  void fill(const double* q, const double* u, double work, double* out);
+  /// Largest |(T + V - W_nc)(t) - (T + V)(0)| over the rows, and (T + V)(0).
   double largest_change() const { return largest_change_; }
   double initial() const { return initial_; }
   /// Largest T + |V| over the rows: the size of the energy, for a relative change.
@@ -32,7 +37,7 @@ class EnergyColumns {
 
  private:
   const Model& model_;
-  bool enabled_;
+  bool enabled_, with_work_;
   bool first_ = true;
   double initial_ = 0.0, largest_change_ = 0.0, scale_ = 0.0;
 };

@@ -30,6 +30,9 @@ struct ModelInfo {
   const char* const* coordinate_joints = nullptr;
   const int* moved_bodies_first = nullptr;
   const char* const* moved_bodies = nullptr;
+  /// Forces not from a potential other than the inputs: dampers, efforts,
+  /// body-fixed forces, prescribed motions (see ModelTable).
+  bool nonconservative = false;
 };
 
 /// The kernels of system.hpp with the parameters bound.
@@ -57,6 +60,11 @@ class Model {
     return table_.kinetic_energy(params(), q, u);
   }
   double potential_energy(const double* q) const { return table_.potential_energy(params(), q); }
+  /// The power of the non-conservative forces (the kernel's doc), without
+  /// the drivers of prescribed motions; 0 for a table without the kernel.
+  double nonconservative_power(double t, const double* q, const double* u, const double* tau) const {
+    return table_.nonconservative_power ? table_.nonconservative_power(params(), t, q, u, tau) : 0.0;
+  }
   void outputs(double t, const double* q, const double* u, double* y) const {
     table_.outputs(params(), t, q, u, y);
   }

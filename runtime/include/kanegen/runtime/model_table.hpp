@@ -29,6 +29,9 @@ struct ModelTable {
   const char* const* coordinate_joints = nullptr;
   const int* moved_bodies_first = nullptr;
   const char* const* moved_bodies = nullptr;
+  /// Forces not from a potential other than the inputs (nonconservative_power
+  /// not 0 at tau = 0), or prescribed motions.
+  bool nonconservative = false;
   // Closed loops (0 and null for an open tree).
   int nc = 0;
   const char* const* constraint_names = nullptr;
@@ -59,6 +62,8 @@ struct ModelTable {
   void (*coordinate_rates)(const double* q, const double* u, double* qdot) = nullptr;
   double (*kinetic_energy)(const void* p, const double* q, const double* u) = nullptr;
   double (*potential_energy)(const void* p, const double* q) = nullptr;
+  double (*nonconservative_power)(const void* p, double t, const double* q, const double* u,
+                                  const double* tau) = nullptr;
   void (*outputs)(const void* p, double t, const double* q, const double* u, double* y) = nullptr;
   // Closed loops only (null for an open tree).
   void (*constraints)(const void* p, const double* q, double* phi) = nullptr;
