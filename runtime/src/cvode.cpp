@@ -51,7 +51,8 @@ class Cvode {
     if (!run_.emit(t0, x_) || grid.intervals() == 0) return t0;
     if (!setup(t0)) return t0;
     double t = t0;
-    long next = 1;  // index of the next output time
+    long next = 1;         // index of the next output time
+    long steps_taken = 0;  // for opt.on_step (the statistics come from CVODE at the end)
     while (true) {
       if (attempted_steps() >= opt.max_steps) {
         run_.fail(Status::kMaxSteps, max_steps_message(opt), t, x_);
@@ -75,6 +76,7 @@ class Cvode {
       }
       std::copy(N_VGetArrayPointer(y_), N_VGetArrayPointer(y_) + n_, x_);
       t = t_step;
+      if (opt.on_step) opt.on_step(t, ++steps_taken);
       const bool done = flag == CV_TSTOP_RETURN || t >= opt.t_end;
       if (next <= grid.intervals() && (grid.time(next) == t || done)) {
         if (!run_.emit(grid.time(next), x_)) return t;

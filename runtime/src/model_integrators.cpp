@@ -72,6 +72,7 @@ IntegrationResult integrate_genalpha(const Model& model, double rho_inf, const d
     if (k > opt.max_steps)
       return finish(Status::kMaxSteps, max_steps_message(opt) + " at t=" + number(stepper.t()));
     if (!stepper.step(tau, &why)) return finish(Status::kSolverFailed, why);
+    if (opt.on_step) opt.on_step(stepper.t(), k);
     if (!emit())
       return finish(Status::kStoppedByObserver, "stopped by the observer at t=" + number(stepper.t()));
   }

@@ -158,6 +158,7 @@ class Radau {
       }
       std::copy(y_new_.begin(), y_new_.end(), x_);
       t = t_new;
+      if (opt.on_step) opt.on_step(t, s.accepted);
       if (run_.opt().project) ++run_.stats().projections;
       if (!run_.project(t, x_) || !run_.eval(t, x_, f_.data())) return t;
       if (next <= grid.intervals() && grid.time(next) == t) {

@@ -45,8 +45,8 @@ class EnergyColumns {
 /// One updating line on stderr ("t = 1.2 of 10 s, wall 3.1 s, 5123 steps"),
 /// shown only when stderr is a terminal and the run has lasted more than a
 /// second; erased at the end. A pipe or a file gets nothing. The steps are
-/// the integrator's accepted steps (on_step); an integrator that does not
-/// report them (the implicit one) is shown by its right-hand sides instead.
+/// the integrator's accepted steps (on_step, which every integrator calls);
+/// before the first step ends, the right-hand sides are counted instead.
 class Progress {
  public:
   Progress(std::FILE* err, double t_end);

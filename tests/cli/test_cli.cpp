@@ -735,32 +735,37 @@ TEST_CASE("a long run shows one updating progress line on a terminal and nothing
     WARN("no script(1) to give kanegen a terminal: skipped");
     return;
   }
-  const fs::path typescript = scratch() / "typescript";
-  // RK4 takes one step per output row (dt), so the steps shown at time t are
-  // t / dt; a count of right-hand sides would be four times as many. The rows
-  // go to /dev/null, the progress line to the terminal.
-  const std::string run = std::string(KANEGEN_EXE) + " simulate " + model("simple_pendulum.json") +
-                          " --integrator rk4 --t-end 40 --dt 0.0002 --quiet -o - >/dev/null";
-  // script(1) runs the command on a pseudo-terminal, as a user's shell would.
-  // The line appears after 1 s; a shorter quiet start makes the test
-  // independent of the machine's speed.
-  const std::string command = "KANEGEN_PROGRESS_AFTER=0 KANEGEN_CACHE_DIR='" KANEGEN_SCRATCH_DIR
-                              "/cache' script -qec '" +
-                              run + "' " + typescript.string() + " >/dev/null 2>&1";
-  REQUIRE(std::system(command.c_str()) == 0);
-  const std::string shown = slurp(typescript);
-  const auto first = shown.find("\r\033[Ksimulate: t = ");
-  REQUIRE(first != std::string::npos);
-  CHECK(shown.find('\n', first) > shown.rfind("\r\033[K"));  // one line, erased at the end
-  const std::regex line("simulate: t = ([0-9.e+]+) of 40 s, wall [0-9.]+ s, ([0-9]+) steps");
-  int lines_seen = 0;
-  for (auto it = std::sregex_iterator(shown.begin() + first, shown.end(), line); it != std::sregex_iterator();
-       ++it, ++lines_seen) {
-    const double t = std::stod((*it)[1]), steps = std::stod((*it)[2]);
-    INFO(it->str());
-    CHECK(std::abs(steps * 0.0002 - t) <= 1e-5 * t + 0.0002);  // t has 6 digits
+  // RK4 and genalpha take one step per output row (dt), so the steps shown
+  // at time t are t / dt; a count of right-hand sides would be several times
+  // as many. The rows go to /dev/null, the progress line to the terminal.
+  for (const auto& [integrator, t_end] : {std::pair{"rk4", "40"}, std::pair{"genalpha", "10"}}) {
+    const fs::path typescript = scratch() / (std::string("typescript_") + integrator);
+    const std::string run = std::string(KANEGEN_EXE) + " simulate " + model("simple_pendulum.json") +
+                            " --integrator " + integrator + " --t-end " + t_end +
+                            " --dt 0.0002 --quiet -o - >/dev/null";
+    // script(1) runs the command on a pseudo-terminal, as a user's shell would.
+    // The line appears after 1 s; a shorter quiet start makes the test
+    // independent of the machine's speed.
+    const std::string command = "KANEGEN_PROGRESS_AFTER=0 KANEGEN_CACHE_DIR='" KANEGEN_SCRATCH_DIR
+                                "/cache' script -qec '" +
+                                run + "' " + typescript.string() + " >/dev/null 2>&1";
+    INFO(integrator);
+    REQUIRE(std::system(command.c_str()) == 0);
+    const std::string shown = slurp(typescript);
+    const auto first = shown.find("\r\033[Ksimulate: t = ");
+    REQUIRE(first != std::string::npos);
+    CHECK(shown.find('\n', first) > shown.rfind("\r\033[K"));  // one line, erased at the end
+    const std::regex line("simulate: t = ([0-9.e+]+) of " + std::string(t_end) +
+                          " s, wall [0-9.]+ s, ([0-9]+) steps");
+    int lines_seen = 0;
+    for (auto it = std::sregex_iterator(shown.begin() + first, shown.end(), line);
+         it != std::sregex_iterator(); ++it, ++lines_seen) {
+      const double t = std::stod((*it)[1]), steps = std::stod((*it)[2]);
+      INFO(it->str());
+      CHECK(std::abs(steps * 0.0002 - t) <= 1e-5 * t + 0.0002);  // t has 6 digits
+    }
+    CHECK(lines_seen > 0);
   }
-  CHECK(lines_seen > 0);
   // The same run on a file, with the same quiet start: nothing.
   setenv("KANEGEN_PROGRESS_AFTER", "0", 1);
   const Result piped =

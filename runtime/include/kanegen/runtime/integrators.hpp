@@ -71,7 +71,7 @@ struct IntegrationOptions {
   /// Output between steps comes from the unprojected dense output.
   std::function<bool(double t, double* x, std::string* why)> project;
   /// Optional: called after every accepted step with its end time and the
-  /// steps accepted so far (simulate's progress line). RK4 and DOPRI5 call it.
+  /// steps accepted so far (simulate's progress line). Every integrator calls it.
   std::function<void(double t, long accepted)> on_step;
 };
 
