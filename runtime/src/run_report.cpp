@@ -81,16 +81,21 @@ std::string run_summary(long steps, double t_final, const EnergyColumns& energy,
   // Relative to the largest T + |V| of the run: (T + V)(0) can be 0 (a
   // potential's zero at the start, a body at rest) and is no measure then.
   const double scale = energy.scale() > 0 ? energy.scale() : 1.0;
-  char text[360];
-  // T + V is conserved only without damping, forces, inputs or prescribed
-  // motion, which the runner cannot tell: the change is named for what it is.
+  char text[480];
+  // T + V is conserved only without dampers, efforts, body-fixed forces or
+  // prescribed motions (the generated `nonconservative`; simulate's inputs
+  // are 0): the change is named for what it is.
+  const char* meaning = energy.with_work() ? "the error of the energy balance"
+                        : energy.nonconservative()
+                            ? "not a drift: the model has dampers, efforts, body-fixed "
+                              "forces or prescribed motions (--energies adds their "
+                              "work W_nc for the energy balance)"
+                            : "the energy drift";
   std::snprintf(text, sizeof text,
                 "summary: %ld steps to t=%s; %s changed by at most %.3g (%.3g relative to the largest "
                 "T+|V|), %s",
                 steps, format_double(t_final).c_str(), energy.with_work() ? "T+V-W_nc" : "T+V",
-                energy.largest_change(), energy.largest_change() / scale,
-                energy.with_work() ? "the error of the energy balance"
-                                   : "the energy drift if the model is conservative");
+                energy.largest_change(), energy.largest_change() / scale, meaning);
   std::string s = text;
   if (loops) {
     std::snprintf(text, sizeof text, "; largest loop residual |phi| %.3g of the rows written",

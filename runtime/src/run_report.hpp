@@ -26,6 +26,8 @@ class EnergyColumns {
   int count() const { return enabled_ ? (with_work_ ? 4 : 3) : 0; }
   /// Whether there is a nonconservative_work column.
   bool with_work() const { return with_work_; }
+  /// Whether the model has forces not from V (its T + V need not stay).
+  bool nonconservative() const { return model_.info().nonconservative; }
   /// Writes count() values to `out` (if enabled) and records T + V - work
   /// (work: W_nc up to this row, 0 without the column).
   void fill(const double* q, const double* u, double work, double* out);

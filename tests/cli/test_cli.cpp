@@ -610,6 +610,15 @@ TEST_CASE("simulate --stats ends with a summary: steps, final time, energy drift
   const double drift = std::stod(summary.substr(summary.find("at most ") + 8));
   CHECK(drift < 1e-6);
   CHECK(summary.find("loop residual") == std::string::npos);
+  CHECK(summary.find("), the energy drift") != std::string::npos);
+  // A prescribed hub puts work in: its change of T + V is not called a drift.
+  const Result driven =
+      kanegen("simulate " + model("spin_up_beam_linear.json") + " --t-end 0.5 --stats --quiet");
+  REQUIRE(driven.status == 0);
+  CHECK(lines_of(driven.err)
+            .back()
+            .find("not a drift: the model has dampers, efforts, body-fixed forces or "
+                  "prescribed motions (--energies adds their work W_nc") != std::string::npos);
   const Result loop = kanegen("simulate " + model("four_bar.json") + " --t-end 0.2 --stats --quiet");
   REQUIRE(loop.status == 0);
   const std::string with_loops = lines_of(loop.err).back();
