@@ -2,7 +2,6 @@
 // The kanegen command line as a user runs it: help, generate, eval, simulate,
 // and bad models. Expected values are analytic (simple pendulum). simulate
 // and eval against the runner they build: the same options and defaults.
-#define CATCH_CONFIG_MAIN
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>

@@ -3,7 +3,6 @@
 // T + V - W_nc = (T + V)(0) on a damped, a driven and a prescribed model, and
 // W_nc of a damped pendulum against the test's own quadrature of -c u^2
 // over the rows.
-#define CATCH_CONFIG_MAIN
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -7,7 +7,7 @@ target_compile_definitions(test_cli PRIVATE KANEGEN_EXE="$<TARGET_FILE:kanegen>"
                                             KANEGEN_MODELS_DIR="${PROJECT_SOURCE_DIR}/models"
                                             KANEGEN_BAD_MODELS_DIR="${PROJECT_SOURCE_DIR}/tests/data/bad_models"
                                             KANEGEN_SCRATCH_DIR="${CMAKE_CURRENT_BINARY_DIR}/cli_scratch")
-target_link_libraries(test_cli PRIVATE Catch2::Catch2 nlohmann_json::nlohmann_json)
+target_link_libraries(test_cli PRIVATE kanegen_catch_main nlohmann_json::nlohmann_json)
 add_dependencies(test_cli kanegen kanegen_runtime)
 catch_discover_tests(test_cli TEST_PREFIX "cli: ")
 
@@ -17,6 +17,6 @@ target_compile_options(test_energies PRIVATE ${KANEGEN_WARNINGS})
 target_compile_definitions(test_energies PRIVATE KANEGEN_EXE="$<TARGET_FILE:kanegen>"
                                                  KANEGEN_MODELS_DIR="${PROJECT_SOURCE_DIR}/models"
                                                  KANEGEN_SCRATCH_DIR="${CMAKE_CURRENT_BINARY_DIR}/energies_scratch")
-target_link_libraries(test_energies PRIVATE Catch2::Catch2)
+target_link_libraries(test_energies PRIVATE kanegen_catch_main)
 add_dependencies(test_energies kanegen kanegen_runtime)
 catch_discover_tests(test_energies TEST_PREFIX "energies: ")

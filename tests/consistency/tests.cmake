@@ -13,7 +13,7 @@ if(KANEGEN_WITH_MUJOCO)
     pkg_check_modules(KANEGEN_CONSISTENCY_TINYXML2 REQUIRED IMPORTED_TARGET tinyxml2)
 
     set(_kg_cons_dir ${CMAKE_CURRENT_LIST_DIR})
-    add_executable(test_consistency ${_kg_cons_dir}/main.cpp ${_kg_cons_dir}/test_mujoco.cpp
+    add_executable(test_consistency ${_kg_cons_dir}/test_mujoco.cpp
                                     ${_kg_cons_dir}/mujoco_reference.cpp)
     target_include_directories(test_consistency PRIVATE ${_kg_cons_dir})
     target_compile_options(test_consistency PRIVATE ${KANEGEN_WARNINGS})
@@ -21,7 +21,7 @@ if(KANEGEN_WITH_MUJOCO)
       KANEGEN_ARM7_URDF="${PROJECT_SOURCE_DIR}/models/arm7.urdf"
       KANEGEN_CHAIN20_URDF="${PROJECT_SOURCE_DIR}/models/chain20.urdf"
       KANEGEN_CONSISTENCY_DATA_DIR="${_kg_cons_dir}/data")
-    target_link_libraries(test_consistency PRIVATE mujoco::mujoco Catch2::Catch2 Eigen3::Eigen
+    target_link_libraries(test_consistency PRIVATE mujoco::mujoco kanegen_catch_main Eigen3::Eigen
                                                    PkgConfig::KANEGEN_CONSISTENCY_TINYXML2)
 
     if(COMMAND kanegen_add_model)

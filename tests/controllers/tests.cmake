@@ -5,15 +5,14 @@
 # flexible arm, generated again with the option under their own targets,
 # whose code must be as deterministic (golden_) and warning-free (strict_)
 # as generated/'s.
-add_executable(test_inverse_dynamics ${CMAKE_CURRENT_LIST_DIR}/../regression/main.cpp
-                                     ${CMAKE_CURRENT_LIST_DIR}/test_inverse_dynamics.cpp)
+add_executable(test_inverse_dynamics ${CMAKE_CURRENT_LIST_DIR}/test_inverse_dynamics.cpp)
 target_compile_options(test_inverse_dynamics PRIVATE ${KANEGEN_WARNINGS})
 set(KANEGEN_ALL_MODEL_TARGETS)
 foreach(model ${KANEGEN_TEST_MODELS})
   get_filename_component(stem ${model} NAME_WE)
   list(APPEND KANEGEN_ALL_MODEL_TARGETS kanegen_model_${stem})
 endforeach()
-target_link_libraries(test_inverse_dynamics PRIVATE ${KANEGEN_ALL_MODEL_TARGETS} Catch2::Catch2)
+target_link_libraries(test_inverse_dynamics PRIVATE ${KANEGEN_ALL_MODEL_TARGETS} kanegen_catch_main)
 catch_discover_tests(test_inverse_dynamics TEST_PREFIX "controllers: ")
 
 set(KANEGEN_CONTROLLER_MODELS arm7.urdf double_pendulum.json flexible_arm2.json)
@@ -38,8 +37,7 @@ foreach(file ${KANEGEN_CONTROLLER_MODELS})
                      -P ${PROJECT_SOURCE_DIR}/tests/golden/compile_strict.cmake)
   endforeach()
 endforeach()
-add_executable(test_controller_kernels ${CMAKE_CURRENT_LIST_DIR}/../regression/main.cpp
-                                       ${CMAKE_CURRENT_LIST_DIR}/test_controller_kernels.cpp)
+add_executable(test_controller_kernels ${CMAKE_CURRENT_LIST_DIR}/test_controller_kernels.cpp)
 target_compile_options(test_controller_kernels PRIVATE ${KANEGEN_WARNINGS})
-target_link_libraries(test_controller_kernels PRIVATE ${KANEGEN_CONTROLLER_TARGETS} Catch2::Catch2)
+target_link_libraries(test_controller_kernels PRIVATE ${KANEGEN_CONTROLLER_TARGETS} kanegen_catch_main)
 catch_discover_tests(test_controller_kernels TEST_PREFIX "controllers: ")

@@ -6,7 +6,6 @@
 // over the samples relative to the largest entry over the samples (an entry
 // near zero, where terms cancel, has no meaningful relative error of its
 // own); printed for docs/embedded.md.
-#define CATCH_CONFIG_MAIN
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>

@@ -13,7 +13,7 @@ foreach(file simple_pendulum.json double_pendulum.json arm7.urdf chain20.urdf)
 endforeach()
 add_executable(test_float_accuracy ${KANEGEN_EMBEDDED_DIR}/float_accuracy_test.cpp)
 target_compile_options(test_float_accuracy PRIVATE ${KANEGEN_WARNINGS})
-target_link_libraries(test_float_accuracy PRIVATE Catch2::Catch2
+target_link_libraries(test_float_accuracy PRIVATE kanegen_catch_main
   kanegen_model_simple_pendulum kanegen_model_double_pendulum kanegen_model_arm7 kanegen_model_chain20
   kanegen_model_simple_pendulum_float kanegen_model_double_pendulum_float kanegen_model_arm7_float
   kanegen_model_chain20_float)

@@ -8,7 +8,7 @@ foreach(stem flex_tip_mass flex_tip_body flex_tip_mass_linear flex_tip_body_line
              spatial_arm2_rigid)
   kanegen_add_model(kanegen_test_${stem} ${PROJECT_SOURCE_DIR}/tests/data/models/${stem}.json)
 endforeach()
-add_executable(test_flexible ${CMAKE_CURRENT_LIST_DIR}/../regression/main.cpp ${CMAKE_CURRENT_LIST_DIR}/test_spin_up.cpp
+add_executable(test_flexible ${CMAKE_CURRENT_LIST_DIR}/test_spin_up.cpp
                              ${CMAKE_CURRENT_LIST_DIR}/test_node_bodies.cpp ${CMAKE_CURRENT_LIST_DIR}/test_energy.cpp
                              ${CMAKE_CURRENT_LIST_DIR}/test_spatial_nodes.cpp)
 target_include_directories(test_flexible PRIVATE ${CMAKE_CURRENT_LIST_DIR}/../regression)
@@ -21,5 +21,5 @@ target_link_libraries(test_flexible PRIVATE kanegen_model_spin_up_beam kanegen_m
                                             kanegen_test_free_strip kanegen_test_free_strip_linear
                                             kanegen_test_free_strip_modal kanegen_test_spatial_arm2_stiff
                                             kanegen_test_spatial_arm2_rigid kanegen_model_spatial_arm2
-                                            Catch2::Catch2 Eigen3::Eigen)
+                                            kanegen_catch_main Eigen3::Eigen)
 catch_discover_tests(test_flexible TEST_PREFIX "flexible: ")

@@ -5,9 +5,8 @@
 # spin-up beam at a 1 ms step against DOPRI5, and the N four-bar through its
 # singular positions against the exact parallelogram motion.
 kanegen_add_model(kanegen_genalpha_nfourbar2 ${PROJECT_SOURCE_DIR}/models/nfourbar2.json JACOBIANS)
-add_executable(test_genalpha_models ${CMAKE_CURRENT_LIST_DIR}/../regression/main.cpp
-                                    ${CMAKE_CURRENT_LIST_DIR}/test_genalpha_models.cpp)
+add_executable(test_genalpha_models ${CMAKE_CURRENT_LIST_DIR}/test_genalpha_models.cpp)
 target_compile_options(test_genalpha_models PRIVATE ${KANEGEN_WARNINGS})
 target_link_libraries(test_genalpha_models PRIVATE kanegen_jacobians_spin_up_beam kanegen_jacobians_slider_crank
-                                                   kanegen_genalpha_nfourbar2 Catch2::Catch2)
+                                                   kanegen_genalpha_nfourbar2 kanegen_catch_main)
 catch_discover_tests(test_genalpha_models TEST_PREFIX "genalpha: ")

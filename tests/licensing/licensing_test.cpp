@@ -4,7 +4,6 @@
 // cmake/ and examples/, GPL-2.0-or-later elsewhere), the header of freshly
 // generated code (MIT and the output line), the license files, and
 // THIRD_PARTY.md naming every dependency.
-#define CATCH_CONFIG_MAIN
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <filesystem>

@@ -10,6 +10,6 @@ target_compile_definitions(test_licensing PRIVATE KANEGEN_EXE="$<TARGET_FILE:kan
                                                   KANEGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
                                                   KANEGEN_CACHE="${CMAKE_CURRENT_BINARY_DIR}/licensing_cache"
                                                   KANEGEN_SCRATCH_DIR="${CMAKE_CURRENT_BINARY_DIR}/licensing_scratch")
-target_link_libraries(test_licensing PRIVATE Catch2::Catch2)
+target_link_libraries(test_licensing PRIVATE kanegen_catch_main)
 add_dependencies(test_licensing kanegen kanegen_runtime)
 catch_discover_tests(test_licensing TEST_PREFIX "licensing: ")

@@ -3,7 +3,6 @@
 // a loop that cannot close and a true bifurcation, each with a clear
 // one-line error that names the loop, the time and the state; the N
 // four-bar through its singular positions, at the benchmark's full size.
-#define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <sstream>

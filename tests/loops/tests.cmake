@@ -9,7 +9,7 @@ kanegen_add_model(kanegen_test_slider_crank_free ${PROJECT_SOURCE_DIR}/tests/dat
 foreach(name rsur_spherical rsur_revolute ring_slider quick_return ring_slider_flexible)
   kanegen_add_model(kanegen_test_${name} ${PROJECT_SOURCE_DIR}/tests/data/models/${name}.json)
 endforeach()
-add_executable(test_loops ${CMAKE_CURRENT_LIST_DIR}/../regression/main.cpp ${CMAKE_CURRENT_LIST_DIR}/test_loops.cpp
+add_executable(test_loops ${CMAKE_CURRENT_LIST_DIR}/test_loops.cpp
                           ${CMAKE_CURRENT_LIST_DIR}/test_loop_kernels.cpp
                           ${CMAKE_CURRENT_LIST_DIR}/test_references.cpp
                           ${CMAKE_CURRENT_LIST_DIR}/test_spatial_loops.cpp)
@@ -20,7 +20,7 @@ target_link_libraries(test_loops PRIVATE kanegen_model_four_bar kanegen_model_sl
                                          kanegen_test_slider_crank_free kanegen_test_rsur_spherical
                                          kanegen_test_rsur_revolute kanegen_test_ring_slider kanegen_test_quick_return
                                          kanegen_test_ring_slider_flexible
-                                         kanegen_runtime Catch2::Catch2)
+                                         kanegen_runtime kanegen_catch_main)
 catch_discover_tests(test_loops TEST_PREFIX "loops: ")
 
 add_executable(test_loop_cli ${CMAKE_CURRENT_LIST_DIR}/test_loop_cli.cpp)
@@ -30,7 +30,7 @@ target_compile_definitions(test_loop_cli PRIVATE KANEGEN_EXE="$<TARGET_FILE:kane
                                                  KANEGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
                                                  KANEGEN_CACHE="${CMAKE_CURRENT_BINARY_DIR}/loops_cache"
                                                  KANEGEN_SCRATCH_DIR="${CMAKE_CURRENT_BINARY_DIR}/loops_scratch")
-target_link_libraries(test_loop_cli PRIVATE Catch2::Catch2)
+target_link_libraries(test_loop_cli PRIVATE kanegen_catch_main)
 add_dependencies(test_loop_cli kanegen kanegen_runtime)
 catch_discover_tests(test_loop_cli TEST_PREFIX "loops cli: ")
 

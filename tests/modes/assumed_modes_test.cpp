@@ -7,7 +7,6 @@
 // sqrt(10 E / rho) / L. The shapes are sampled on an internal mesh (Hermite
 // in bending, linear axially), so the axial frequency converges as h^2 with
 // a known constant, and the bending ones are exact or close to it.
-#define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>

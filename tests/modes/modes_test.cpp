@@ -6,7 +6,6 @@
 // CalculiX, a beam with a tip mass against its frequency equation, a
 // pendulum (a rigid model), and the failures: an unstable equilibrium, a
 // singular mass matrix, bad options.
-#define CATCH_CONFIG_MAIN
 #include <sys/wait.h>
 #include <unistd.h>
 

@@ -13,7 +13,7 @@ target_compile_definitions(test_modes PRIVATE KANEGEN_EXE="$<TARGET_FILE:kanegen
                                               KANEGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
                                               KANEGEN_CACHE="${CMAKE_CURRENT_BINARY_DIR}/modes_cache"
                                               KANEGEN_SCRATCH_DIR="${CMAKE_CURRENT_BINARY_DIR}/modes_scratch")
-target_link_libraries(test_modes PRIVATE Catch2::Catch2 nlohmann_json::nlohmann_json Eigen3::Eigen)
+target_link_libraries(test_modes PRIVATE kanegen_catch_main nlohmann_json::nlohmann_json Eigen3::Eigen)
 add_dependencies(test_modes kanegen kanegen_runtime)
 catch_discover_tests(test_modes TEST_PREFIX "modes: ")
 
@@ -25,6 +25,6 @@ target_compile_definitions(test_assumed_modes PRIVATE KANEGEN_EXE="$<TARGET_FILE
                                                       KANEGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
                                                       KANEGEN_CACHE="${CMAKE_CURRENT_BINARY_DIR}/modes_cache"
                                                       KANEGEN_SCRATCH_DIR="${CMAKE_CURRENT_BINARY_DIR}/assumed_scratch")
-target_link_libraries(test_assumed_modes PRIVATE Catch2::Catch2 nlohmann_json::nlohmann_json)
+target_link_libraries(test_assumed_modes PRIVATE kanegen_catch_main nlohmann_json::nlohmann_json)
 add_dependencies(test_assumed_modes kanegen kanegen_runtime)
 catch_discover_tests(test_assumed_modes TEST_PREFIX "modes: ")

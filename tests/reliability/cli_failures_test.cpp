@@ -5,7 +5,6 @@
 // matrix, a NaN, a motion that overflows, a tolerance that cannot be met, too
 // many steps, a signal) end in one line naming the time and the state, and
 // keep the rows computed before; bad values on the command line are refused.
-#define CATCH_CONFIG_MAIN
 #include <sys/wait.h>
 #include <unistd.h>
 

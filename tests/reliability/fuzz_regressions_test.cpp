@@ -2,7 +2,6 @@
 // Inputs the fuzzers found (tests/data/fuzz_regressions/{json,urdf,expression}),
 // replayed through the fuzz targets' own checks: each loads or ends in one
 // ModelError, never a crash, another exception or a broken invariant.
-#define CATCH_CONFIG_MAIN
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cstdint>

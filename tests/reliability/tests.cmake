@@ -15,7 +15,7 @@ target_compile_definitions(test_reliability_model
                                    KANEGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
                                    KANEGEN_MODEL_TEST_DATA="${PROJECT_SOURCE_DIR}/tests/model/data")
 # The harness names parameters as the symbolic stage does (symbolic/variables.hpp).
-target_link_libraries(test_reliability_model PRIVATE kanegen_model kanegen_symbolic Catch2::Catch2)
+target_link_libraries(test_reliability_model PRIVATE kanegen_model kanegen_symbolic kanegen_catch_main)
 catch_discover_tests(test_reliability_model TEST_PREFIX "reliability: ")
 
 # The command line on bad models and on runs that fail, as a user sees it.
@@ -25,7 +25,7 @@ target_compile_definitions(test_reliability_cli
                            PRIVATE KANEGEN_EXE="$<TARGET_FILE:kanegen>"
                                    KANEGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
                                    KANEGEN_SCRATCH_DIR="${CMAKE_CURRENT_BINARY_DIR}/reliability_scratch")
-target_link_libraries(test_reliability_cli PRIVATE Catch2::Catch2)
+target_link_libraries(test_reliability_cli PRIVATE kanegen_catch_main)
 add_dependencies(test_reliability_cli kanegen kanegen_runtime)
 catch_discover_tests(test_reliability_cli TEST_PREFIX "reliability: ")
 

@@ -3,7 +3,7 @@
 # text helpers, and the runner (run_model) in-process on a hand-written model.
 find_package(nlohmann_json REQUIRED)
 set(KANEGEN_RUNTIME_TEST_DIR ${CMAKE_CURRENT_LIST_DIR})
-add_executable(test_runtime ${KANEGEN_RUNTIME_TEST_DIR}/main.cpp ${KANEGEN_RUNTIME_TEST_DIR}/integrators_test.cpp
+add_executable(test_runtime ${KANEGEN_RUNTIME_TEST_DIR}/integrators_test.cpp
                             ${KANEGEN_RUNTIME_TEST_DIR}/text_csv_test.cpp ${KANEGEN_RUNTIME_TEST_DIR}/driver_test.cpp
                             ${KANEGEN_RUNTIME_TEST_DIR}/options_test.cpp ${KANEGEN_RUNTIME_TEST_DIR}/implicit_test.cpp)
 target_compile_options(test_runtime PRIVATE ${KANEGEN_WARNINGS})
@@ -11,7 +11,7 @@ target_compile_options(test_runtime PRIVATE ${KANEGEN_WARNINGS})
 target_sources(test_runtime PRIVATE ${KANEGEN_RUNTIME_TEST_DIR}/embedded_rk4.cpp)
 set_source_files_properties(${KANEGEN_RUNTIME_TEST_DIR}/embedded_rk4.cpp PROPERTIES COMPILE_OPTIONS
                             "-fno-exceptions;-fno-rtti;-nostdinc++")
-target_link_libraries(test_runtime PRIVATE kanegen::runtime Catch2::Catch2 nlohmann_json::nlohmann_json)
+target_link_libraries(test_runtime PRIVATE kanegen::runtime kanegen_catch_main nlohmann_json::nlohmann_json)
 catch_discover_tests(test_runtime TEST_PREFIX "runtime: ")
 
 # The generalized-alpha integrator on hand-written models with exact
@@ -20,11 +20,11 @@ catch_discover_tests(test_runtime TEST_PREFIX "runtime: ")
 # The sanitizers' allocator cannot share the process with a replaced
 # operator new (ASan: alloc-dealloc-mismatch): the allocation count is
 # checked in the plain build (CI's part 1) only.
-set(KANEGEN_GENALPHA_TESTS ${KANEGEN_RUNTIME_TEST_DIR}/main.cpp ${KANEGEN_RUNTIME_TEST_DIR}/genalpha_test.cpp)
+set(KANEGEN_GENALPHA_TESTS ${KANEGEN_RUNTIME_TEST_DIR}/genalpha_test.cpp)
 if(NOT KANEGEN_SANITIZE)
   list(APPEND KANEGEN_GENALPHA_TESTS ${KANEGEN_RUNTIME_TEST_DIR}/genalpha_alloc_test.cpp)
 endif()
 add_executable(test_runtime_genalpha ${KANEGEN_GENALPHA_TESTS})
 target_compile_options(test_runtime_genalpha PRIVATE ${KANEGEN_WARNINGS})
-target_link_libraries(test_runtime_genalpha PRIVATE kanegen::runtime Catch2::Catch2)
+target_link_libraries(test_runtime_genalpha PRIVATE kanegen::runtime kanegen_catch_main)
 catch_discover_tests(test_runtime_genalpha TEST_PREFIX "runtime: ")

@@ -6,12 +6,12 @@
 find_package(nlohmann_json REQUIRED)
 set(KANEGEN_VERIFY_CACHE ${CMAKE_CURRENT_BINARY_DIR}/verify_cache)
 
-add_executable(test_verify_unit ${CMAKE_CURRENT_LIST_DIR}/main.cpp ${CMAKE_CURRENT_LIST_DIR}/numeric_test.cpp
+add_executable(test_verify_unit ${CMAKE_CURRENT_LIST_DIR}/numeric_test.cpp
                                 ${CMAKE_CURRENT_LIST_DIR}/numeric_flexible_test.cpp
                                 ${CMAKE_CURRENT_LIST_DIR}/batch_test.cpp)
 target_compile_options(test_verify_unit PRIVATE ${KANEGEN_WARNINGS})
 target_compile_definitions(test_verify_unit PRIVATE KANEGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
-target_link_libraries(test_verify_unit PRIVATE kanegen_numeric kanegen_model_simple_pendulum Catch2::Catch2
+target_link_libraries(test_verify_unit PRIVATE kanegen_numeric kanegen_model_simple_pendulum kanegen_catch_main
                                                nlohmann_json::nlohmann_json)
 catch_discover_tests(test_verify_unit TEST_PREFIX "verify: ")
 
@@ -21,7 +21,7 @@ target_compile_definitions(test_verify_cli PRIVATE KANEGEN_EXE="$<TARGET_FILE:ka
                                                    KANEGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
                                                    KANEGEN_CACHE="${KANEGEN_VERIFY_CACHE}"
                                                    KANEGEN_SCRATCH_DIR="${CMAKE_CURRENT_BINARY_DIR}/verify_scratch")
-target_link_libraries(test_verify_cli PRIVATE Catch2::Catch2 nlohmann_json::nlohmann_json)
+target_link_libraries(test_verify_cli PRIVATE kanegen_catch_main nlohmann_json::nlohmann_json)
 add_dependencies(test_verify_cli kanegen kanegen_runtime)
 catch_discover_tests(test_verify_cli TEST_PREFIX "verify: ")
 

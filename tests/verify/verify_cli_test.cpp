@@ -2,7 +2,6 @@
 // kanegen verify as a user runs it: the JSON report, --help, kernels of
 // another model, and the corruption tests: a copy of generated kernels with
 // one term altered must fail, naming the quantity.
-#define CATCH_CONFIG_MAIN
 #include <sys/wait.h>
 #include <unistd.h>
 
