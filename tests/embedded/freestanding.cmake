@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 # Compiles each of SOURCES (separated by '|') with CXX as freestanding code
-# (-ffreestanding -fno-exceptions -fno-rtti -nostdinc++, warnings as errors)
-# and lists the object's undefined symbols with NM: each must be a <math.h>
+# (-ffreestanding -fno-exceptions -fno-rtti -nostdinc++, warnings as errors,
+# -Wdouble-promotion among them: float code that touches a double, such as a
+# double literal or sqrt instead of sqrtf, fails) and lists the object's undefined symbols with NM: each must be a <math.h>
 # function, or one of the four that GCC and Clang may call in any
 # freestanding code (memcpy, memmove, memset, memcmp). No malloc, no
 # operator new, no __cxa_*, nothing from std::.
@@ -17,7 +18,7 @@ foreach(source ${sources})
   get_filename_component(stem ${source} NAME_WE)
   set(object ${SCRATCH}/${stem}.o)
   execute_process(COMMAND ${CXX} -std=c++17 -O2 -ffreestanding -fno-exceptions -fno-rtti -nostdinc++ -Wall
-                          -Wextra -Wpedantic -Werror ${include_flags} -c ${source} -o ${object}
+                          -Wextra -Wpedantic -Wdouble-promotion -Werror ${include_flags} -c ${source} -o ${object}
                   RESULT_VARIABLE rc ERROR_VARIABLE errors)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "${source} does not compile freestanding with ${CXX}:\n${errors}")
