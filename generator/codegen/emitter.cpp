@@ -134,10 +134,10 @@ void add_loop_values(TemplateValues& values, const kane::Equations& eq, const Sc
   loop_values["CONSTRAINT_NAMES"] = quoted_list(eq.loops.names);
   loop_values["COORDINATE_ROLES"] = roles;
   for (const auto& [key, text] : sections) values[key] = loops ? fill_template(text, loop_values) : "";
-  values["HELPERS"] =
-      loops ? "namespace {\n\n" + scalar.in_code(embedded_region(embedded::solve_saddle_template)) +
-                  "\n}  // namespace\n\n"
-            : "";
+  values["HELPERS"] = loops ? "namespace {\n\n" +
+                                  scalar.in_code(embedded_region(embedded::solve_saddle_template)) +
+                                  "\n}  // namespace\n\n"
+                            : "";
 }
 
 /// Declarations, definitions, System forwarders, the function-pointer table

@@ -208,8 +208,8 @@ KernelCode constrained_dynamics_kernel(const Derivation& d) {
   for (int i = 0; i < ns; ++i) unpack += "  udot[" + str(d.solved[i]) + "] = b[" + str(i) + "];\n";
   return {Kernel::constrained_dynamics,
           "  constexpr int NS = " + str(ns) + ";  // speeds solved for (not prescribed)\n" +
-              d.prescribed.body + "  " + d.scalar.name() + " Ms[NS * NS], b[NS], Cs[NC * NS], g[NC];\n" + body.body +
-              "  const int status = solve_saddle<NS, NC>(Ms, b, Cs, g, lambda);\n" + unpack +
+              d.prescribed.body + "  " + d.scalar.name() + " Ms[NS * NS], b[NS], Cs[NC * NS], g[NC];\n" +
+              body.body + "  const int status = solve_saddle<NS, NC>(Ms, b, Cs, g, lambda);\n" + unpack +
               given_accelerations(d) + "  return status;\n",
           body.operations + d.prescribed.operations, ""};
 }
@@ -252,9 +252,9 @@ std::string reaction_outputs(const Derivation& d) {
   const std::size_t ntau = d.eq.input_names.size();
   std::string s =
       "  // Loop forces: lambda of the dynamics at these inputs of zero (NaN where it cannot be solved).\n"
-      "  " + std::string(d.scalar.name()) + " reaction_udot[NU], lambda[NC];\n  const " + d.scalar.name() +
-      " no_inputs[" +
-      str(static_cast<long>(ntau > 0 ? ntau : 1)) +
+      "  " +
+      std::string(d.scalar.name()) + " reaction_udot[NU], lambda[NC];\n  const " + d.scalar.name() +
+      " no_inputs[" + str(static_cast<long>(ntau > 0 ? ntau : 1)) +
       "] = {};\n"
       "  const bool solved = constrained_dynamics(p, t, q, u, no_inputs, reaction_udot, lambda) == 0;\n";
   for (const auto& [index, row] : d.eq.reaction_outputs)

@@ -47,7 +47,7 @@ std::string ScalarType::in_type(const std::string& type) const {
 
 std::string ScalarType::in_code(const std::string& double_code) const {
   if (is_double()) return double_code;
-  static const std::set<std::string> math = {"sin",  "cos", "tan", "asin", "acos", "atan",
+  static const std::set<std::string> math = {"sin",   "cos", "tan", "asin", "acos", "atan",
                                              "atan2", "exp", "log", "sqrt", "pow",  "fabs"};
   const auto identifier = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
   const std::string& in = double_code;
@@ -60,8 +60,9 @@ std::string ScalarType::in_code(const std::string& double_code) const {
       at = end;
     } else if (std::isdigit(static_cast<unsigned char>(in[at]))) {  // a number: digits, '.', exponent
       std::size_t end = at;
-      while (end < in.size() && (identifier(in[end]) || in[end] == '.' ||
-                                 ((in[end] == '-' || in[end] == '+') && (in[end - 1] == 'e' || in[end - 1] == 'E'))))
+      while (end < in.size() &&
+             (identifier(in[end]) || in[end] == '.' ||
+              ((in[end] == '-' || in[end] == '+') && (in[end - 1] == 'e' || in[end - 1] == 'E'))))
         ++end;
       const std::string number = in.substr(at, end - at);
       const bool floating = number.find_first_of(".eE") != std::string::npos;

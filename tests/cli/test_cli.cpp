@@ -89,7 +89,8 @@ TEST_CASE("generate --precision float writes float kernels, the same on every ru
   CHECK(kanegen("generate --help").out.find("--precision") != std::string::npos);
 }
 
-TEST_CASE("generate --precision float refuses Jacobians and controller kernels, and writes nothing", "[cli]") {
+TEST_CASE("generate --precision float refuses Jacobians and controller kernels, and writes nothing",
+          "[cli]") {
   const fs::path dir = scratch() / "gen_float_refused";
   const Result jacobians =
       kanegen("generate " + model("arm7.urdf") + " -o " + dir.string() + " --precision float --jacobians");
@@ -118,7 +119,8 @@ TEST_CASE("generate --precision float writes the loop kernels of a model with lo
   CHECK(source.find("const float l = sqrtf(s);") != std::string::npos);
   CHECK(source.find("if (!(s > 1e-06f * largest)) return -(j + 1);") != std::string::npos);
   CHECK(source.find("float Ms[NS * NS], b[NS], Cs[NC * NS], g[NC];") != std::string::npos);
-  CHECK(source.find("void constraint_jacobian(const Params& p, const float* q, float* C)") != std::string::npos);
+  CHECK(source.find("void constraint_jacobian(const Params& p, const float* q, float* C)") !=
+        std::string::npos);
 }
 
 TEST_CASE("generate --jacobians adds the Jacobian kernels, and only then", "[cli][jacobians]") {

@@ -59,24 +59,28 @@ struct Kernels {
   void (*constraints)(const Real* q, Real* phi);
   void (*constraint_jacobian)(const Real* q, Real* C);
   void (*constraint_bias)(const Real* q, const Real* u, Real* gamma);
-  int (*constrained_dynamics)(Real t, const Real* q, const Real* u, const Real* tau, Real* udot, Real* lambda);
+  int (*constrained_dynamics)(Real t, const Real* q, const Real* u, const Real* tau, Real* udot,
+                              Real* lambda);
 };
 
-#define KANEGEN_KERNELS(NS, Real)                                                                                 \
-  [](Real* q, Real* u) { NS::initial_state({}, q, u); }, [](const Real* q, Real* M) { NS::mass_matrix({}, q, M); }, \
-      [](Real t, const Real* q, const Real* u, const Real* tau, Real* f) { NS::forcing({}, t, q, u, tau, f); },     \
-      [](Real t, const Real* q, const Real* u, const Real* tau, Real* a) {                                          \
-        return NS::forward_dynamics({}, t, q, u, tau, a);                                                           \
-      },                                                                                                            \
-      [](const Real* q, const Real* u, Real* qdot) { NS::coordinate_rates(q, u, qdot); },                          \
+#define KANEGEN_KERNELS(NS, Real)                                                         \
+  [](Real* q, Real* u) { NS::initial_state({}, q, u); },                                  \
+      [](const Real* q, Real* M) { NS::mass_matrix({}, q, M); },                          \
+      [](Real t, const Real* q, const Real* u, const Real* tau, Real* f) {                \
+        NS::forcing({}, t, q, u, tau, f);                                                 \
+      },                                                                                  \
+      [](Real t, const Real* q, const Real* u, const Real* tau, Real* a) {                \
+        return NS::forward_dynamics({}, t, q, u, tau, a);                                 \
+      },                                                                                  \
+      [](const Real* q, const Real* u, Real* qdot) { NS::coordinate_rates(q, u, qdot); }, \
       [](Real t, const Real* q, const Real* u, Real* y) { NS::outputs({}, t, q, u, y); }
 
-#define KANEGEN_LOOP_KERNELS(NS, Real)                                                                   \
-  [](const Real* q, Real* phi) { NS::constraints({}, q, phi); },                                         \
-      [](const Real* q, Real* C) { NS::constraint_jacobian({}, q, C); },                                 \
-      [](const Real* q, const Real* u, Real* gamma) { NS::constraint_bias({}, q, u, gamma); },           \
-      [](Real t, const Real* q, const Real* u, const Real* tau, Real* udot, Real* lambda) {              \
-        return NS::constrained_dynamics({}, t, q, u, tau, udot, lambda);                                 \
+#define KANEGEN_LOOP_KERNELS(NS, Real)                                                         \
+  [](const Real* q, Real* phi) { NS::constraints({}, q, phi); },                               \
+      [](const Real* q, Real* C) { NS::constraint_jacobian({}, q, C); },                       \
+      [](const Real* q, const Real* u, Real* gamma) { NS::constraint_bias({}, q, u, gamma); }, \
+      [](Real t, const Real* q, const Real* u, const Real* tau, Real* udot, Real* lambda) {    \
+        return NS::constrained_dynamics({}, t, q, u, tau, udot, lambda);                       \
       }
 
 /// One model in both precisions; for one with loops, how long its motion is
@@ -90,22 +94,24 @@ struct Model {
   int steps = 0, every = 1;
 };
 
-#define KANEGEN_TREE(NAME)                                                                                  \
-  Model {                                                                                                   \
-#NAME, kanegen_models::NAME::NQ, kanegen_models::NAME::NU, kanegen_models::NAME::NTAU,                    \
-        kanegen_models::NAME::NY, 0, {KANEGEN_KERNELS(kanegen_models::NAME, double), nullptr, nullptr, nullptr, \
-                                      nullptr},                                                               \
-        {KANEGEN_KERNELS(kanegen_models::NAME##_float, float), nullptr, nullptr, nullptr, nullptr}              \
+#define KANEGEN_TREE(NAME)                                                                      \
+  Model {                                                                                       \
+#NAME, kanegen_models::NAME::NQ, kanegen_models::NAME::NU, kanegen_models::NAME::NTAU,      \
+        kanegen_models::NAME::NY, 0,                                                            \
+        {KANEGEN_KERNELS(kanegen_models::NAME, double), nullptr, nullptr, nullptr, nullptr }, { \
+      KANEGEN_KERNELS(kanegen_models::NAME##_float, float), nullptr, nullptr, nullptr, nullptr  \
+    }                                                                                           \
   }
 
-#define KANEGEN_LOOPS(NAME, DT, STEPS)                                                                          \
-  Model {                                                                                                       \
-#NAME, kanegen_models::NAME::NQ, kanegen_models::NAME::NU, kanegen_models::NAME::NTAU,                        \
-        kanegen_models::NAME::NY, kanegen_models::NAME::NC,                                                     \
-        {KANEGEN_KERNELS(kanegen_models::NAME, double), KANEGEN_LOOP_KERNELS(kanegen_models::NAME, double)},    \
-        {KANEGEN_KERNELS(kanegen_models::NAME##_float, float),                                                  \
-         KANEGEN_LOOP_KERNELS(kanegen_models::NAME##_float, float)},                                            \
-        DT, STEPS, (STEPS) / 100                                                                                \
+#define KANEGEN_LOOPS(NAME, DT, STEPS)                                                     \
+  Model {                                                                                  \
+#NAME, kanegen_models::NAME::NQ, kanegen_models::NAME::NU, kanegen_models::NAME::NTAU, \
+        kanegen_models::NAME::NY, kanegen_models::NAME::NC,                                \
+        {KANEGEN_KERNELS(kanegen_models::NAME, double),                                    \
+         KANEGEN_LOOP_KERNELS(kanegen_models::NAME, double) },                             \
+         {KANEGEN_KERNELS(kanegen_models::NAME##_float, float),                            \
+          KANEGEN_LOOP_KERNELS(kanegen_models::NAME##_float, float) },                     \
+          DT, STEPS, (STEPS) / 100                                                         \
   }
 
 /// max |float - double| and max |double| over every entry of every sample
@@ -124,7 +130,8 @@ class Error {
   double relative() const {
     if (per_entry_) {
       double worst = 0.0;
-      for (std::size_t i = 0; i < scale_.size(); ++i) worst = std::max(worst, ratio(difference_[i], scale_[i]));
+      for (std::size_t i = 0; i < scale_.size(); ++i)
+        worst = std::max(worst, ratio(difference_[i], scale_[i]));
       return worst;
     }
     double difference = 0.0, scale = 0.0;
@@ -136,7 +143,9 @@ class Error {
   }
 
  private:
-  static double ratio(double difference, double scale) { return scale > 0.0 ? difference / scale : difference; }
+  static double ratio(double difference, double scale) {
+    return scale > 0.0 ? difference / scale : difference;
+  }
   bool per_entry_;
   std::vector<double> difference_, scale_;
 };
@@ -236,7 +245,8 @@ void compare_along_the_motion(const Model& m, Figures& out) {
       m.d.constraints(x.data(), phi.data());
       for (double r : phi) drift = std::max(drift, std::abs(r));
       const float tf = static_cast<float>(t);
-      const std::vector<float> qf = rounded({x.begin(), x.begin() + m.nq}), uf = rounded({x.begin() + m.nq, x.end()});
+      const std::vector<float> qf = rounded({x.begin(), x.begin() + m.nq}),
+                               uf = rounded({x.begin() + m.nq, x.end()});
       const std::vector<float> tauf(no_inputs.size(), 0.0f);
       const std::vector<double> q = widened(qf), u = widened(uf);
       std::vector<double> ad(m.nu), ld(m.nc), yd(std::max(m.ny, 1));
@@ -266,11 +276,11 @@ Figures compare(const Model& m) {
   Figures out;
   compare_at_random_states(m, out);
   if (m.nc > 0) compare_along_the_motion(m, out);
-  std::printf("%-16s mass_matrix %.1e, forcing %.1e, forward_dynamics %.1e, outputs %.1e", m.name, out.mass_matrix,
-              out.forcing, out.dynamics, out.outputs);
+  std::printf("%-16s mass_matrix %.1e, forcing %.1e, forward_dynamics %.1e, outputs %.1e", m.name,
+              out.mass_matrix, out.forcing, out.dynamics, out.outputs);
   if (m.nc > 0)
-    std::printf(", constraints %.1e, constraint_jacobian %.1e, constraint_bias %.1e, lambda %.1e", out.constraints,
-                out.jacobian, out.bias, out.lambda);
+    std::printf(", constraints %.1e, constraint_jacobian %.1e, constraint_bias %.1e, lambda %.1e",
+                out.constraints, out.jacobian, out.bias, out.lambda);
   std::printf("\n");
   return out;
 }
@@ -281,7 +291,8 @@ Figures compare(const Model& m) {
 // few digits more, and the dynamics also the condition number of M (and of
 // C M^-1 C^T with loops).
 TEST_CASE("float kernels agree with double on every shipped rigid model") {
-  std::printf("float against double: the largest difference over the samples relative to the largest entry\n");
+  std::printf(
+      "float against double: the largest difference over the samples relative to the largest entry\n");
   // Each loop model's motion over a part of its cycle, where its loops stay regular.
   for (const Model& m : {KANEGEN_TREE(simple_pendulum), KANEGEN_TREE(double_pendulum), KANEGEN_TREE(arm7),
                          KANEGEN_TREE(chain20), KANEGEN_LOOPS(four_bar, 1e-3, 500),
