@@ -28,21 +28,16 @@ void reference(float t, float* q, float* u, float* a) {
 }
 
 /// Computed torque: tau = M(q) (a_ref + Kd (u_ref - u) + Kp (q_ref - q)) - f(q, u, 0),
-/// since M udot = f(q, u, 0) + tau for joint torques. Gains for a critically
-/// damped error of 10 rad/s.
+/// since M udot = f(q, u, 0) + tau for joint torques. That is the generated
+/// inverse_dynamics at the commanded acceleration: Newton and Euler's
+/// recursion, O(n), without forming M. Gains for a critically damped error
+/// of 10 rad/s.
 void control(const model::Params& p, float t, const float* q, const float* u, float* tau) {
   constexpr float kp = 100.0f, kd = 20.0f;
-  float q_ref[n], u_ref[n], a_ref[n], a[n], M[n * n], f[n];
-  const float no_torque[n] = {};
+  float q_ref[n], u_ref[n], a_ref[n], a[n];
   reference(t, q_ref, u_ref, a_ref);
   for (int i = 0; i < n; ++i) a[i] = a_ref[i] + kd * (u_ref[i] - u[i]) + kp * (q_ref[i] - q[i]);
-  model::mass_matrix(p, q, M);
-  model::forcing(p, t, q, u, no_torque, f);
-  for (int i = 0; i < n; ++i) {
-    float s = -f[i];
-    for (int j = 0; j < n; ++j) s += M[i * n + j] * a[j];
-    tau[i] = s;
-  }
+  model::inverse_dynamics(p, t, q, u, a, tau);
 }
 
 }  // namespace

@@ -165,8 +165,8 @@ void add_generate(CLI::App& app, GenerateCommand& c) {
   c.command
       ->add_option("--precision", c.precision,
                    "the kernels' floating-point type: double (default), or float for an FPU with single "
-                   "precision only (writes <name>_float.hpp and .cpp, no runner; open trees without "
-                   "--jacobians; docs/embedded.md)")
+                   "precision only (writes <name>_float.hpp and .cpp, no runner; every kernel, closed "
+                   "loops included; not with --jacobians or --controller; docs/embedded.md)")
       ->check(CLI::IsMember({"double", "float"}));
   c.command->add_flag("--controller", c.controller, kControllerHelp);
 }

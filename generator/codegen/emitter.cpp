@@ -122,9 +122,9 @@ TemplateValues model_values(const model::Model& model, const kane::Equations& eq
   };
 }
 
-/// The loop parts (templates/loop_parts.in and the saddle-point solver), or
-/// nothing for an open tree.
-void add_loop_values(TemplateValues& values, const kane::Equations& eq) {
+/// The loop parts (templates/loop_parts.in and the saddle-point solver, in
+/// the model's precision), or nothing for an open tree.
+void add_loop_values(TemplateValues& values, const kane::Equations& eq, const ScalarType& scalar) {
   const bool loops = eq.loops.size() > 0;
   TemplateValues sections = template_sections(embedded::loop_parts_template);
   std::string roles;
@@ -134,9 +134,10 @@ void add_loop_values(TemplateValues& values, const kane::Equations& eq) {
   loop_values["CONSTRAINT_NAMES"] = quoted_list(eq.loops.names);
   loop_values["COORDINATE_ROLES"] = roles;
   for (const auto& [key, text] : sections) values[key] = loops ? fill_template(text, loop_values) : "";
-  values["HELPERS"] =
-      loops ? "namespace {\n\n" + embedded_region(embedded::solve_saddle_template) + "\n}  // namespace\n\n"
-            : "";
+  values["HELPERS"] = loops ? "namespace {\n\n" +
+                                  scalar.in_code(embedded_region(embedded::solve_saddle_template)) +
+                                  "\n}  // namespace\n\n"
+                            : "";
 }
 
 /// Declarations, definitions, System forwarders, the function-pointer table
@@ -207,16 +208,15 @@ EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, co
                         const symbolic::Program& program, const std::string& model_hash,
                         const EmitOptions& options) {
   const ScalarType scalar(options.precision);
-  // The loop parts (the saddle-point solve) and the Jacobians are written in double.
-  if (!scalar.is_double() && (eq.loops.size() > 0 || options.jacobians))
-    throw std::logic_error("float kernels for a model with loops or with Jacobians");
+  // The Jacobian kernels (and linearize, which calls them) are written in double.
+  if (!scalar.is_double() && options.jacobians) throw std::logic_error("float kernels with Jacobians");
   ExpressionGraph graph(vars, program);
   const std::vector<KernelCode> kernels =
       derive_kernels(model, eq, vars, graph, options.jacobians, options.controller, scalar);
   check_presence(kernels, eq.loops.size() > 0, options.jacobians, options.controller);
   TemplateValues values = model_values(model, eq, model_hash, scalar);
   add_moved_bodies(values, eq);
-  add_loop_values(values, eq);
+  add_loop_values(values, eq, scalar);
   add_kernel_values(values, kernels, model.name, scalar);
   EmittedModel emitted;
   for (const KernelCode& code : kernels)

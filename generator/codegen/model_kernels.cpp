@@ -208,16 +208,17 @@ KernelCode constrained_dynamics_kernel(const Derivation& d) {
   for (int i = 0; i < ns; ++i) unpack += "  udot[" + str(d.solved[i]) + "] = b[" + str(i) + "];\n";
   return {Kernel::constrained_dynamics,
           "  constexpr int NS = " + str(ns) + ";  // speeds solved for (not prescribed)\n" +
-              d.prescribed.body + "  double Ms[NS * NS], b[NS], Cs[NC * NS], g[NC];\n" + body.body +
-              "  const int status = solve_saddle<NS, NC>(Ms, b, Cs, g, lambda);\n" + unpack +
+              d.prescribed.body + "  " + d.scalar.name() + " Ms[NS * NS], b[NS], Cs[NC * NS], g[NC];\n" +
+              body.body + "  const int status = solve_saddle<NS, NC>(Ms, b, Cs, g, lambda);\n" + unpack +
               given_accelerations(d) + "  return status;\n",
           body.operations + d.prescribed.operations, ""};
 }
 
 /// With loops, forward_dynamics is the constrained dynamics without the loop forces.
-KernelCode loop_dynamics_kernel(const KernelCode& constrained) {
+KernelCode loop_dynamics_kernel(const Derivation& d, const KernelCode& constrained) {
   return {Kernel::forward_dynamics,
-          "  double lambda[NC];\n  return constrained_dynamics(p, t, q, u, tau, udot, lambda);\n",
+          "  " + std::string(d.scalar.name()) +
+              " lambda[NC];\n  return constrained_dynamics(p, t, q, u, tau, udot, lambda);\n",
           constrained.operations, " (and the saddle-point solve)"};
 }
 
@@ -251,8 +252,9 @@ std::string reaction_outputs(const Derivation& d) {
   const std::size_t ntau = d.eq.input_names.size();
   std::string s =
       "  // Loop forces: lambda of the dynamics at these inputs of zero (NaN where it cannot be solved).\n"
-      "  double reaction_udot[NU], lambda[NC];\n  const double no_inputs[" +
-      str(static_cast<long>(ntau > 0 ? ntau : 1)) +
+      "  " +
+      std::string(d.scalar.name()) + " reaction_udot[NU], lambda[NC];\n  const " + d.scalar.name() +
+      " no_inputs[" + str(static_cast<long>(ntau > 0 ? ntau : 1)) +
       "] = {};\n"
       "  const bool solved = constrained_dynamics(p, t, q, u, no_inputs, reaction_udot, lambda) == 0;\n";
   for (const auto& [index, row] : d.eq.reaction_outputs)
@@ -578,7 +580,7 @@ std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Eq
   std::vector<KernelCode> kernels{set_parameter_kernel(d), get_parameter_kernel(d), initial_state_kernel(d),
                                   mass_matrix_kernel(d), forcing_kernel(d)};
   const KernelCode constrained = d.loops() ? constrained_dynamics_kernel(d) : KernelCode{};
-  kernels.push_back(d.loops() ? loop_dynamics_kernel(constrained) : tree_dynamics_kernel(d));
+  kernels.push_back(d.loops() ? loop_dynamics_kernel(d, constrained) : tree_dynamics_kernel(d));
   kernels.push_back(coordinate_rates_kernel(d));
   kernels.push_back(energy_kernel(Kernel::kinetic_energy, "T", eq.kinetic_energy, d));
   kernels.push_back(energy_kernel(Kernel::potential_energy, "V", eq.potential_energy, d));

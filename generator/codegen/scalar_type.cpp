@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "codegen/scalar_type.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
+#include <set>
 
 #include "codegen/cpp_printer.hpp"
 
@@ -41,6 +43,47 @@ std::string ScalarType::in_type(const std::string& type) const {
     from = end;
   }
   return out + type.substr(from);
+}
+
+std::string ScalarType::in_code(const std::string& double_code) const {
+  if (is_double()) return double_code;
+  static const std::set<std::string> math = {"sin",   "cos", "tan", "asin", "acos", "atan",
+                                             "atan2", "exp", "log", "sqrt", "pow",  "fabs"};
+  const auto identifier = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  const std::string& in = double_code;
+  std::string out;
+  std::size_t at = 0;
+  while (at < in.size()) {
+    if (in.compare(at, 2, "//") == 0) {  // a comment, to the end of its line
+      const std::size_t end = std::min(in.find('\n', at), in.size());
+      out += in.substr(at, end - at);
+      at = end;
+    } else if (std::isdigit(static_cast<unsigned char>(in[at]))) {  // a number: digits, '.', exponent
+      std::size_t end = at;
+      while (end < in.size() &&
+             (identifier(in[end]) || in[end] == '.' ||
+              ((in[end] == '-' || in[end] == '+') && (in[end - 1] == 'e' || in[end - 1] == 'E'))))
+        ++end;
+      const std::string number = in.substr(at, end - at);
+      const bool floating = number.find_first_of(".eE") != std::string::npos;
+      out += floating ? literal(std::strtod(number.c_str(), nullptr)) : number;
+      at = end;
+    } else if (identifier(in[at])) {  // a word: the type, a <math.h> function, or any other name
+      std::size_t end = at;
+      while (end < in.size() && identifier(in[end])) ++end;
+      const std::string word = in.substr(at, end - at);
+      if (word == "double")
+        out += name();
+      else if (math.count(word) && end < in.size() && in[end] == '(')
+        out += function(word);
+      else
+        out += word;
+      at = end;
+    } else {
+      out += in[at++];
+    }
+  }
+  return out;
 }
 
 }  // namespace kanegen::codegen

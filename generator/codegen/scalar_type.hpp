@@ -27,6 +27,10 @@ class ScalarType {
   /// `type` (a C++ type as the kernel table writes it, e.g. "const double*")
   /// with each word "double" replaced by this type's name.
   std::string in_type(const std::string& type) const;
+  /// C++ code written for double (the saddle-point solve of
+  /// templates/solve_saddle.hpp) in this type: the word "double", every
+  /// floating literal and every <math.h> call; comments are left as they are.
+  std::string in_code(const std::string& double_code) const;
 
  private:
   Precision precision_;

@@ -23,19 +23,14 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-/// Float kernels are written for open trees: the saddle-point solve of the
-/// loops and the Jacobian kernels exist in double only.
+/// The Jacobian and controller kernels exist in double only (linearize's
+/// solve and the Jacobians' zero fills are written for it).
 void check_precision(const model::Model& model, const GenerateOptions& options) {
   if (options.precision == codegen::Precision::double_precision) return;
   if (options.jacobians || options.controller)
     throw model::ModelError(model.source_file, "",
                             "--precision float cannot be combined with --jacobians or --controller",
                             "generate the Jacobian and controller kernels in double (leave out --precision)");
-  if (!model.loops.empty())
-    throw model::ModelError(model.source_file, "",
-                            "--precision float is for open trees, and this model closes " +
-                                std::to_string(model.loops.size()) + " loop(s)",
-                            "generate it in double (leave out --precision)");
 }
 
 /// The controller kernels linearize and solve the tree's own M: a loop's

@@ -88,21 +88,38 @@ TEST_CASE("generate --precision float writes float kernels, the same on every ru
   CHECK(kanegen("generate --help").out.find("--precision") != std::string::npos);
 }
 
-TEST_CASE("generate --precision float refuses loops and Jacobians, and writes nothing", "[cli]") {
+TEST_CASE("generate --precision float refuses Jacobians and controller kernels, and writes nothing",
+          "[cli]") {
   const fs::path dir = scratch() / "gen_float_refused";
-  const Result loops =
-      kanegen("generate " + model("four_bar.json") + " -o " + dir.string() + " --precision float");
-  CHECK(loops.status != 0);
-  CHECK(loops.err.find(
-            "four_bar.json: /: --precision float is for open trees, and this model closes 1 loop(s); "
-            "generate it in double (leave out --precision)") != std::string::npos);
   const Result jacobians =
       kanegen("generate " + model("arm7.urdf") + " -o " + dir.string() + " --precision float --jacobians");
   CHECK(jacobians.status != 0);
   CHECK(jacobians.err.find("--precision float cannot be combined with --jacobians") != std::string::npos);
+  const Result controller =
+      kanegen("generate " + model("arm7.urdf") + " -o " + dir.string() + " --precision float --controller");
+  CHECK(controller.status != 0);
+  CHECK(controller.err.find("--precision float cannot be combined with --jacobians or --controller") !=
+        std::string::npos);
   CHECK(kanegen("generate " + model("arm7.urdf") + " -o " + dir.string() + " --precision half").status != 0);
-  CHECK(!fs::exists(dir / "four_bar_float.cpp"));
   CHECK(!fs::exists(dir / "arm7_float.cpp"));
+}
+
+// The loop kernels in float too: the saddle-point solve included, with
+// float literals and sqrtf, nothing left in double.
+TEST_CASE("generate --precision float writes the loop kernels of a model with loops in float", "[cli]") {
+  const fs::path dir = scratch() / "gen_float_loops";
+  REQUIRE(kanegen("generate " + model("four_bar.json") + " -o " + dir.string() + " --quiet --precision float")
+              .status == 0);
+  const std::string source = slurp(dir / "four_bar_float.cpp");
+  CHECK(source.find("double") == std::string::npos);
+  CHECK(slurp(dir / "four_bar_float.hpp").find("double") == std::string::npos);
+  CHECK(source.find("int solve_saddle(float* M, float* b, float* C, const float* g, float* lambda)") !=
+        std::string::npos);
+  CHECK(source.find("const float l = sqrtf(s);") != std::string::npos);
+  CHECK(source.find("if (!(s > 1e-06f * largest)) return -(j + 1);") != std::string::npos);
+  CHECK(source.find("float Ms[NS * NS], b[NS], Cs[NC * NS], g[NC];") != std::string::npos);
+  CHECK(source.find("void constraint_jacobian(const Params& p, const float* q, float* C)") !=
+        std::string::npos);
 }
 
 TEST_CASE("generate --jacobians adds the Jacobian kernels, and only then", "[cli][jacobians]") {

@@ -78,3 +78,19 @@ TEST_CASE("the System forwarder and the table entry call the kernel with the sam
   CHECK(longest_line(forwarder) <= 110);
   CHECK(longest_line(entry) <= 110);
 }
+
+// The saddle-point solve is written once, for double; a float model gets it
+// through in_code, which must leave no double behind (tests/embedded compiles
+// the result with -Wdouble-promotion) and touch nothing else.
+TEST_CASE("in_code writes double code in float: the type, floating literals and <math.h> calls",
+          "[kernels]") {
+  const std::string code =
+      "  double s = M[j * NS + 1];  // sqrt(1e-6) double\n"
+      "  if (!(s > 1e-6 * largest) || s < 0.0) return -(j + 1);\n"
+      "  const double l = sqrt(s) + fabs(2.5e+3), my_sqrt = doubled;\n";
+  CHECK(ScalarType(Precision::single_precision).in_code(code) ==
+        "  float s = M[j * NS + 1];  // sqrt(1e-6) double\n"
+        "  if (!(s > 1e-06f * largest) || s < 0.0f) return -(j + 1);\n"
+        "  const float l = sqrtf(s) + fabsf(2.5e+03f), my_sqrt = doubled;\n");
+  CHECK(ScalarType().in_code(code) == code);
+}

@@ -1,6 +1,8 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 # Compiles each of SOURCES (separated by '|') with CXX as freestanding code
-# (-ffreestanding -fno-exceptions -fno-rtti -nostdinc++, warnings as errors)
+# (-ffreestanding -fno-exceptions -fno-rtti -nostdinc++, warnings as errors;
+# for the float kernels, <name>_float.cpp, -Wdouble-promotion too: float code
+# that touches a double, such as a double literal or sqrt for sqrtf, fails)
 # and lists the object's undefined symbols with NM: each must be a <math.h>
 # function, or one of the four that GCC and Clang may call in any
 # freestanding code (memcpy, memmove, memset, memcmp). No malloc, no
@@ -16,8 +18,12 @@ set(math "sin|cos|tan|asin|acos|atan|atan2|exp|log|sqrt|pow|fabs")
 foreach(source ${sources})
   get_filename_component(stem ${source} NAME_WE)
   set(object ${SCRATCH}/${stem}.o)
+  set(float_flags)
+  if(stem MATCHES "_float$")
+    set(float_flags -Wdouble-promotion)
+  endif()
   execute_process(COMMAND ${CXX} -std=c++17 -O2 -ffreestanding -fno-exceptions -fno-rtti -nostdinc++ -Wall
-                          -Wextra -Wpedantic -Werror ${include_flags} -c ${source} -o ${object}
+                          -Wextra -Wpedantic ${float_flags} -Werror ${include_flags} -c ${source} -o ${object}
                   RESULT_VARIABLE rc ERROR_VARIABLE errors)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "${source} does not compile freestanding with ${CXX}:\n${errors}")
