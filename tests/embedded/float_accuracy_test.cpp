@@ -1,13 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // The float kernels (kanegen generate --precision float) against the double
-<<<<<<< HEAD
-// ones of the same model, on every shipped rigid model with an open tree:
-// both evaluated at the same float-representable states, so that the
-// difference is the float kernels' rounding alone. The largest difference
-// over the samples relative to the largest entry over the samples (an entry
-// near zero, where terms cancel, has no meaningful relative error of its
-// own); printed for docs/embedded.md.
-=======
 // ones of the same model, on every shipped rigid model (open trees and
 // closed loops): both evaluated at the same float-representable states, so
 // that the difference is the float kernels' rounding alone. The largest
@@ -24,7 +16,6 @@
 // along the model's own motion: from its initial state, a short RK4 run of
 // the double kernels (|Phi| stays below 1e-6 m, checked), each sample
 // rounded to float.
->>>>>>> h-float16
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
