@@ -1,0 +1,181 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""How kanegen scales with model size (issue 17), in one run on this machine:
+spatial chains of N links from scripts/make_chain_urdf.py, and for each
+
+- the operation counts of forward_dynamics (both methods where the header
+  gives them) and the method kanegen chose;
+- generation time (`kanegen generate`, best of --reps, wall);
+- compile time of the generated source at -O2 (g++, one run, wall);
+- forward_dynamics against MuJoCo's mj_forward on the same URDF, median time
+  per call (bench/scaling_driver.cpp; it checks that both compute the same
+  udot before it times anything);
+- for the --sympy sizes, SymPy's KanesMethod on the same chain
+  (bench/sympy_chain.py; its M[0][0] at q = 0 must match kanegen's).
+
+    bench/scaling.py [--sizes 7,20,50,100] [--sympy 7] [--kanegen build/generator/kanegen]
+                     [--out DIR] [--reps 3] [--plot FIG.png] [--dynamics auto]
+
+Writes DIR/scaling.json and prints a markdown table; --plot draws operation
+counts and the time ratio against N with gnuplot. A benchmark, not a test:
+nothing fails on time, and the times depend on the machine and its load.
+"""
+import argparse
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def run(command, **kwargs):
+    result = subprocess.run(command, capture_output=True, text=True, **kwargs)
+    if result.returncode != 0:
+        sys.exit("bench/scaling.py: %s failed:\n%s%s" % (" ".join(command), result.stdout, result.stderr))
+    return result
+
+
+def wall(command, reps=1):
+    best = float("inf")
+    for _ in range(reps):
+        start = time.perf_counter()
+        run(command)
+        best = min(best, time.perf_counter() - start)
+    return best
+
+
+def operation_counts(header):
+    """The forward_dynamics counts from the generated header's comment lines."""
+    text = open(header).read()
+    counts = {}
+    for line in text.splitlines():
+        match = re.match(r"//\s+forward_dynamics(?: \((\w+)\))?:\s*(\d+)", line)
+        if match:
+            counts[match.group(1) or "chosen"] = int(match.group(2))
+    method = re.search(r"forward_dynamics.*?\b(recursive|composite)\b", text)
+    return counts, method.group(1) if method else "composite"
+
+
+def measure(args, n, work):
+    urdf = os.path.join(work, "chain%d.urdf" % n)
+    run([sys.executable, os.path.join(ROOT, "scripts", "make_chain_urdf.py"), "--links", str(n), "-o", urdf])
+    gen = os.path.join(work, "gen%d" % n)
+    shutil.rmtree(gen, ignore_errors=True)
+    command = [args.kanegen, "generate", urdf, "-o", gen, "--quiet"]
+    if args.dynamics:
+        command += ["--dynamics", args.dynamics]
+    print("chain%d: generating ..." % n, file=sys.stderr, flush=True)
+    generation = wall(command, args.reps)
+    name = "chain%d" % n
+    counts, method = operation_counts(os.path.join(gen, name + ".hpp"))
+    print("chain%d: compiling at -O2 ..." % n, file=sys.stderr, flush=True)
+    obj = os.path.join(work, name + ".o")
+    compile_seconds = wall([args.cxx, "-std=c++17", "-O2", "-I", gen, "-I", os.path.join(ROOT, "runtime", "include"),
+                            "-c", os.path.join(gen, name + ".cpp"), "-o", obj])
+    driver = os.path.join(work, "driver%d" % n)
+    run([args.cxx, "-std=c++17", "-O2", "-DKANEGEN_SCALING_HEADER=<%s.hpp>" % name,
+         "-DKANEGEN_SCALING_NAMESPACE=%s" % name, "-I", gen, os.path.join(ROOT, "bench", "scaling_driver.cpp"), obj,
+         "-lmujoco", "-o", driver])
+    print("chain%d: timing forward_dynamics and mj_forward ..." % n, file=sys.stderr, flush=True)
+    timing = json.loads(run([driver, urdf]).stdout)
+    return {"links": n, "method": method, "operations": counts, "generation_s": generation,
+            "compile_O2_s": compile_seconds, **timing, "ratio_to_mj_forward": timing["kanegen_ns"] / timing["mujoco_ns"]}
+
+
+def sympy_peer(n, kanegen_row, timeout):
+    print("chain%d: SymPy KanesMethod ..." % n, file=sys.stderr, flush=True)
+    try:
+        result = subprocess.run([sys.executable, os.path.join(ROOT, "bench", "sympy_chain.py"), str(n)],
+                                capture_output=True, text=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        return {"links": n, "seconds": None, "note": "over %d s" % timeout}
+    if result.returncode != 0:
+        return {"links": n, "seconds": None, "note": "failed: " + result.stderr.strip().splitlines()[-1]}
+    row = json.loads(result.stdout)
+    if kanegen_row is not None:
+        expected = kanegen_row["m00_at_zero"]
+        if abs(row["check"] - expected) > 1e-9 * max(1.0, abs(expected)):
+            sys.exit("bench/scaling.py: SymPy's M[0][0] %r differs from kanegen's %r: not the same model" %
+                     (row["check"], expected))
+        row["kanegen_generation_s"] = kanegen_row["generation_s"]
+    return row
+
+
+def plot(rows, path):
+    data = path + ".dat"
+    with open(data, "w") as f:
+        for r in rows:
+            f.write("%d %d %g\n" % (r["links"], r["operations"].get("chosen", 0), r["ratio_to_mj_forward"]))
+    script = """set terminal pngcairo size 900,420 font ',10'
+set output '%s'
+set multiplot layout 1,2
+set xlabel 'links N'
+set ylabel 'operations in forward_dynamics'
+set logscale xy
+set key top left
+plot '%s' using 1:2 with linespoints title 'kanegen', '' using 1:(200*$1) with lines dashtype 2 title '200 N'
+unset logscale y
+set logscale x
+set ylabel 'time / mj_forward'
+set yrange [0:*]
+plot '%s' using 1:3 with linespoints title 'forward\\_dynamics / mj\\_forward'
+unset multiplot
+""" % (path, data, data)
+    subprocess.run(["gnuplot"], input=script, text=True, check=True)
+    os.remove(data)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--sizes", default="7,20,50,100", help="chain lengths (default 7,20,50,100)")
+    parser.add_argument("--sympy", default="7", help="chain lengths for the SymPy peer, '' for none (default 7)")
+    parser.add_argument("--sympy-timeout", type=int, default=1800, help="seconds per SymPy run (default 1800)")
+    parser.add_argument("--kanegen", default=os.path.join(ROOT, "build", "generator", "kanegen"))
+    parser.add_argument("--cxx", default="g++")
+    parser.add_argument("--dynamics", default="", help="passed to kanegen generate --dynamics (default: its own)")
+    parser.add_argument("--out", default=os.path.join(ROOT, "build", "bench_scaling"))
+    parser.add_argument("--reps", type=int, default=3, help="generation runs per size; the fastest counts")
+    parser.add_argument("--plot", help="write a PNG of operations and time ratio against N")
+    args = parser.parse_args()
+    if not os.access(args.kanegen, os.X_OK):
+        sys.exit("bench/scaling.py: no kanegen at %s (build it, or pass --kanegen)" % args.kanegen)
+    os.makedirs(args.out, exist_ok=True)
+    sizes = [int(s) for s in args.sizes.split(",") if s]
+    sympy_sizes = [int(s) for s in args.sympy.split(",") if s]
+    rows = [measure(args, n, args.out) for n in sorted(set(sizes) | set(sympy_sizes))]
+    by_size = {r["links"]: r for r in rows}
+    peers = [sympy_peer(n, by_size.get(n), args.sympy_timeout) for n in sympy_sizes]
+    rows = [r for r in rows if r["links"] in sizes]
+    result = {"machine": {"cores": os.cpu_count(), "load": os.getloadavg()}, "chains": rows, "sympy": peers}
+    with open(os.path.join(args.out, "scaling.json"), "w") as f:
+        json.dump(result, f, indent=2)
+
+    print("machine: %d cores, load %.1f %.1f %.1f" % ((os.cpu_count(),) + os.getloadavg()))
+    print()
+    print("| links | method | operations (chosen; recursive / composite) | generation [s] | compile -O2 [s] |"
+          " forward_dynamics [us] | mj_forward [us] | ratio |")
+    print("|---|---|---|---|---|---|---|---|")
+    for r in rows:
+        c = r["operations"]
+        both = " / ".join(str(c[k]) if k in c else "-" for k in ("recursive", "composite"))
+        print("| %d | %s | %d (%s) | %.2f | %.1f | %.2f | %.2f | %.2f |" %
+              (r["links"], r["method"], c.get("chosen", 0), both, r["generation_s"], r["compile_O2_s"],
+               r["kanegen_ns"] / 1e3, r["mujoco_ns"] / 1e3, r["ratio_to_mj_forward"]))
+    if peers:
+        print()
+        print("| links | SymPy KanesMethod [s] (CPU, equations only) | kanegen generate [s] (wall, to C++) |")
+        print("|---|---|---|")
+        for p in peers:
+            sympy_time = "%.1f" % p["seconds"] if p.get("seconds") is not None else p.get("note", "-")
+            print("| %d | %s | %.2f |" % (p["links"], sympy_time, p.get("kanegen_generation_s", float("nan"))))
+    if args.plot:
+        plot(rows, args.plot)
+        print("\nwrote %s" % args.plot)
+
+
+if __name__ == "__main__":
+    main()
