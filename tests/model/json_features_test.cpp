@@ -52,7 +52,7 @@ TEST_CASE("JSON defaults and optional features", "[json]") {
   CHECK(m.outputs[0].joint == "slide");
 }
 
-TEST_CASE("initial values of elastic coordinates are read by name; the others start at 0",
+TEST_CASE("initial values of elastic coordinates are read by name, the others start at 0",
           "[json][flexible]") {
   const Model m = load_model(test_data("elastic_initial.json"));
   const FlexibleBeam& rod = m.bodies[0].beam;  // nodal, pinned-pinned
