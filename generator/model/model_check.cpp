@@ -630,7 +630,7 @@ class Checker {
     if (modal) return names.front() + " to " + names.back();
     return names.front() + ", " + names[1] + ", ..., " + names.back() + " (n<node>." +
            (f.formulation == BeamFormulation::planar ? "<u|v|theta_z>" : "<u|v|w|theta_x|theta_y|theta_z>") +
-           ", where the support leaves the node free)";
+           " for each dof the support leaves free)";
   }
 
   void check_flexible() {

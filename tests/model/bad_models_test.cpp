@@ -381,8 +381,8 @@ TEST_CASE("bad elastic initial values: unknown name, body prefix, not a number, 
   expect_model_error(
       bad_model("flex_initial_unknown_name.json"), "/bodies/0/flexible/initial/q/n2.theta",
       "body 'beam' has no elastic coordinate 'n2.theta'",
-      "did you mean 'n2.theta_z'? Its coordinates are n1.u, n1.v, ..., n3.theta_z (n<node>.<u|v|theta_z>, "
-      "where the support leaves the node free)");
+      "did you mean 'n2.theta_z'? Its coordinates are n1.u, n1.v, ..., n3.theta_z (n<node>.<u|v|theta_z> "
+      "for each dof the support leaves free)");
   expect_model_error(bad_model("flex_initial_body_prefix.json"), "/bodies/0/flexible/initial/u/beam.mode2",
                      "body 'beam' has no elastic coordinate 'beam.mode2'",
                      "write it without the body prefix: 'mode2'. Its coordinates are mode1, mode2");
