@@ -586,9 +586,22 @@ Row defaults_row(const model::Model& model, const numeric::Instance& defaults, c
   const std::vector<double> q0 = info["q0"].get<std::vector<double>>(),
                             u0 = info["u0"].get<std::vector<double>>();
   // Joints: the model file's q0 and u0, or the prescribed motion at t = 0
-  // (its first piece, at the parameters' defaults); elastic coordinates: 0.
+  // (its first piece, at the parameters' defaults); elastic coordinates: the
+  // model file's values by name, else 0.
+  std::vector<double> elastic_q(defaults.coordinates(), 0.0), elastic_u(defaults.coordinates(), 0.0);
+  for (const numeric::BodyData& body : defaults.bodies) {
+    if (!body.beam) continue;
+    const auto in_model = std::find_if(model.bodies.begin(), model.bodies.end(),
+                                       [&](const model::Body& b) { return b.name == body.name; });
+    for (int k = 0; k < body.beam->count(); ++k) {
+      const std::string& name = body.beam->names[k];
+      const auto q = in_model->beam.initial_q.find(name), u = in_model->beam.initial_u.find(name);
+      if (q != in_model->beam.initial_q.end()) elastic_q[body.elastic_first + k] = q->second;
+      if (u != in_model->beam.initial_u.end()) elastic_u[body.elastic_first + k] = u->second;
+    }
+  }
   for (int r = 0; r < defaults.coordinates(); ++r) {
-    double q = 0, u = 0;
+    double q = elastic_q[r], u = elastic_u[r];
     if (r < defaults.joint_coordinates()) {
       const model::Joint& j = model.joints[defaults.coordinate_joint[r]];
       q = j.q0;

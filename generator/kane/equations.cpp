@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "kane/equations.hpp"
 
+#include <algorithm>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -567,21 +568,41 @@ void joint_coordinates(Derivation& d) {
   }
 }
 
-/// The elastic coordinates, after the joints': rates, names, a rest state.
+/// The model's initial value of the elastic coordinate `name`: given, or 0.
+double elastic_initial(const std::map<std::string, double>& given, const std::string& name) {
+  const auto value = given.find(name);
+  return value == given.end() ? 0.0 : value->second;
+}
+
+/// check_model has checked the given names against model::elastic_coordinate_names;
+/// this guards its agreement with the finite-element layer's names.
+void require_known_initial_names(const model::Body& body, const std::vector<std::string>& names) {
+  for (const auto* given : {&body.beam.initial_q, &body.beam.initial_u})
+    for (const auto& entry : *given)
+      if (std::find(names.begin(), names.end(), entry.first) == names.end())
+        throw std::logic_error("internal error: elastic coordinate '" + entry.first + "' of body '" +
+                               body.name +
+                               "' passed the model check but the finite-element body has no such coordinate");
+}
+
+/// The elastic coordinates, after the joints': rates, names, the initial
+/// state (the model's values, else rest).
 void elastic_coordinates(Derivation& d) {
   const model::Model& model = d.model;
   Equations& eq = d.eq;
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     if (!model.bodies[b].flexible) continue;
+    const model::FlexibleBeam& beam = model.bodies[b].beam;
     const std::vector<std::string>& names = d.flexible.at(static_cast<int>(b)).reduced.names;
+    require_known_initial_names(model.bodies[b], names);
     for (int k = 0; k < d.vars.elastic_count[b]; ++k) {
       eq.coordinate_rates.push_back(d.vars.u[d.vars.elastic_first[b] + k]);
       eq.coordinate_names.push_back(model.bodies[b].name + "." + names[k]);
       eq.coordinate_joints.push_back("");
       eq.moved_bodies.push_back(elastically_moved_bodies(model, model.bodies[b].name));
       eq.speed_names.push_back(model.bodies[b].name + "." + names[k] + "_dot");
-      eq.q0.push_back(0.0);
-      eq.u0.push_back(0.0);
+      eq.q0.push_back(elastic_initial(beam.initial_q, names[k]));
+      eq.u0.push_back(elastic_initial(beam.initial_u, names[k]));
     }
   }
 }

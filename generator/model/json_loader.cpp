@@ -181,6 +181,14 @@ class JsonReader {
       }
     }
     f.geometric_stiffening = j.value("geometric_stiffening", true);
+    if (j.contains("initial")) {
+      // The names are checked against the beam's coordinates by check_model.
+      const json& initial = j["initial"];
+      if (initial.contains("q"))
+        for (const auto& [name, value] : initial["q"].items()) f.initial_q[name] = value.get<double>();
+      if (initial.contains("u"))
+        for (const auto& [name, value] : initial["u"].items()) f.initial_u[name] = value.get<double>();
+    }
     return f;
   }
 

@@ -94,6 +94,9 @@ struct FlexibleBeam {
   double rayleigh_alpha = 0.0, rayleigh_beta = 0.0;  ///< damping alpha M + beta K
   double modal_damping = 0.0;                        ///< damping ratio of every mode (modal coordinates)
   bool geometric_stiffening = true;
+  /// Initial values of elastic coordinates, by their names without the body
+  /// prefix (model/elastic_coordinates.hpp: "n3.v", "mode2"); the others start at 0.
+  std::map<std::string, double> initial_q, initial_u;
   std::string where;
 
   int num_elements() const {

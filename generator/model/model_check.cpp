@@ -12,8 +12,10 @@
 #include <sstream>
 
 #include "model/assumed_modes_check.hpp"
+#include "model/elastic_coordinates.hpp"
 #include "model/expression_check.hpp"
 #include "model/expression_eval.hpp"
+#include "model/json_document.hpp"
 #include "model/model_error.hpp"
 #include "model/names.hpp"
 
@@ -600,11 +602,43 @@ class Checker {
     return &*b;
   }
 
+  /// Every elastic coordinate given an initial value exists.
+  void check_elastic_initial(const Body& b) const {
+    const std::vector<std::string> names = elastic_coordinate_names(b.beam);
+    for (const auto& [key, given] : {std::pair{"q", &b.beam.initial_q}, std::pair{"u", &b.beam.initial_u}})
+      for (const auto& entry : *given) {
+        const std::string& name = entry.first;
+        if (std::find(names.begin(), names.end(), name) != names.end()) continue;
+        const std::string prefix = b.name + ".", local = name.substr(std::min(prefix.size(), name.size()));
+        const bool prefixed =
+            name.rfind(prefix, 0) == 0 && std::find(names.begin(), names.end(), local) != names.end();
+        const std::string guess = prefixed ? local : nearest(name, names);
+        error(at(b.beam.where, std::string("initial/") + key + "/" + pointer_token(name)),
+              "body '" + b.name + "' has no elastic coordinate '" + name + "'",
+              (prefixed        ? "write it without the body prefix: '" + guess + "'. "
+               : guess.empty() ? ""
+                               : "did you mean '" + guess + "'? ") +
+                  "Its coordinates are " + coordinate_list(b.beam, names));
+      }
+  }
+
+  /// "mode1 to mode4", or the nodal ones with their pattern, for messages.
+  static std::string coordinate_list(const FlexibleBeam& f, const std::vector<std::string>& names) {
+    if (names.empty()) return "none";
+    const bool modal = f.modes > 0 || !f.assumed_modes.empty();
+    if (names.size() <= 4) return join(names);
+    if (modal) return names.front() + " to " + names.back();
+    return names.front() + ", " + names[1] + ", ..., " + names.back() + " (n<node>." +
+           (f.formulation == BeamFormulation::planar ? "<u|v|theta_z>" : "<u|v|w|theta_x|theta_y|theta_z>") +
+           " for each dof the support leaves free)";
+  }
+
   void check_flexible() {
     for (Body& b : m_.bodies) {
       if (!b.flexible) continue;
       check_beam(b);
       if (!b.beam.assumed_modes.empty()) check_assumed_modes(m_, b);
+      check_elastic_initial(b);
     }
     for (Joint& j : m_.joints)
       if (j.parent_node != -1) {

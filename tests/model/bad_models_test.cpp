@@ -376,6 +376,22 @@ TEST_CASE("bad assumed modes: an expression that does not read, an undefined nam
                      "a planar beam has no 'w'", "use \"formulation\": \"spatial\"");
 }
 
+TEST_CASE("bad elastic initial values: unknown name, body prefix, not a number, unknown key",
+          "[bad][flexible][initial]") {
+  expect_model_error(
+      bad_model("flex_initial_unknown_name.json"), "/bodies/0/flexible/initial/q/n2.theta",
+      "body 'beam' has no elastic coordinate 'n2.theta'",
+      "did you mean 'n2.theta_z'? Its coordinates are n1.u, n1.v, ..., n3.theta_z (n<node>.<u|v|theta_z> "
+      "for each dof the support leaves free)");
+  expect_model_error(bad_model("flex_initial_body_prefix.json"), "/bodies/0/flexible/initial/u/beam.mode2",
+                     "body 'beam' has no elastic coordinate 'beam.mode2'",
+                     "write it without the body prefix: 'mode2'. Its coordinates are mode1, mode2");
+  expect_model_error(bad_model("flex_initial_not_a_number.json"), "/bodies/0/flexible/initial/q/n1.v",
+                     "wrong type: expected a number, found a string", "write a number");
+  expect_model_error(bad_model("flex_initial_unknown_key.json"), "/bodies/0/flexible/initial/speed",
+                     "unknown key 'speed'", "");
+}
+
 TEST_CASE("bad assumed modes: zero, rigid, dependent, too many", "[bad][flexible][assumed]") {
   expect_model_error(bad_model("flex_assumed_zero.json"), "/bodies/0/flexible/assumed_modes/1",
                      "assumed mode 2 (beam.mode2) is zero at every node of the beam", "or remove it");

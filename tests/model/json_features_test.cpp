@@ -52,6 +52,17 @@ TEST_CASE("JSON defaults and optional features", "[json]") {
   CHECK(m.outputs[0].joint == "slide");
 }
 
+TEST_CASE("initial values of elastic coordinates are read by name, the others start at 0",
+          "[json][flexible]") {
+  const Model m = load_model(test_data("elastic_initial.json"));
+  const FlexibleBeam& rod = m.bodies[0].beam;  // nodal, pinned-pinned
+  CHECK(rod.initial_q == std::map<std::string, double>{{"n1.v", 0.002}, {"n2.u", -1e-5}});
+  CHECK(rod.initial_u == std::map<std::string, double>{{"n0.theta_z", 0.25}});
+  const FlexibleBeam& arm = m.bodies[1].beam;  // modal
+  CHECK(arm.initial_q.empty());
+  CHECK(arm.initial_u == std::map<std::string, double>{{"mode3", -0.5}});
+}
+
 TEST_CASE("the schema is embedded and matches models/schema", "[json]") {
   std::ifstream in(kanegen::model::test::source_path("models/schema/kanegen-model.schema.json"));
   std::stringstream text;
