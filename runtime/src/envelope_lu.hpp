@@ -4,8 +4,8 @@
 // matrices of finite-element models are banded by the element
 // connectivity, and a dense 31 x 31 substitution spent most of its work on
 // zeros. Skipping an exact zero changes no result (x - 0 y == x for finite
-// y), so dense matrices get the same numbers as before. Private to the
-// runtime library; everything works in place on the caller's storage.
+// y). Private to the runtime library; everything works in place on the
+// caller's storage.
 #pragma once
 
 #include <algorithm>
@@ -43,13 +43,18 @@ inline bool lu_factor(double* A, int n, int* pivots, int* column) {
   return true;
 }
 
-/// The first nonzero of each column of U above the diagonal (k if none)
-/// and one past the last nonzero of each column of L below it (k + 1 if
-/// none), from the transposed factors LUt (n x n, column k of L and U in
-/// row k).
-inline void column_envelopes(const double* LUt, int n, int* upper_begin, int* lower_end) {
+/// The factors LU of lu_factor (n x n row-major) as envelope_lu_solve
+/// takes them: transposed into LUt (column k of L and U in row k), the
+/// diagonal of U as its reciprocals (a division on the back substitution's
+/// critical path costs several multiplications), and each column's nonzero
+/// range: the first nonzero of U above the diagonal (k if none) and one past
+/// the last nonzero of L below it (k + 1 if none).
+inline void prepare_solve(const double* LU, int n, double* LUt, int* upper_begin, int* lower_end) {
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) LUt[j * n + i] = LU[i * n + j];
   for (int k = 0; k < n; ++k) {
-    const double* column = &LUt[k * n];
+    double* column = &LUt[k * n];
+    column[k] = 1.0 / column[k];
     int begin = 0, end = n;
     while (begin < k && column[begin] == 0.0) ++begin;
     while (end > k + 1 && column[end - 1] == 0.0) --end;
@@ -58,15 +63,15 @@ inline void column_envelopes(const double* LUt, int n, int* upper_begin, int* lo
   }
 }
 
-/// b := A^-1 b from the factors of lu_factor, transposed (LUt = (LU)^T:
-/// the substitutions then run down contiguous columns of L and U with
-/// independent updates, which vectorize), within the ranges of
-/// column_envelopes. The factorization's row swaps moved whole rows,
+/// b := A^-1 b from the factors of prepare_solve: the substitutions run
+/// down contiguous columns of L and U with independent updates, which
+/// vectorize, within the columns' nonzero ranges. The factorization's row swaps moved whole rows,
 /// multipliers included, so all of them apply to b before the forward
 /// substitution.
 inline void envelope_lu_solve(const double* LUt, int n, const int* pivots, const int* upper_begin,
                               const int* lower_end, double* b) {
-  for (int k = 0; k < n; ++k) std::swap(b[k], b[pivots[k]]);
+  for (int k = 0; k < n; ++k)
+    if (pivots[k] != k) std::swap(b[k], b[pivots[k]]);  // rare for the diagonally dominant ones
   for (int k = 0; k < n; ++k) {
     const double* column = &LUt[k * n];
     const double bk = b[k];
@@ -74,8 +79,7 @@ inline void envelope_lu_solve(const double* LUt, int n, const int* pivots, const
   }
   for (int k = n - 1; k >= 0; --k) {
     const double* column = &LUt[k * n];
-    b[k] /= column[k];
-    const double bk = b[k];
+    const double bk = b[k] *= column[k];
     for (int i = upper_begin[k]; i < k; ++i) b[i] -= column[i] * bk;
   }
 }

@@ -14,11 +14,11 @@ namespace {
 
 using detail::cholesky_factor;
 using detail::cholesky_solve;
-using detail::column_envelopes;
 using detail::envelope_lu_solve;
 using detail::envelope_multiply;
 using detail::factor_gram;
 using detail::lu_factor;
+using detail::prepare_solve;
 using detail::row_envelopes;
 
 /// Within a step, a contraction rate above this with a stale iteration
@@ -271,6 +271,12 @@ bool GenAlpha::refresh(double t1, const double* tau) {
   const int n = n_dof_, dim = dim_;
   if (fused_) {  // residual() has not evaluated M
     model_.mass_matrix(q1_.data(), M_.data());
+    // The prescribed rows and columns go: their residuals are 0 and their
+    // rows no equations (the iteration matrix drops them too), and a hub's
+    // column would otherwise widen every row's range to the full width.
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+        if (prescribed_[i] || prescribed_[j]) M_[static_cast<size_t>(i) * n + j] = 0.0;
     row_envelopes(M_.data(), n, mass_begin_.data(), mass_end_.data());
   }
   model_.forcing_jacobian(t1, q1_.data(), u1_.data(), tau, dfdq_.data(), dfdu_.data());
@@ -309,12 +315,7 @@ bool GenAlpha::refresh(double t1, const double* tau) {
   ++stats_.factorizations;
   int column = 0;
   factored_ = lu_factor(lu_.data(), dim, pivots_.data(), &column);
-  if (factored_) {
-    for (int i = 0; i < dim; ++i)  // transposed, for the solves (see envelope_lu_solve)
-      for (int j = 0; j < dim; ++j)
-        lut_[static_cast<size_t>(j) * dim + i] = lu_[static_cast<size_t>(i) * dim + j];
-    column_envelopes(lut_.data(), dim, lu_upper_begin_.data(), lu_lower_end_.data());
-  }
+  if (factored_) prepare_solve(lu_.data(), dim, lut_.data(), lu_upper_begin_.data(), lu_lower_end_.data());
   return factored_;
 }
 
