@@ -4,19 +4,23 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <stdexcept>
 
 #include "cholesky.hpp"
+#include "envelope_lu.hpp"
 
 namespace kanegen::runtime {
 namespace {
 
 using detail::cholesky_factor;
 using detail::cholesky_solve;
+using detail::envelope_lu_solve;
+using detail::envelope_multiply;
 using detail::factor_gram;
+using detail::lu_factor;
+using detail::prepare_solve;
+using detail::row_envelopes;
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
 /// Within a step, a contraction rate above this with a stale iteration
 /// matrix re-evaluates the Jacobians; above kRefreshNext at the end of a
 /// step, the next step starts with fresh ones.
@@ -27,58 +31,6 @@ constexpr double kRefreshNext = 0.1;
 constexpr double kMinRate = 1e-3;
 /// The position residual the start needs (the explicit path's guarantee).
 constexpr double kStartResidual = 1e-10;
-
-/// In-place LU with partial pivoting of the n x n row-major A. False if a
-/// pivot is zero or below n eps of the largest entry (singular to working
-/// precision), with its column in *column.
-bool lu_factor(double* A, int n, int* pivots, int* column) {
-  double largest = 0.0;
-  for (int i = 0; i < n * n; ++i) largest = std::max(largest, std::abs(A[i]));
-  const double tiny = n * kEps * largest;
-  for (int k = 0; k < n; ++k) {
-    int p = k;
-    for (int i = k + 1; i < n; ++i)
-      if (std::abs(A[i * n + k]) > std::abs(A[p * n + k])) p = i;
-    pivots[k] = p;
-    if (!(std::abs(A[p * n + k]) > tiny)) {
-      *column = k;
-      return false;
-    }
-    if (p != k)
-      for (int j = 0; j < n; ++j) std::swap(A[k * n + j], A[p * n + j]);
-    const double inv = 1.0 / A[k * n + k];
-    for (int i = k + 1; i < n; ++i) {
-      const double l = A[i * n + k] *= inv;
-      if (l == 0.0) continue;
-      for (int j = k + 1; j < n; ++j) A[i * n + j] -= l * A[k * n + j];
-    }
-  }
-  return true;
-}
-
-/// T := the transpose of the n x n row-major A.
-void transpose(const double* A, int n, double* T) {
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) T[j * n + i] = A[i * n + j];
-}
-
-/// b := A^-1 b from the factors of lu_factor, transposed (LUt = (LU)^T):
-/// the substitutions then run down contiguous columns of L and U with
-/// independent updates, which vectorize, instead of strided or dependent
-/// ones. The factorization's row swaps moved whole rows, multipliers
-/// included, so all of them apply to b before the forward substitution.
-void lu_solve(const double* LUt, int n, const int* pivots, double* b) {
-  for (int k = 0; k < n; ++k) std::swap(b[k], b[pivots[k]]);
-  for (int k = 0; k < n; ++k) {
-    const double* column = &LUt[k * n];
-    for (int i = k + 1; i < n; ++i) b[i] -= column[i] * b[k];
-  }
-  for (int k = n - 1; k >= 0; --k) {
-    const double* column = &LUt[k * n];
-    b[k] /= column[k];
-    for (int i = 0; i < k; ++i) b[i] -= column[i] * b[k];
-  }
-}
 
 /// Numbers in messages: ten digits are enough to read and to locate.
 std::string number(double v) {
@@ -127,6 +79,7 @@ GenAlpha::GenAlpha(const Model& model, const GenAlphaOptions& options)
   n_dof_ = info.nu;
   nc_ = info.nc;
   dim_ = n_dof_ + nc_;
+  fused_ = nc_ == 0;
   const double h = opt_.h;
   beta_p_ = (1.0 - c_.alpha_m) / (h * h * c_.beta * (1.0 - c_.alpha_f));
   gamma_p_ = c_.gamma / (h * c_.beta);
@@ -156,6 +109,10 @@ GenAlpha::GenAlpha(const Model& model, const GenAlphaOptions& options)
   lu_.assign(dim * dim, 0.0);
   lut_.assign(dim * dim, 0.0);
   pivots_.assign(dim, 0);
+  lu_upper_begin_.assign(dim, 0);
+  lu_lower_end_.assign(dim, 0);
+  mass_begin_.assign(n, 0);
+  mass_end_.assign(n, 0);
   no_inputs_.assign(static_cast<size_t>(std::max(info.ntau, 1)), 0.0);
 }
 
@@ -261,8 +218,19 @@ void GenAlpha::predict(double t1, const double* tau) {
   }
 }
 
-void GenAlpha::residual(double t1, const double* tau) {
+bool GenAlpha::residual(double t1, const double* tau, std::string* reason) {
   const int n = n_dof_;
+  if (fused_) {
+    // One kernel for M and f: f_ := M^-1 f - udot, the prescribed rows 0
+    // (forward_dynamics gives their accelerations, which predict() set).
+    const int status = model_.forward_dynamics(t1, q1_.data(), u1_.data(), tau, f_.data());
+    if (status != 0) {
+      *reason = "the mass matrix is singular (pivot " + std::to_string(status) + ") at the trial state";
+      return false;
+    }
+    for (int i = 0; i < n; ++i) f_[i] = prescribed_[i] ? 0.0 : f_[i] - vd1_[i];
+    return true;
+  }
   model_.mass_matrix(q1_.data(), M_.data());
   model_.forcing(t1, q1_.data(), u1_.data(), tau, f_.data());
   if (nc_ > 0) {
@@ -286,10 +254,31 @@ void GenAlpha::residual(double t1, const double* tau) {
   for (int i = 0; i < n; ++i)
     if (prescribed_[i]) rhs_[i] = 0.0;  // its row is the driving force, not an equation
   for (int k = 0; k < nc_; ++k) rhs_[n + k] = -beta_p_ * phi_[k];
+  return true;
+}
+
+void GenAlpha::weight_residual() {
+  if (!fused_) return;
+  // f - M udot = M (M^-1 f - udot), with M from the last refresh: exact for
+  // a constant M, otherwise part of the simplified Newton iteration's
+  // approximation, like the kept iteration matrix.
+  envelope_multiply(M_.data(), n_dof_, mass_begin_.data(), mass_end_.data(), f_.data(), rhs_.data());
+  for (int i = 0; i < n_dof_; ++i)
+    if (prescribed_[i]) rhs_[i] = 0.0;
 }
 
 bool GenAlpha::refresh(double t1, const double* tau) {
   const int n = n_dof_, dim = dim_;
+  if (fused_) {  // residual() has not evaluated M
+    model_.mass_matrix(q1_.data(), M_.data());
+    // The prescribed rows and columns go: their residuals are 0 and their
+    // rows no equations (the iteration matrix drops them too), and a hub's
+    // column would otherwise widen every row's range to the full width.
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+        if (prescribed_[i] || prescribed_[j]) M_[static_cast<size_t>(i) * n + j] = 0.0;
+    row_envelopes(M_.data(), n, mass_begin_.data(), mass_end_.data());
+  }
   model_.forcing_jacobian(t1, q1_.data(), u1_.data(), tau, dfdq_.data(), dfdu_.data());
   model_.mass_matrix_product_jacobian(q1_.data(), vd1_.data(), dMa_.data());
   if (nc_ > 0) model_.constraint_force_jacobian(q1_.data(), lam1_.data(), dCl_.data());
@@ -326,7 +315,7 @@ bool GenAlpha::refresh(double t1, const double* tau) {
   ++stats_.factorizations;
   int column = 0;
   factored_ = lu_factor(lu_.data(), dim, pivots_.data(), &column);
-  if (factored_) transpose(lu_.data(), dim, lut_.data());
+  if (factored_) prepare_solve(lu_.data(), dim, lut_.data(), lu_upper_begin_.data(), lu_lower_end_.data());
   return factored_;
 }
 
@@ -390,13 +379,15 @@ bool GenAlpha::newton(double t1, const double* tau, std::string* reason) {
   double eta = eta_start, previous = -1.0, theta = 0.0, theta_first = -1.0, theta_max = 0.0;
   double norm = 0.0, worst = 0.0;
   for (int iteration = 0; iteration < opt_.max_newton; ++iteration) {
-    residual(t1, tau);
-    if (!all_finite(rhs_)) return refuse(reason, "the residual is not finite");
+    if (!residual(t1, tau, reason)) return false;
+    if (!all_finite(fused_ ? f_ : rhs_)) return refuse(reason, "the residual is not finite");
     if (refresh_now) {
       if (!refresh(t1, tau)) return refuse(reason, "the iteration matrix is singular");
       refresh_now = stale = false;
     }
-    lu_solve(lut_.data(), dim_, pivots_.data(), rhs_.data());
+    weight_residual();
+    envelope_lu_solve(lut_.data(), dim_, pivots_.data(), lu_upper_begin_.data(), lu_lower_end_.data(),
+                      rhs_.data());
     norm = apply_increment();
     ++stats_.newton_iterations;
     if (!std::isfinite(norm)) return refuse(reason, "the Newton increment is not finite");

@@ -87,6 +87,9 @@ inline ModelTable chain_table() {
   t.forcing = chain_forcing;
   t.forward_dynamics = [](const void* p, double tt, const double* q, const double* u, const double* tau,
                           double* udot) {
+    // As a generated kernel: the 1-based pivot of a singular M, else 0.
+    if (par<P>(p).m1 == 0.0) return 1;
+    if (par<P>(p).m2 == 0.0) return 2;
     chain_forcing(p, tt, q, u, tau, udot);
     udot[0] /= par<P>(p).m1;
     udot[1] /= par<P>(p).m2;

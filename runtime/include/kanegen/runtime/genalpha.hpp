@@ -108,8 +108,13 @@ class GenAlpha {
   /// The trial state at t1 from the committed one, with the acceleration
   /// of the last step as the guess (the given one for prescribed speeds).
   void predict(double t1, const double* tau);
-  /// rhs_ = -(the residuals) at the trial state; M_, f_, C_ evaluated there.
-  void residual(double t1, const double* tau);
+  /// The residuals at the trial state. Closed loops: rhs_ = -(the
+  /// residuals), with M_, f_, C_ evaluated there. Open trees (fused_): one
+  /// forward_dynamics call, f_ = M^-1 f - udot, which weight_residual()
+  /// turns into rhs_. False, with the reason, if forward_dynamics fails.
+  bool residual(double t1, const double* tau, std::string* reason);
+  /// Open trees: rhs_ = M f_ with the M of the last refresh(); else nothing.
+  void weight_residual();
   /// Jacobians at the trial state, the iteration matrix, its LU factors.
   bool refresh(double t1, const double* tau);
   /// Newton on the trial state; false, with the reason, if it fails.
@@ -127,7 +132,11 @@ class GenAlpha {
   const Model& model_;
   GenAlphaOptions opt_;
   GenAlphaCoefficients c_;
-  int n_dof_, nc_, dim_;     ///< nu, nc, nu + nc
+  int n_dof_, nc_, dim_;  ///< nu, nc, nu + nc
+  /// Open trees: the residual from forward_dynamics (M and f in one kernel
+  /// that exploits their structure) instead of mass_matrix, forcing and a
+  /// dense product; closed loops need C^T lambda, which it does not give.
+  bool fused_ = false;
   double beta_p_, gamma_p_;  ///< beta' = (1 - alpha_m) / (h^2 beta (1 - alpha_f)), gamma' = gamma / (h beta)
   std::vector<char> prescribed_;
   std::vector<int> free_;
@@ -147,6 +156,8 @@ class GenAlpha {
   std::vector<double> lu_;   ///< the iteration matrix, dim_ x dim_, then its LU factors
   std::vector<double> lut_;  ///< the LU factors transposed, for the solves
   std::vector<int> pivots_;
+  std::vector<int> lu_upper_begin_, lu_lower_end_;  ///< nonzero ranges of the factors' columns
+  std::vector<int> mass_begin_, mass_end_;          ///< open trees: nonzero ranges of M_'s rows
   std::vector<double> given_, given_lambda_;  ///< forward_dynamics output for the prescribed accelerations
   std::vector<double> chol_, w_, g_, y_;      ///< speed correction: chol(M_ff), M_ff^-1 C^T, C M^-1 C^T
   std::vector<char> used_;
