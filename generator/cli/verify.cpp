@@ -743,7 +743,8 @@ void add_controller_kernel_rows(const Comparison& c, const Link& link, std::vect
         [](const Sample& s) { return s.id_magnitude; }));
     rows.push_back(c.vectors(
         "gravity", "numeric -sum m g.v_r", [](const Sample& s) { return s.gravity; },
-        [](const Sample& s) { return s.reference.gravity; }, c.coordinate_name()));
+        [](const Sample& s) { return s.reference.gravity; }, c.coordinate_name(), false,
+        [](const Sample& s) { return s.reference.gravity_magnitude; }));
   } else {
     for (const char* name : {"inverse_dynamics", "gravity"}) {
       rows.emplace_back(name, "numeric path", c.rtol());

@@ -451,7 +451,8 @@ Pass partial_pass(const Instance& m, const State& s, int r, const std::vector<Bo
 void add_element(const Instance& m, const MassElement& el, const BodyMotion& k, const ElementMotion& x,
                  const std::vector<Partial>& p, std::vector<double>& forcing,
                  std::vector<double>* mass_matrix, Eigen::MatrixXd* own_mass,
-                 std::vector<double>* magnitude = nullptr, std::vector<double>* gravity = nullptr) {
+                 std::vector<double>* magnitude = nullptr, std::vector<double>* gravity = nullptr,
+                 std::vector<double>* gravity_magnitude = nullptr) {
   const int n = m.coordinates();
   const Mat<double> inertia = mul(k.r, mul(el.inertia, transpose(k.r)));  // world axes
   const Vec<double> spin = add(k.omega, mul(k.r, x.theta_rate));          // Omega
@@ -464,6 +465,7 @@ void add_element(const Instance& m, const MassElement& el, const BodyMotion& k, 
     forcing[a.r] += dot(a.v, force) - dot(a.W, torque) - dot(a.w, gyroscopic);
     // The generalized gravity force's sign is that of M udot + C u + g = tau.
     if (gravity) (*gravity)[a.r] -= dot(a.v, weight);
+    if (gravity_magnitude) (*gravity_magnitude)[a.r] += norm(a.v) * norm(weight);
     // |a||b| bounds the round-off of a.b however it is grouped (as moments r x F, say).
     if (magnitude)
       (*magnitude)[a.r] += norm(a.v) * norm(force) + norm(a.W) * norm(torque) + norm(a.w) * norm(gyroscopic);
@@ -551,7 +553,7 @@ std::vector<Sample> truncation_samples(const Instance& m) {
 /// of the rows `rows`, and with `all` also M, the beams' own elastic mass
 /// blocks and the kinetic and potential energies.
 struct ElementSums {
-  std::vector<double> forcing, magnitude, mass_matrix, gravity;
+  std::vector<double> forcing, magnitude, mass_matrix, gravity, gravity_magnitude;
   std::vector<Eigen::MatrixXd> own_mass;
   double kinetic = 0, potential = 0;
 };
@@ -563,6 +565,7 @@ ElementSums element_sums(const Instance& m, const State& s, const std::vector<Ma
   out.forcing.assign(n, 0.0);
   out.magnitude.assign(n, 0.0);
   out.gravity.assign(n, 0.0);
+  out.gravity_magnitude.assign(n, 0.0);
   if (all) {
     out.mass_matrix.assign(static_cast<std::size_t>(n) * n, 0.0);
     out.own_mass.resize(nb);
@@ -579,6 +582,7 @@ ElementSums element_sums(const Instance& m, const State& s, const std::vector<Ma
     share.forcing.assign(n, 0.0);
     share.magnitude.assign(n, 0.0);
     share.gravity.assign(n, 0.0);
+    share.gravity_magnitude.assign(n, 0.0);
     if (all) share.mass_matrix.assign(static_cast<std::size_t>(n) * n, 0.0);
     std::vector<Eigen::MatrixXd> own = out.own_mass;
     for (auto& block : own) block.setZero();
@@ -587,7 +591,8 @@ ElementSums element_sums(const Instance& m, const State& s, const std::vector<Ma
       const BodyMotion& k = motion.body[el.body];
       const ElementMotion& x = motion.element[i];
       add_element(m, el, k, x, partials[i], share.forcing, all ? &share.mass_matrix : nullptr,
-                  all && m.bodies[el.body].beam ? &own[el.body] : nullptr, &share.magnitude, &share.gravity);
+                  all && m.bodies[el.body].beam ? &own[el.body] : nullptr, &share.magnitude, &share.gravity,
+                  &share.gravity_magnitude);
       if (!all) continue;
       const Mat<double> inertia = mul(k.r, mul(el.inertia, transpose(k.r)));
       const Vec<double> spin = add(k.omega, mul(k.r, x.theta_rate));
@@ -599,6 +604,7 @@ ElementSums element_sums(const Instance& m, const State& s, const std::vector<Ma
       out.forcing[r] += w * share.forcing[r];
       out.magnitude[r] += std::abs(w) * share.magnitude[r];
       out.gravity[r] += w * share.gravity[r];
+      out.gravity_magnitude[r] += std::abs(w) * share.gravity_magnitude[r];
     }
     if (!all) continue;
     for (std::size_t i = 0; i < out.mass_matrix.size(); ++i) out.mass_matrix[i] += w * share.mass_matrix[i];
@@ -690,6 +696,7 @@ std::vector<Eigen::MatrixXd> add_mass_elements(const Instance& m, const State& s
   }
   e.mass_matrix = sums.mass_matrix;
   e.gravity = sums.gravity;
+  e.gravity_magnitude = sums.gravity_magnitude;
   e.kinetic_energy += sums.kinetic;
   e.potential_energy += sums.potential;
   return std::move(sums.own_mass);

@@ -64,7 +64,8 @@ struct Evaluation {
   /// n: the generalized gravity forces g = dV_gravity/dq = -sum m g.v_r (the
   /// sign of M udot + C u + g = tau), from the same mass elements as f.
   std::vector<double> gravity;
-  std::vector<double> outputs;  ///< one per column of Instance::output_columns
+  std::vector<double> gravity_magnitude;  ///< n: sum |v_r| m |g|, the scale of its round-off
+  std::vector<double> outputs;            ///< one per column of Instance::output_columns
   // Closed loops (empty for a tree; numeric/loops.hpp). udot is then the
   // solution of M udot = f + C^T lambda, C udot = gamma (empty if S = C M^-1
   // C^T is not positive definite), and nonconservative_power includes
