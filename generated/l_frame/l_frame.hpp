@@ -162,6 +162,13 @@ Table kernel_table() {
   table.outputs = [](const void* p, double t, const double* q, const double* u, double* y) {
     outputs(*static_cast<const Params*>(p), t, q, u, y);
   };
+  table.inverse_dynamics = [](const void* p, double t, const double* q, const double* u, const double* udot,
+                              double* tau) {
+    inverse_dynamics(*static_cast<const Params*>(p), t, q, u, udot, tau);
+  };
+  table.gravity = [](const void* p, const double* q, double* g) {
+    gravity(*static_cast<const Params*>(p), q, g);
+  };
   return table;
 }
 

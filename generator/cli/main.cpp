@@ -314,6 +314,7 @@ struct VerifyCommand {
   RunOptions run;
   kanegen::cli::VerifyOptions options;
   bool jacobians = false;
+  bool controller = false;
 };
 
 void add_verify(CLI::App& app, VerifyCommand& c) {
@@ -321,10 +322,11 @@ void add_verify(CLI::App& app, VerifyCommand& c) {
       "verify", "check the compiled kernels against an independent numeric derivation at random states");
   add_common(ver, c.run);
   ver->footer(
-      "Compares M, f, udot, the energies and the outputs of the compiled kernels with a numeric derivation\n"
-      "(dual numbers, no computer algebra) at random states and parameters; checks that M is symmetric\n"
-      "positive definite and the Hessian of T in u, and the power balance d(T+V)/dt = P_nc along short\n"
-      "trajectories. Exit status 0: all agree; 1: a mismatch (named on stderr with its state). See "
+      "Compares M, f, udot, the energies, the outputs, inverse_dynamics, gravity and nonconservative_power\n"
+      "of the compiled kernels with a numeric derivation (dual numbers, no computer algebra) at random\n"
+      "states and parameters; checks that M is symmetric positive definite and the Hessian of T in u, and\n"
+      "the power balance d(T+V)/dt = P_nc along short trajectories. --jacobians and --controller add the\n"
+      "optional kernels. Exit status 0: all agree; 1: a mismatch (named on stderr with its state). See "
       "docs/verify.md.");
   kanegen::cli::VerifyOptions& o = c.options;
   ver->add_option("--samples", o.samples, "number of random states")->capture_default_str()->check(kPositive);
@@ -350,6 +352,11 @@ void add_verify(CLI::App& app, VerifyCommand& c) {
   ver->add_flag("--jacobians", c.jacobians,
                 "generate the Jacobian kernels too and check them against central differences of the numeric "
                 "path (with --kernels: checked when the files have them)");
+  ver->add_flag(
+      "--controller", c.controller,
+      "generate the controller kernels too (coriolis_matrix, output_jacobian, output_jacobian_rate, "
+      "linearize) and check them against the numeric path (with --kernels: checked when the files "
+      "have them; not applicable to loops and prescribed motions)");
 }
 
 // verify and modes compute in kanegen itself, with the runner as a
@@ -382,6 +389,7 @@ int run_verify(VerifyCommand& c) {
   c.options.model = c.run.model;
   c.options.build = build_options(c.run);
   c.options.build.jacobians = c.jacobians;
+  c.options.build.controller = c.controller;
   return kanegen::cli::verify(c.options);
 }
 

@@ -63,6 +63,7 @@ std::string cache_key(const std::string& model_path, const RuntimeLocation& runt
   std::string bytes = pipeline::read_file(model_path);
   for (double g : options.load.urdf_gravity) bytes += codegen::format_double(g) + ",";
   if (options.jacobians) bytes += "jacobians\n";  // absent otherwise: the keys of existing caches stay
+  if (options.controller) bytes += "controller\n";
   bytes += KANEGEN_VERSION;
   // The generator itself: a rebuilt kanegen of the same version may emit other code.
   std::error_code error;
@@ -192,7 +193,7 @@ std::string build_runner(const std::string& model_path, const BuildOptions& opti
   if (options.verbose) std::fprintf(stderr, "kanegen: generating %s ...\n", model_path.c_str());
   const pipeline::GeneratedModel generated = [&] {
     const StopWhileGenerating stop(model_path, "cached");
-    return pipeline::generate(model_path, options.load, {options.jacobians});
+    return pipeline::generate(model_path, options.load, {options.jacobians, options.controller});
   }();
   codegen::write_files_atomically(dir.string(), generated.files);
 

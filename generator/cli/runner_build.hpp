@@ -17,6 +17,8 @@ struct BuildOptions {
   model::LoadOptions load;
   /// The Jacobian kernels too (pipeline::GenerateOptions::jacobians); part of the cache key.
   bool jacobians = false;
+  /// The controller kernels too (pipeline::GenerateOptions::controller); part of the cache key.
+  bool controller = false;
 };
 
 /// Whether the runner's `simulate --integrator VALUE` needs the Jacobian

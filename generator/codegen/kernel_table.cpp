@@ -59,11 +59,11 @@ const std::vector<KernelSignature> kTable = {
    "/// recursion over the tree (M is never formed; a model with flexible bodies\n"
    "/// forms M udot - f). On an actuated joint's row, the input it needs; with\n"
    "/// loops, the constraint forces are not included (docs/controllers.md).",
-   Presence::always, true, false},
+   Presence::always, true, true},
   {Kernel::gravity, "gravity", "void", "const Params& p, const double* q, double* g",
    "/// g: NU, the generalized gravity forces g = dV_gravity/dq, with the sign of\n"
    "/// M udot + C u + g = tau (what a controller compensates).",
-   Presence::always, true, false},
+   Presence::always, true, true},
   {Kernel::constraints, "constraints", "void", "const Params& p, const double* q, double* phi",
    "/// phi: NC, the loop-closure residuals Phi(q) (position rows in m; the hinge\n"
    "/// alignment rows of a spatial revolute are cosines).",
@@ -103,22 +103,22 @@ const std::vector<KernelSignature> kTable = {
    "/// C: NU*NU, row-major, the Coriolis matrix from the Christoffel symbols of M:\n"
    "/// C u is the velocity terms of M udot + C u + g = tau, and Mdot - 2C is\n"
    "/// skew-symmetric (generated with --controller).",
-   Presence::with_controller, true, false},
+   Presence::with_controller, true, true},
   {Kernel::output_jacobian, "output_jacobian", "void", "const Params& p, double t, const double* q, double* J",
    "/// J: NY*NU, row-major, d(outputs)/dq, so that ydot = J u for the outputs of\n"
    "/// position (points, joint coordinates, node displacements); the rows of\n"
    "/// outputs that depend on u (speeds, loop forces) are 0 (generated with --controller).",
-   Presence::with_controller, true, false},
+   Presence::with_controller, true, true},
   {Kernel::output_jacobian_rate, "output_jacobian_rate", "void",
    "const Params& p, double t, const double* q, const double* u, double* Jdot_u",
    "/// Jdot_u: NY, the bias (dJ/dt) u of ydd = J udot + Jdot_u (generated with --controller).",
-   Presence::with_controller, true, false},
+   Presence::with_controller, true, true},
   {Kernel::linearize, "linearize", "int",
    "const Params& p, double t, const double* q, const double* u, const double* tau, double* A, double* B",
    "/// A: 2NU*2NU and B: 2NU*NTAU, row-major, the exact state-space matrices of\n"
    "/// x = (q, u) about (t, q, u, tau): xdot ~ A dx + B dtau. Returns 0, or k > 0\n"
    "/// when the k-th pivot of M is not positive (generated with --controller).",
-   Presence::with_controller, false, false},
+   Presence::with_controller, false, true},
 };
 // clang-format on
 

@@ -451,7 +451,8 @@ Pass partial_pass(const Instance& m, const State& s, int r, const std::vector<Bo
 void add_element(const Instance& m, const MassElement& el, const BodyMotion& k, const ElementMotion& x,
                  const std::vector<Partial>& p, std::vector<double>& forcing,
                  std::vector<double>* mass_matrix, Eigen::MatrixXd* own_mass,
-                 std::vector<double>* magnitude = nullptr) {
+                 std::vector<double>* magnitude = nullptr, std::vector<double>* gravity = nullptr,
+                 std::vector<double>* gravity_magnitude = nullptr) {
   const int n = m.coordinates();
   const Mat<double> inertia = mul(k.r, mul(el.inertia, transpose(k.r)));  // world axes
   const Vec<double> spin = add(k.omega, mul(k.r, x.theta_rate));          // Omega
@@ -459,8 +460,12 @@ void add_element(const Instance& m, const MassElement& el, const BodyMotion& k, 
   const Vec<double> torque = mul(inertia, add(k.alpha, mul(k.r, x.theta_accel)));
   const Vec<double> gyroscopic = cross(k.omega, mul(inertia, spin));
   const auto norm = [](const Vec<double>& x) { return std::sqrt(dot(x, x)); };
+  const Vec<double> weight = scale(m.gravity, el.mass);
   for (const Partial& a : p) {
     forcing[a.r] += dot(a.v, force) - dot(a.W, torque) - dot(a.w, gyroscopic);
+    // The generalized gravity force's sign is that of M udot + C u + g = tau.
+    if (gravity) (*gravity)[a.r] -= dot(a.v, weight);
+    if (gravity_magnitude) (*gravity_magnitude)[a.r] += norm(a.v) * norm(weight);
     // |a||b| bounds the round-off of a.b however it is grouped (as moments r x F, say).
     if (magnitude)
       (*magnitude)[a.r] += norm(a.v) * norm(force) + norm(a.W) * norm(torque) + norm(a.w) * norm(gyroscopic);
@@ -548,7 +553,7 @@ std::vector<Sample> truncation_samples(const Instance& m) {
 /// of the rows `rows`, and with `all` also M, the beams' own elastic mass
 /// blocks and the kinetic and potential energies.
 struct ElementSums {
-  std::vector<double> forcing, magnitude, mass_matrix;
+  std::vector<double> forcing, magnitude, mass_matrix, gravity, gravity_magnitude;
   std::vector<Eigen::MatrixXd> own_mass;
   double kinetic = 0, potential = 0;
 };
@@ -559,6 +564,8 @@ ElementSums element_sums(const Instance& m, const State& s, const std::vector<Ma
   ElementSums out;
   out.forcing.assign(n, 0.0);
   out.magnitude.assign(n, 0.0);
+  out.gravity.assign(n, 0.0);
+  out.gravity_magnitude.assign(n, 0.0);
   if (all) {
     out.mass_matrix.assign(static_cast<std::size_t>(n) * n, 0.0);
     out.own_mass.resize(nb);
@@ -574,6 +581,8 @@ ElementSums element_sums(const Instance& m, const State& s, const std::vector<Ma
     ElementSums share;
     share.forcing.assign(n, 0.0);
     share.magnitude.assign(n, 0.0);
+    share.gravity.assign(n, 0.0);
+    share.gravity_magnitude.assign(n, 0.0);
     if (all) share.mass_matrix.assign(static_cast<std::size_t>(n) * n, 0.0);
     std::vector<Eigen::MatrixXd> own = out.own_mass;
     for (auto& block : own) block.setZero();
@@ -582,7 +591,8 @@ ElementSums element_sums(const Instance& m, const State& s, const std::vector<Ma
       const BodyMotion& k = motion.body[el.body];
       const ElementMotion& x = motion.element[i];
       add_element(m, el, k, x, partials[i], share.forcing, all ? &share.mass_matrix : nullptr,
-                  all && m.bodies[el.body].beam ? &own[el.body] : nullptr, &share.magnitude);
+                  all && m.bodies[el.body].beam ? &own[el.body] : nullptr, &share.magnitude, &share.gravity,
+                  &share.gravity_magnitude);
       if (!all) continue;
       const Mat<double> inertia = mul(k.r, mul(el.inertia, transpose(k.r)));
       const Vec<double> spin = add(k.omega, mul(k.r, x.theta_rate));
@@ -593,6 +603,8 @@ ElementSums element_sums(const Instance& m, const State& s, const std::vector<Ma
     for (int r = 0; r < n; ++r) {
       out.forcing[r] += w * share.forcing[r];
       out.magnitude[r] += std::abs(w) * share.magnitude[r];
+      out.gravity[r] += w * share.gravity[r];
+      out.gravity_magnitude[r] += std::abs(w) * share.gravity_magnitude[r];
     }
     if (!all) continue;
     for (std::size_t i = 0; i < out.mass_matrix.size(); ++i) out.mass_matrix[i] += w * share.mass_matrix[i];
@@ -683,6 +695,8 @@ std::vector<Eigen::MatrixXd> add_mass_elements(const Instance& m, const State& s
     e.forcing_magnitude[r] += sums.magnitude[r];
   }
   e.mass_matrix = sums.mass_matrix;
+  e.gravity = sums.gravity;
+  e.gravity_magnitude = sums.gravity_magnitude;
   e.kinetic_energy += sums.kinetic;
   e.potential_energy += sums.potential;
   return std::move(sums.own_mass);
@@ -883,27 +897,47 @@ Evaluation evaluate(const Instance& m, const State& s) {
   return e;
 }
 
-double nonconservative_power(const Instance& m, const State& s, const std::vector<double>* udot) {
-  check_sizes(m, s);
-  if ((m.has_prescribed() || !m.loops.empty()) && !udot) return evaluate(m, s).nonconservative_power;
-  const int n = m.coordinates();
+namespace {
+
+/// The power of the applied non-conservative forces (joint dampers, inputs
+/// and efforts, the beams' damping, body-frame forces, the dampers of
+/// springs) along `motion`; its spring states for the caller.
+double applied_power(const Instance& m, const State& s, const PathMotion& motion,
+                     std::vector<SpringState>& springs) {
   double power = joint_power(m, s);
-  // The loop forces' power needs lambda, from the whole evaluation (loops are small models).
-  if (!m.loops.empty()) power += evaluate(m, s).loop_power;
-  // The motion at the given udot (for the prescribed speeds' constraint forces).
-  const std::vector<double>* full = m.has_prescribed() ? udot : nullptr;
-  const PathMotion motion = motion_along(m, s, full, 0);
   if (m.has_flexible()) power += beam_power(m, s);
   for (const ForceData& f : m.forces) {
     if (!f.body_frame) continue;
     const Vec<D2> at = force_point(m, f, motion.poses, motion.dofs);
     power += dot(mul(motion.body[f.body].r, f.force), Vec<double>{at[0].d.v, at[1].d.v, at[2].d.v});
   }
-  std::vector<SpringState> springs;
   for (const SpringData& spring : m.springs) {
     springs.push_back(spring_state(spring, motion.poses));
     power -= spring.damping * springs.back().rate * springs.back().rate;
   }
+  return power;
+}
+
+}  // namespace
+
+double applied_power(const Instance& m, const State& s) {
+  check_sizes(m, s);
+  std::vector<SpringState> springs;
+  return applied_power(m, s, motion_along(m, s, nullptr, 0), springs);
+}
+
+double nonconservative_power(const Instance& m, const State& s, const std::vector<double>* udot) {
+  check_sizes(m, s);
+  if ((m.has_prescribed() || !m.loops.empty()) && !udot) return evaluate(m, s).nonconservative_power;
+  const int n = m.coordinates();
+  double power = 0;
+  // The loop forces' power needs lambda, from the whole evaluation (loops are small models).
+  if (!m.loops.empty()) power += evaluate(m, s).loop_power;
+  // The motion at the given udot (for the prescribed speeds' constraint forces).
+  const std::vector<double>* full = m.has_prescribed() ? udot : nullptr;
+  const PathMotion motion = motion_along(m, s, full, 0);
+  std::vector<SpringState> springs;
+  power += applied_power(m, s, motion, springs);
   // A prescribed speed's constraint force: lambda_p = (M udot - f)_p, minus
   // the generalized force with the inertia forces at udot.
   std::vector<int> prescribed;

@@ -61,7 +61,11 @@ struct Evaluation {
   /// dampers (joints, springs and beams), inputs, joint efforts, body-frame forces, geometric
   /// stiffness, and the constraint forces of the prescribed speeds with this udot.
   double nonconservative_power = 0;
-  std::vector<double> outputs;  ///< one per column of Instance::output_columns
+  /// n: the generalized gravity forces g = dV_gravity/dq = -sum m g.v_r (the
+  /// sign of M udot + C u + g = tau), from the same mass elements as f.
+  std::vector<double> gravity;
+  std::vector<double> gravity_magnitude;  ///< n: sum |v_r| m |g|, the scale of its round-off
+  std::vector<double> outputs;            ///< one per column of Instance::output_columns
   // Closed loops (empty for a tree; numeric/loops.hpp). udot is then the
   // solution of M udot = f + C^T lambda, C udot = gamma (empty if S = C M^-1
   // C^T is not positive definite), and nonconservative_power includes
@@ -78,6 +82,13 @@ struct Evaluation {
 
 /// Everything at one state. Throws std::invalid_argument on wrong sizes.
 Evaluation evaluate(const Instance& model, const State& state);
+
+/// The power of the applied non-conservative forces alone: joint dampers,
+/// inputs (actuated joints), joint efforts, the beams' damping, body-frame
+/// point forces and the dampers of springs; not the constraint forces of
+/// prescribed speeds or loops (what the generated nonconservative_power
+/// kernel computes).
+double applied_power(const Instance& model, const State& state);
 
 /// Only the power of the non-conservative forces. `udot`: the accelerations
 /// the prescribed speeds' constraint forces are taken with ((M udot - f)_p

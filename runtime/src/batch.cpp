@@ -141,6 +141,11 @@ struct Request {
   /// The Jacobian kernels, with the fixed vectors of the products they differentiate.
   bool jacobians = false;
   std::vector<double> jacobian_a, jacobian_lambda;
+  /// The inverse_dynamics kernel at these accelerations (if given).
+  bool inverse_dynamics = false;
+  std::vector<double> inverse_dynamics_udot;
+  /// The kernels of --controller.
+  bool controller = false;
 };
 
 std::vector<double> numbers(const std::map<std::string, Value>& m, const char* key, int n, bool required) {
@@ -181,11 +186,14 @@ Request parse_request(const std::string& line, const ModelInfo& info) {
                                         "kinetic_energy_hessian",
                                         "jacobians",
                                         "jacobian_a",
-                                        "jacobian_lambda"};
+                                        "jacobian_lambda",
+                                        "inverse_dynamics_udot",
+                                        "controller"};
     if (std::none_of(std::begin(known), std::end(known), [&](const char* k) { return key == k; }))
       throw std::invalid_argument(
           "unknown key \"" + key +
-          "\"; known: t, q, u, tau, p, eval, kinetic_energy_hessian, jacobians, jacobian_a, jacobian_lambda");
+          "\"; known: t, q, u, tau, p, eval, kinetic_energy_hessian, jacobians, jacobian_a, jacobian_lambda, "
+          "inverse_dynamics_udot, controller");
   }
   Request r;
   if (const auto t = m.find("t"); t != m.end()) {
@@ -209,6 +217,12 @@ Request parse_request(const std::string& line, const ModelInfo& info) {
     r.hessian = h->second.flag;
   }
   parse_jacobians(m, info, r);
+  r.inverse_dynamics = m.count("inverse_dynamics_udot") > 0;
+  r.inverse_dynamics_udot = numbers(m, "inverse_dynamics_udot", info.nu, false);
+  if (const auto c = m.find("controller"); c != m.end()) {
+    if (c->second.kind != Value::boolean) throw std::invalid_argument("\"controller\" must be true or false");
+    r.controller = c->second.flag;
+  }
   return r;
 }
 
@@ -271,6 +285,36 @@ void add_jacobians(const Model& model, const Request& r, const std::vector<doubl
   }
 }
 
+/// A rows x cols row-major matrix as an array of rows.
+std::string rows_json(const std::vector<double>& m, int rows, int cols) {
+  std::string s = "[";
+  for (int i = 0; i < rows; ++i)
+    s += (i ? "," : "") + numbers_json(m.data() + static_cast<size_t>(i) * cols, cols);
+  return s + "]";
+}
+
+/// The kernels of --controller, or an error if the model was generated without them.
+template <class Field>
+void add_controller(const Model& model, const Request& r, const std::vector<double>& q,
+                    const std::vector<double>& u, const std::vector<double>& tau, const Field& field) {
+  if (!model.has_controller())
+    throw std::invalid_argument("the model has no controller kernels; generate it with --controller");
+  const ModelInfo& info = model.info();
+  const int n = info.nu;
+  const size_t m = static_cast<size_t>(std::max(n, 1)), ny = static_cast<size_t>(std::max(info.ny, 1));
+  std::vector<double> C(m * m), J(ny * m), jdot(ny), A(4 * m * m), B(2 * m * std::max(info.ntau, 1));
+  model.coriolis_matrix(q.data(), u.data(), C.data());
+  model.output_jacobian(r.t, q.data(), J.data());
+  model.output_jacobian_rate(r.t, q.data(), u.data(), jdot.data());
+  const int status = model.linearize(r.t, q.data(), u.data(), tau.data(), A.data(), B.data());
+  field("coriolis_matrix", rows_json(C, n, n));
+  field("output_jacobian", rows_json(J, info.ny, n));
+  field("output_jacobian_rate", numbers_json(jdot.data(), info.ny));
+  field("linearize_A", rows_json(A, 2 * n, 2 * n));
+  field("linearize_B", rows_json(B, 2 * n, info.ntau));
+  field("linearize_status", std::to_string(status));
+}
+
 std::string respond(Model& model, const Request& r, const std::vector<double>& defaults) {
   const ModelInfo& info = model.info();
   for (int k = 0; k < info.np; ++k)
@@ -299,6 +343,14 @@ std::string respond(Model& model, const Request& r, const std::vector<double>& d
     field("mass_matrix", matrix_json(M, n));
     field("forcing", numbers_json(f.data(), n));
     field("outputs", numbers_json(y.data(), info.ny));
+    if (model.has_inverse_dynamics()) {
+      std::vector<double> g(m);
+      model.gravity(q.data(), g.data());
+      field("gravity", numbers_json(g.data(), n));
+    }
+    if (model.has_nonconservative_power())
+      field("nonconservative_power",
+            json_number(model.nonconservative_power(r.t, q.data(), u.data(), tau.data())));
     if (info.nc > 0) {
       // The loop kernels, and lambda of the same solve as udot.
       const size_t nc = static_cast<size_t>(info.nc);
@@ -323,6 +375,16 @@ std::string respond(Model& model, const Request& r, const std::vector<double>& d
   }
   if (r.hessian) field("kinetic_energy_hessian", matrix_json(kinetic_hessian(model, q.data(), n), n));
   if (r.jacobians) add_jacobians(model, r, q, u, tau, field);
+  if (r.inverse_dynamics) {
+    if (!model.has_inverse_dynamics())
+      throw std::invalid_argument(
+          "the model has no inverse_dynamics kernel; regenerate it with this kanegen");
+    std::vector<double> udot = r.inverse_dynamics_udot, tau_id(m);
+    udot.resize(m);
+    model.inverse_dynamics(r.t, q.data(), u.data(), udot.data(), tau_id.data());
+    field("inverse_dynamics", numbers_json(tau_id.data(), n));
+  }
+  if (r.controller) add_controller(model, r, q, u, tau, field);
   return out + "}\n";
 }
 

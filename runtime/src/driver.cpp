@@ -466,7 +466,9 @@ int info_command(const Model& model, std::FILE* out) {
                  ", \"parameter_defaults\": " + json_numbers(defaults.data(), i.np) +
                  ", \"q0\": " + json_numbers(i.q0, i.nq) + ", \"u0\": " + json_numbers(i.u0, i.nu) + ", " +
                  size("nc", i.nc) + ", \"constraints\": " + json_names(i.constraint_names, i.nc) +
-                 ", \"jacobians\": " + (model.has_jacobians() ? "true" : "false") + "}\n");
+                 ", \"jacobians\": " + (model.has_jacobians() ? "true" : "false") +
+                 ", \"inverse_dynamics\": " + (model.has_inverse_dynamics() ? "true" : "false") +
+                 ", \"controller\": " + (model.has_controller() ? "true" : "false") + "}\n");
   return 0;
 }
 

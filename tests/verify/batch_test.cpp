@@ -73,6 +73,23 @@ TEST_CASE("batch answers each line with M, f, udot, energies and outputs", "[bat
   CHECK_FALSE(o.replies[1].contains("kinetic_energy_hessian"));
 }
 
+TEST_CASE("batch gives gravity, nonconservative_power and inverse_dynamics; controller needs the kernels",
+          "[batch]") {
+  const double q = 0.3, u = -1.2, tau = 0.5, m = 1.5, l = 0.8, g = 9.0, a = 2.0;
+  const Outcome o = batch(
+      "{\"q\": [0.3], \"u\": [-1.2], \"tau\": [0.5], \"p\": [1.5, 0.8, 9.0], \"inverse_dynamics_udot\": "
+      "[2.0]}\n"
+      "{\"q\": [0.3], \"u\": [-1.2], \"controller\": true}\n");
+  REQUIRE(o.replies.size() == 2);
+  const json& r = o.replies[0];
+  CHECK(r["gravity"][0].get<double>() == Approx(m * g * l * std::sin(q)));
+  CHECK(r["nonconservative_power"].get<double>() == Approx(tau * u));
+  // M a - f with the inputs 0: the torque that gives the acceleration a.
+  CHECK(r["inverse_dynamics"][0].get<double>() == Approx(m * l * l * a + m * g * l * std::sin(q)));
+  CHECK(o.replies[1]["error"] == "the model has no controller kernels; generate it with --controller");
+  CHECK(o.code == 1);
+}
+
 TEST_CASE("batch selections: udot only, energy only", "[batch]") {
   const Outcome o = batch(
       "{\"q\": [0.3], \"u\": [1], \"eval\": \"udot\"}\n\n{\"q\": [0.3], \"u\": [1], \"eval\": \"energy\"}\n");

@@ -117,7 +117,8 @@ TEST_CASE("verify --json reports every quantity and passes", "[verify]") {
   }
   for (const char* quantity :
        {"mass_matrix", "forcing", "udot", "kinetic_energy", "potential_energy", "outputs", "M symmetric",
-        "M positive definite", "d2T/du2", "power balance", "Jacobians"})
+        "M positive definite", "d2T/du2", "power balance", "Jacobians", "inverse_dynamics", "gravity",
+        "nonconservative_power", "controller kernels"})
     CHECK(std::find(names.begin(), names.end(), quantity) != names.end());
   CHECK(contains(r.err, "kanegen: verify:"));  // progress on stderr
 }
@@ -140,7 +141,8 @@ TEST_CASE("verify --help and usage errors", "[verify]") {
   CHECK(contains(top.out, "verify"));
   const Result help = kanegen("verify --help");
   CHECK(help.status == 0);
-  for (const char* option : {"--samples", "--seed", "--rtol", "--json", "--kernels"})
+  for (const char* option :
+       {"--samples", "--seed", "--rtol", "--json", "--kernels", "--jacobians", "--controller"})
     CHECK(contains(help.out, option));
   CHECK(kanegen("verify").status != 0);
   CHECK(kanegen("verify " + source("models/simple_pendulum.json") + " --samples 0").status != 0);
@@ -253,6 +255,94 @@ TEST_CASE("corruption: a wrong kinetic or potential energy fails, naming it", "[
   CHECK(std::find(failed.begin(), failed.end(), "kinetic_energy") != failed.end());
   CHECK(std::find(failed.begin(), failed.end(), "d2T/du2") != failed.end());
   CHECK(std::find(failed.begin(), failed.end(), "mass_matrix") == failed.end());
+}
+
+namespace {
+
+/// The names of the failed quantities of a --json report.
+std::vector<std::string> failed_quantities(const std::string& report) {
+  std::vector<std::string> failed;
+  const nlohmann::json j = nlohmann::json::parse(report);
+  for (const auto& q : j["quantities"])
+    if (!q["passed"].get<bool>()) failed.push_back(q["quantity"]);
+  return failed;
+}
+
+}  // namespace
+
+TEST_CASE("corruption: a wrong sign in inverse_dynamics, gravity or nonconservative_power fails its row",
+          "[verify][corruption][controller]") {
+  const fs::path dir = generate("models/double_pendulum.json", "controller_always");
+  const fs::path file = dir / "double_pendulum.cpp";
+  corrupt(file, "void inverse_dynamics", "\\budot\\[0\\]", "(-$&)");
+  corrupt(file, "void gravity", "\\bp\\.m1\\b", "(-$&)");
+  corrupt(file, "double nonconservative_power", "\\bp\\.c2\\b", "(-$&)");
+  const Result r = kanegen("verify " + source("models/double_pendulum.json") + " --kernels " + dir.string() +
+                           " --samples 20 --quiet --json");
+  INFO(r.out << r.err);
+  CHECK(r.status == 1);
+  CHECK(contains(r.err, "error: inverse_dynamics ["));
+  CHECK(contains(r.err, "error: gravity [0] (shoulder)"));
+  CHECK(contains(r.err, "error: nonconservative_power"));
+  // The kernels are separate: nothing else fails (the power balance uses the numeric P_nc).
+  const std::vector<std::string> failed = failed_quantities(r.out);
+  CHECK(failed == std::vector<std::string>{"inverse_dynamics", "gravity", "nonconservative_power"});
+}
+
+TEST_CASE("verify --controller: a wrong sign in each controller kernel fails its row, naming it",
+          "[verify][corruption][controller]") {
+  const fs::path dir = scratch() / "controller";
+  fs::remove_all(dir);
+  REQUIRE(kanegen("generate " + source("models/double_pendulum.json") + " -o " + dir.string() +
+                  " --controller --quiet")
+              .status == 0);
+  const std::string verify = "verify " + source("models/double_pendulum.json") + " --kernels " +
+                             dir.string() + " --samples 20 --quiet";
+  {
+    const Result clean = kanegen(verify + " --controller");
+    INFO(clean.out << clean.err);
+    CHECK(clean.status == 0);
+    for (const char* row : {"coriolis_matrix C u", "coriolis_matrix C + C^T", "output_jacobian ",
+                            "output_jacobian_rate", "linearize A", "linearize B"})
+      CHECK(contains(clean.out, row));
+  }
+  const fs::path file = dir / "double_pendulum.cpp";
+  corrupt(file, "void coriolis_matrix", "\\bp\\.m2\\b", "(-$&)");
+  corrupt(file, "void output_jacobian", "\\bp\\.l1\\b", "(-$&)");
+  corrupt(file, "void output_jacobian_rate", "\\bp\\.l1\\b", "(-$&)");
+  corrupt(file, "int linearize", "dfdq\\[i \\* NQ \\+ j\\] - dMa_dq", "dfdq[i * NQ + j] + dMa_dq");
+  corrupt(file, "int linearize", "dfdtau\\[0\\] = 1\\.0", "dfdtau[0] = -1.0");
+  const Result r = kanegen(verify + " --json");
+  INFO(r.out << r.err);
+  CHECK(r.status == 1);
+  for (const char* row : {"coriolis_matrix C u [", "coriolis_matrix C + C^T [", "output_jacobian [",
+                          "output_jacobian_rate [", "linearize A [", "linearize B ["})
+    CHECK(contains(r.err, std::string("error: ") + row));
+  const std::vector<std::string> failed = failed_quantities(r.out);
+  CHECK(failed == std::vector<std::string>{"coriolis_matrix C u", "coriolis_matrix C + C^T",
+                                           "output_jacobian", "output_jacobian_rate", "linearize A",
+                                           "linearize B"});
+}
+
+TEST_CASE("verify --controller on a model with loops reports the controller rows as not applicable",
+          "[verify][controller]") {
+  const Result r = kanegen("verify " + source("models/four_bar.json") +
+                           " --controller --samples 5 "
+                           "--trajectories 0 --quiet --json");
+  INFO(r.out << r.err);
+  REQUIRE(r.status == 0);
+  int rows = 0;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  for (const auto& q : j["quantities"]) {
+    const std::string name = q["quantity"];
+    if (name.rfind("coriolis_matrix", 0) != 0 && name.rfind("output_jacobian", 0) != 0 &&
+        name.rfind("linearize", 0) != 0)
+      continue;
+    ++rows;
+    CHECK_FALSE(q["applicable"].get<bool>());
+    CHECK(q["note"] == "not made for closed loops (docs/controllers.md)");
+  }
+  CHECK(rows == 6);
 }
 
 TEST_CASE("flexible: verify passes on a copy of the kernels, with elastic coordinates and node outputs",

@@ -62,12 +62,21 @@ class Model {
   double potential_energy(const double* q) const { return table_.potential_energy(params(), q); }
   /// The power of the non-conservative forces (the kernel's doc), without
   /// the drivers of prescribed motions; 0 for a table without the kernel.
+  bool has_nonconservative_power() const { return table_.nonconservative_power != nullptr; }
   double nonconservative_power(double t, const double* q, const double* u, const double* tau) const {
     return table_.nonconservative_power ? table_.nonconservative_power(params(), t, q, u, tau) : 0.0;
   }
   void outputs(double t, const double* q, const double* u, double* y) const {
     table_.outputs(params(), t, q, u, y);
   }
+  // For controllers; present in every table written by this kanegen (has_inverse_dynamics()).
+  bool has_inverse_dynamics() const { return table_.inverse_dynamics && table_.gravity; }
+  /// tau: nu, M udot - f with the inputs 0.
+  void inverse_dynamics(double t, const double* q, const double* u, const double* udot, double* tau) const {
+    table_.inverse_dynamics(params(), t, q, u, udot, tau);
+  }
+  /// g: nu, the generalized gravity forces.
+  void gravity(const double* q, double* g) const { table_.gravity(params(), q, g); }
   /// The initial state for the current parameters (a prescribed coordinate
   /// starts where its motion does); info().q0, u0 hold it for the defaults.
   void initial_state(double* q, double* u) const;
@@ -111,6 +120,28 @@ class Model {
   /// dCl_dq: nu*nq, d(C(q)^T lambda)/dq (closed loops).
   void constraint_force_jacobian(const double* q, const double* lambda, double* dCl_dq) const {
     table_.constraint_force_jacobian(params(), q, lambda, dCl_dq);
+  }
+
+  // The quadratic controller kernels (models generated with --controller; has_controller()).
+  bool has_controller() const {
+    return table_.coriolis_matrix && table_.output_jacobian && table_.output_jacobian_rate &&
+           table_.linearize;
+  }
+  /// C: nu*nu, row-major.
+  void coriolis_matrix(const double* q, const double* u, double* C) const {
+    table_.coriolis_matrix(params(), q, u, C);
+  }
+  /// J: ny*nu, row-major.
+  void output_jacobian(double t, const double* q, double* J) const {
+    table_.output_jacobian(params(), t, q, J);
+  }
+  /// Jdot_u: ny.
+  void output_jacobian_rate(double t, const double* q, const double* u, double* Jdot_u) const {
+    table_.output_jacobian_rate(params(), t, q, u, Jdot_u);
+  }
+  /// A: 2nu*2nu, B: 2nu*ntau, row-major; 0, or k > 0 for a non-positive pivot of M.
+  int linearize(double t, const double* q, const double* u, const double* tau, double* A, double* B) const {
+    return table_.linearize(params(), t, q, u, tau, A, B);
   }
 
  private:

@@ -65,6 +65,12 @@ struct ModelTable {
   double (*nonconservative_power)(const void* p, double t, const double* q, const double* u,
                                   const double* tau) = nullptr;
   void (*outputs)(const void* p, double t, const double* q, const double* u, double* y) = nullptr;
+  // For controllers (null in tables written before they were in the table).
+  /// tau: nu, M udot - f with the inputs 0 (the generated header documents it).
+  void (*inverse_dynamics)(const void* p, double t, const double* q, const double* u, const double* udot,
+                           double* tau) = nullptr;
+  /// g: nu, the generalized gravity forces dV_gravity/dq.
+  void (*gravity)(const void* p, const double* q, double* g) = nullptr;
   // Closed loops only (null for an open tree).
   void (*constraints)(const void* p, const double* q, double* phi) = nullptr;
   void (*constraint_jacobian)(const void* p, const double* q, double* C) = nullptr;
@@ -82,6 +88,18 @@ struct ModelTable {
   /// dCl_dq: nu*nq, d(C(q)^T lambda)/dq for fixed lambda (nc); closed loops only.
   void (*constraint_force_jacobian)(const void* p, const double* q, const double* lambda,
                                     double* dCl_dq) = nullptr;
+  // The quadratic controller kernels (models generated with --controller;
+  // null otherwise). Row-major.
+  /// C: nu*nu, Mdot - 2C skew-symmetric.
+  void (*coriolis_matrix)(const void* p, const double* q, const double* u, double* C) = nullptr;
+  /// J: ny*nu, d(outputs)/dq.
+  void (*output_jacobian)(const void* p, double t, const double* q, double* J) = nullptr;
+  /// Jdot_u: ny, (dJ/dt) u.
+  void (*output_jacobian_rate)(const void* p, double t, const double* q, const double* u,
+                               double* Jdot_u) = nullptr;
+  /// A: 2nu*2nu, B: 2nu*ntau; returns 0 or k > 0 for a non-positive pivot of M.
+  int (*linearize)(const void* p, double t, const double* q, const double* u, const double* tau, double* A,
+                   double* B) = nullptr;
 };
 
 }  // namespace kanegen::runtime
