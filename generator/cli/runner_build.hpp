@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "codegen/model_kernels.hpp"
 #include "model/load.hpp"
 
 namespace kanegen::cli {
@@ -17,6 +18,8 @@ struct BuildOptions {
   model::LoadOptions load;
   /// The Jacobian kernels too (pipeline::GenerateOptions::jacobians); part of the cache key.
   bool jacobians = false;
+  /// forward_dynamics's method (pipeline::GenerateOptions::dynamics); part of the cache key.
+  codegen::DynamicsMethod dynamics = codegen::DynamicsMethod::automatic;
 };
 
 /// Whether the runner's `simulate --integrator VALUE` needs the Jacobian
