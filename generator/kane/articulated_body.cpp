@@ -136,6 +136,7 @@ RecursiveDynamics articulated_body_dynamics(const kinematics::TreeKinematics& tr
         t.u_force = named(program, mul_transposed(passed.b, axis));
       }
       const ex pivot = program.define(dot(axis, joint.prismatic ? t.u_force : t.u_moment));
+      if (pivot.is_zero()) return {{}, {}, {}, s};  // 1/D does not exist
       const ex inverse = program.define(1 / pivot);
       const ex residual =
           joint_forces[s] - dot(axis, joint.prismatic ? passed.bias_force : passed.bias_moment);

@@ -32,6 +32,10 @@ struct RecursiveDynamics {
   std::vector<GiNaC::ex> pivots;
   /// The speeds in the order their pivots are formed (leaves first).
   std::vector<int> pivot_order;
+  /// A speed whose pivot is 0 for every state (its subtree has no inertia
+  /// about or along its axis), or -1: then the recursion cannot solve the
+  /// tree and the other fields are empty.
+  int zero_pivot = -1;
 };
 
 /// `joint_forces`: per speed, the joint's own generalized force (spring,

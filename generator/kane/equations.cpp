@@ -502,6 +502,14 @@ void recursive_dynamics(Derivation& d, const BodySums& own, const std::vector<ex
   std::vector<ex> joint_forces(d.eq.nu);
   for (int r = 0; r < d.eq.nu; ++r) joint_forces[r] = d.eq.forcing[r] - body_forcing[r];
   RecursiveDynamics r = articulated_body_dynamics(d.tree, bodies, joint_forces, d.program);
+  if (r.zero_pivot >= 0) {
+    for (std::size_t k = 0; k < d.model.joints.size(); ++k)
+      if (d.tree.joints()[k].speed == r.zero_pivot)
+        d.eq.recursive_unavailable = "joint '" + d.model.joints[k].name +
+                                     "' moves no inertia about or along its axis in any state (the "
+                                     "recursion divides by it)";
+    return;
+  }
   d.eq.recursive_accelerations = std::move(r.accelerations);
   d.eq.recursive_pivots = std::move(r.pivots);
   d.eq.recursive_pivot_order = std::move(r.pivot_order);

@@ -127,6 +127,12 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
     symbolic::Program program;
     kane::Equations equations = kane::derive_equations(model, vars, program, method, flexible);
     out.seconds.derive += seconds_since(start);
+    if (generate_options.dynamics == codegen::DynamicsMethod::recursive &&
+        !equations.recursive_unavailable.empty())
+      throw model::ModelError(
+          model.source_file, "",
+          "--dynamics recursive cannot solve this model: " + equations.recursive_unavailable,
+          "use --dynamics composite, or auto (the default)");
     start = std::chrono::steady_clock::now();
     codegen::EmittedModel candidate =
         codegen::emit_model(model, equations, vars, program, hash,

@@ -840,6 +840,23 @@ TEST_CASE("generate --dynamics picks forward_dynamics's method, states it and re
             "prescribed_hub.json: /joints/0/prescribed: --dynamics recursive solves for every speed, "
             "and joint 'spin' has a prescribed motion") != std::string::npos);
   CHECK(kanegen("generate " + prescribed.string() + " -o " + (dir / "prescribed").string()).status == 0);
+  // A point mass on the axis of its hinge: no inertia about it in any state, so no 1/D; composite still
+  // generates.
+  const fs::path point = scratch() / "point_on_axis.json";
+  std::ofstream(point) << R"({"format": "kanegen-model", "version": 1, "name": "point_on_axis",
+    "bodies": [{"name": "a", "mass": 1, "com": [0.5, 0, 0], "inertia": {"ixx": 0.1, "iyy": 0.1, "izz": 0.1}},
+               {"name": "b", "mass": 1, "inertia": {"ixx": 0, "iyy": 0, "izz": 0}}],
+    "joints": [{"name": "j1", "type": "revolute", "parent": "ground", "child": "a", "axis": [0, 1, 0]},
+               {"name": "j2", "type": "revolute", "parent": "a", "child": "b", "axis": [0, 1, 0]}]})";
+  const Result zero =
+      kanegen("generate " + point.string() + " -o " + (dir / "point").string() + " --dynamics recursive");
+  CHECK(zero.status == 2);
+  CHECK(zero.err.find(
+            "point_on_axis.json: /: --dynamics recursive cannot solve this model: joint 'j2' moves no "
+            "inertia about or along its axis in any state (the recursion divides by it); use "
+            "--dynamics composite, or auto (the default)") != std::string::npos);
+  CHECK(!fs::exists(dir / "point"));
+  CHECK(kanegen("generate " + point.string() + " -o " + (dir / "point").string()).status == 0);
   CHECK(kanegen("generate " + model("arm7.urdf") + " -o " + dir.string() + " --dynamics fast").status != 0);
   for (const char* sub : {"loops", "flexible"}) CHECK(!fs::exists(dir / sub));
   CHECK(kanegen("generate --help").out.find("--dynamics") != std::string::npos);
