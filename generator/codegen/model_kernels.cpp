@@ -184,7 +184,7 @@ KernelCode recursive_dynamics_kernel(const Derivation& d) {
 KernelCode tree_dynamics_kernel(const Derivation& d, DynamicsMethod method, DynamicsChoice& choice) {
   KernelCode composite = composite_dynamics_kernel(d);
   choice.composite_operations = composite.operations;
-  if (d.eq.recursive_accelerations.empty()) {
+  if (!d.eq.recursive_unavailable.empty() || static_cast<int>(d.eq.recursive_accelerations.size()) != d.n()) {
     if (method == DynamicsMethod::recursive)
       throw std::logic_error("recursive forward dynamics for a model without the recursion");
     return composite;
