@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: MIT
-# kanegen_add_model(<target> <model file> [NAME <model name>] [RUNNER] [JACOBIANS] [CONTROLLER] [PRECISION float])
+# kanegen_add_model(<target> <model file> [NAME <model name>] [RUNNER] [JACOBIANS] [CONTROLLER] [PRECISION float]
+#                   [DYNAMICS recursive|composite|auto])
 #
 # Generates the model's kernels at build time (again whenever the model file
 # or the kanegen generator changes) and makes <target> a static library with
@@ -10,12 +11,13 @@
 # kernels for controllers too (kanegen generate --controller). With PRECISION float, the
 # kernels are float (kanegen generate --precision float): include
 # "<model name>_float.hpp" and call kanegen_models::<model name>_float::...;
-# such a model has no runner (docs/embedded.md).
+# such a model has no runner (docs/embedded.md). DYNAMICS picks how
+# forward_dynamics solves (kanegen generate --dynamics; default auto).
 #
 # The model name is read from the file (JSON "name", URDF <robot name>, made
 # a C++ identifier as kanegen does); NAME overrides it if your file is unusual.
 function(kanegen_add_model target model)
-  cmake_parse_arguments(ARG "RUNNER;JACOBIANS;CONTROLLER" "NAME;PRECISION" "" ${ARGN})
+  cmake_parse_arguments(ARG "RUNNER;JACOBIANS;CONTROLLER" "NAME;PRECISION;DYNAMICS" "" ${ARGN})
   get_filename_component(model_path ${model} ABSOLUTE)
   if(NOT EXISTS ${model_path})
     message(FATAL_ERROR "kanegen_add_model(${target}): model file ${model_path} does not exist")
@@ -49,6 +51,12 @@ function(kanegen_add_model target model)
   endif()
   if(ARG_CONTROLLER)
     list(APPEND options --controller)
+  endif()
+  if(ARG_DYNAMICS)
+    if(NOT ARG_DYNAMICS MATCHES "^(recursive|composite|auto)$")
+      message(FATAL_ERROR "kanegen_add_model(${target}): DYNAMICS is recursive, composite or auto, not ${ARG_DYNAMICS}")
+    endif()
+    list(APPEND options --dynamics ${ARG_DYNAMICS})
   endif()
   set(runner_source ${out}/${name}_runner.cpp)
   if(ARG_PRECISION STREQUAL "float")

@@ -6,7 +6,7 @@
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 2
 //   forcing: 5
-//   forward_dynamics: 9 (2 of them in LDL^T)
+//   forward_dynamics: 9 (composite inertias, 2 of them in LDL^T; recursive: 9)
 //   kinetic_energy: 4
 //   potential_energy: 4
 //   nonconservative_power: 1

@@ -51,7 +51,14 @@ struct RunOptions {
   std::string model;
   bool quiet = false;
   std::vector<double> gravity;
+  std::string dynamics = "auto";
 };
+
+constexpr const char* kDynamicsHelp =
+    "how forward_dynamics solves M u_dot = f: recursive (articulated-body recursion, O(n) operations; rigid "
+    "trees without loops or prescribed motions), composite (composite inertias and an unrolled LDL^T, "
+    "O(n^3)), or auto (default: the one with fewer operations; composite where the recursion does not "
+    "apply)";
 
 void add_common(CLI::App* command, RunOptions& options) {
   command->add_option("MODEL", options.model, "model file (.json or .urdf)")
@@ -63,6 +70,8 @@ void add_common(CLI::App* command, RunOptions& options) {
       ->expected(3)
       ->delimiter(',');
   command->add_flag("--quiet", options.quiet, "no progress lines on stderr");
+  command->add_option("--dynamics", options.dynamics, kDynamicsHelp)
+      ->check(CLI::IsMember({"auto", "recursive", "composite"}));
   // Kept for unknown_arguments_message, which names the nearest option.
   command->allow_extras();
 }
@@ -71,6 +80,9 @@ BuildOptions build_options(const RunOptions& options) {
   kanegen::cli::check_gravity_option(options.model, !options.gravity.empty());
   BuildOptions b;
   b.verbose = !options.quiet;
+  b.dynamics = options.dynamics == "recursive"   ? kanegen::codegen::DynamicsMethod::recursive
+               : options.dynamics == "composite" ? kanegen::codegen::DynamicsMethod::composite
+                                                 : kanegen::codegen::DynamicsMethod::automatic;
   if (options.gravity.size() == 3)
     b.load.urdf_gravity = {options.gravity[0], options.gravity[1], options.gravity[2]};
   return b;
@@ -180,7 +192,8 @@ int run_generate(const GenerateCommand& c) {
         c.run.model, b.load,
         {c.jacobians, c.controller,
          c.precision == "float" ? kanegen::codegen::Precision::single_precision
-                                : kanegen::codegen::Precision::double_precision});
+                                : kanegen::codegen::Precision::double_precision,
+         b.dynamics});
   }();
   kanegen::codegen::write_files_atomically(c.out_dir, g.files);
   if (!c.run.quiet) {
@@ -190,6 +203,13 @@ int run_generate(const GenerateCommand& c) {
       std::printf(", emit with %s %.3f s", c.controller ? "controller kernels" : "jacobians",
                   g.seconds.jacobians);
     std::printf("\n");
+    if (g.dynamics.recursive_operations < 0)
+      std::printf("  forward_dynamics: composite inertias (%ld operations; the recursion does not apply)\n",
+                  g.dynamics.composite_operations);
+    else
+      std::printf("  forward_dynamics: %s (recursive %ld operations, composite %ld)\n",
+                  g.dynamics.recursive ? "recursive" : "composite inertias", g.dynamics.recursive_operations,
+                  g.dynamics.composite_operations);
     for (const auto& [kernel, count] : g.operations)
       std::printf("  %-28s %8ld operations\n", kanegen::codegen::signature(kernel).name, count);
     for (const auto& [file, content] : g.files)

@@ -64,6 +64,8 @@ std::string cache_key(const std::string& model_path, const RuntimeLocation& runt
   for (double g : options.load.urdf_gravity) bytes += codegen::format_double(g) + ",";
   if (options.jacobians) bytes += "jacobians\n";  // absent otherwise: the keys of existing caches stay
   if (options.controller) bytes += "controller\n";
+  if (options.dynamics == codegen::DynamicsMethod::recursive) bytes += "recursive\n";  // likewise
+  if (options.dynamics == codegen::DynamicsMethod::composite) bytes += "composite\n";
   bytes += KANEGEN_VERSION;
   // The generator itself: a rebuilt kanegen of the same version may emit other code.
   std::error_code error;
@@ -193,7 +195,11 @@ std::string build_runner(const std::string& model_path, const BuildOptions& opti
   if (options.verbose) std::fprintf(stderr, "kanegen: generating %s ...\n", model_path.c_str());
   const pipeline::GeneratedModel generated = [&] {
     const StopWhileGenerating stop(model_path, "cached");
-    return pipeline::generate(model_path, options.load, {options.jacobians, options.controller});
+    pipeline::GenerateOptions generate;
+    generate.jacobians = options.jacobians;
+    generate.controller = options.controller;
+    generate.dynamics = options.dynamics;
+    return pipeline::generate(model_path, options.load, generate);
   }();
   codegen::write_files_atomically(dir.string(), generated.files);
 

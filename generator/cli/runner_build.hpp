@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "codegen/model_kernels.hpp"
 #include "model/load.hpp"
 
 namespace kanegen::cli {
@@ -19,6 +20,8 @@ struct BuildOptions {
   bool jacobians = false;
   /// The controller kernels too (pipeline::GenerateOptions::controller); part of the cache key.
   bool controller = false;
+  /// forward_dynamics's method (pipeline::GenerateOptions::dynamics); part of the cache key.
+  codegen::DynamicsMethod dynamics = codegen::DynamicsMethod::automatic;
 };
 
 /// Whether the runner's `simulate --integrator VALUE` needs the Jacobian

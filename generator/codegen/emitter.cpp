@@ -211,14 +211,16 @@ EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, co
   // The Jacobian kernels (and linearize, which calls them) are written in double.
   if (!scalar.is_double() && options.jacobians) throw std::logic_error("float kernels with Jacobians");
   ExpressionGraph graph(vars, program);
-  const std::vector<KernelCode> kernels =
-      derive_kernels(model, eq, vars, graph, options.jacobians, options.controller, scalar);
+  DynamicsChoice dynamics;
+  const std::vector<KernelCode> kernels = derive_kernels(
+      model, eq, vars, graph, options.jacobians, options.controller, scalar, options.dynamics, &dynamics);
   check_presence(kernels, eq.loops.size() > 0, options.jacobians, options.controller);
   TemplateValues values = model_values(model, eq, model_hash, scalar);
   add_moved_bodies(values, eq);
   add_loop_values(values, eq, scalar);
   add_kernel_values(values, kernels, model.name, scalar);
   EmittedModel emitted;
+  emitted.dynamics = dynamics;
   for (const KernelCode& code : kernels)
     if (signature(code.kernel).counted) emitted.operations[code.kernel] = code.operations;
   const std::string name = emitted_name(model.name, scalar);

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "codegen/kernel_table.hpp"
+#include "codegen/model_kernels.hpp"
 #include "codegen/scalar_type.hpp"
 #include "kane/equations.hpp"
 #include "model/model.hpp"
@@ -18,6 +19,7 @@ namespace kanegen::codegen {
 struct EmittedModel {
   std::map<std::string, std::string> files;  ///< file name -> content
   std::map<Kernel, long> operations;         ///< operation count of each counted kernel
+  DynamicsChoice dynamics;                   ///< how forward_dynamics solves, with both counts
 };
 
 /// What a model's code holds beyond the kernels every model has.
@@ -31,6 +33,9 @@ struct EmitOptions {
   /// The floating-point type of the kernels. Float models (not with loops or
   /// Jacobians) are named <name>_float and have no runner and no runtime face.
   Precision precision = Precision::double_precision;
+  /// forward_dynamics's method; `recursive` needs a rigid tree without loops
+  /// or prescribed motions (Equations::recursive_unavailable says why not).
+  DynamicsMethod dynamics = DynamicsMethod::automatic;
 };
 
 /// The name of the emitted files and namespace: the model's, "_float" added for float.

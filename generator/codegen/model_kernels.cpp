@@ -133,7 +133,7 @@ KernelCode forcing_kernel(const Derivation& d) {
 
 /// An open tree: M and the right-hand side as locals, then the LDL^T
 /// unrolled for the model's structure, the prescribed speeds given.
-KernelCode tree_dynamics_kernel(const Derivation& d) {
+KernelCode composite_dynamics_kernel(const Derivation& d) {
   std::vector<Assignment> dynamics;
   std::vector<bool> nonzero(static_cast<std::size_t>(d.ns()) * d.ns(), false);
   for (int i = 0; i < d.n(); ++i)
@@ -158,6 +158,50 @@ KernelCode tree_dynamics_kernel(const Derivation& d) {
           d.prescribed.body + body.body + solve.text + given_accelerations(d) + "  return 0;\n",
           body.operations + solve.operations + d.prescribed.operations,
           " (" + str(solve.operations) + " of them in LDL^T)"};
+}
+
+/// An open rigid tree by the articulated-body recursion: u_dot straight
+/// from the graph; a pivot D that is not positive (a joint moving a subtree
+/// without mass or inertia about its axis) returns its speed + 1, leaves first.
+KernelCode recursive_dynamics_kernel(const Derivation& d) {
+  std::vector<Assignment> dynamics;
+  const std::string real = "const " + std::string(d.scalar.name()) + " ";
+  for (int s : d.eq.recursive_pivot_order)
+    dynamics.push_back({real + "pivot" + str(s), d.graph.add(d.eq.recursive_pivots[s])});
+  for (int r = 0; r < d.n(); ++r)
+    dynamics.push_back({"udot[" + str(r) + "]", d.graph.add(d.eq.recursive_accelerations[r])});
+  const PrintedKernel body = print_kernel(d.graph, dynamics, d.scalar);
+  std::string checks;
+  for (int s : d.eq.recursive_pivot_order)
+    checks += "  if (!(pivot" + str(s) + " > " + d.scalar.literal(0.0) + ")) return " + str(s + 1) + ";\n";
+  return {Kernel::forward_dynamics,
+          "  // Articulated-body recursion; pivot<k>: the subtree's inertia about joint k's axis.\n" +
+              body.body + checks + "  return 0;\n",
+          body.operations, ""};
+}
+
+/// An open tree: the recursion or the composite solve, as asked or by operation count.
+KernelCode tree_dynamics_kernel(const Derivation& d, DynamicsMethod method, DynamicsChoice& choice) {
+  KernelCode composite = composite_dynamics_kernel(d);
+  choice.composite_operations = composite.operations;
+  if (!d.eq.recursive_unavailable.empty() || static_cast<int>(d.eq.recursive_accelerations.size()) != d.n()) {
+    if (method == DynamicsMethod::recursive)
+      throw std::logic_error("recursive forward dynamics for a model without the recursion");
+    return composite;
+  }
+  KernelCode recursive = recursive_dynamics_kernel(d);
+  choice.recursive_operations = recursive.operations;
+  choice.recursive = method == DynamicsMethod::recursive ||
+                     (method == DynamicsMethod::automatic && recursive.operations < composite.operations);
+  if (choice.recursive) {
+    recursive.count_note = " (recursive; composite inertias and LDL^T: " + str(composite.operations) + ")";
+    return recursive;
+  }
+  // " (N of them in LDL^T)" becomes " (composite inertias, N of them in LDL^T; recursive: R)".
+  const std::string& note = composite.count_note;
+  composite.count_note = " (composite inertias, " + note.substr(2, note.size() - 3) +
+                         "; recursive: " + str(recursive.operations) + ")";
+  return composite;
 }
 
 KernelCode constraints_kernel(const Derivation& d) {
@@ -573,14 +617,19 @@ KernelCode linearize_kernel(const Derivation& d) {
 
 std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Equations& eq,
                                        const symbolic::Variables& vars, ExpressionGraph& graph,
-                                       bool jacobians, bool controller, const ScalarType& scalar) {
+                                       bool jacobians, bool controller, const ScalarType& scalar,
+                                       DynamicsMethod dynamics, DynamicsChoice* choice) {
   Derivation d{model, eq, vars, graph, scalar, {}, {}, {}};
   split_speeds(d);
   print_prescribed_accelerations(d);
   std::vector<KernelCode> kernels{set_parameter_kernel(d), get_parameter_kernel(d), initial_state_kernel(d),
                                   mass_matrix_kernel(d), forcing_kernel(d)};
   const KernelCode constrained = d.loops() ? constrained_dynamics_kernel(d) : KernelCode{};
-  kernels.push_back(d.loops() ? loop_dynamics_kernel(d, constrained) : tree_dynamics_kernel(d));
+  DynamicsChoice chosen;
+  kernels.push_back(d.loops() ? loop_dynamics_kernel(d, constrained)
+                              : tree_dynamics_kernel(d, dynamics, chosen));
+  if (d.loops()) chosen.composite_operations = constrained.operations;
+  if (choice) *choice = chosen;
   kernels.push_back(coordinate_rates_kernel(d));
   kernels.push_back(energy_kernel(Kernel::kinetic_energy, "T", eq.kinetic_energy, d));
   kernels.push_back(energy_kernel(Kernel::potential_energy, "V", eq.potential_energy, d));

@@ -15,13 +15,29 @@
 
 namespace kanegen::codegen {
 
+/// How forward_dynamics solves M u_dot = f on an open rigid tree: the
+/// articulated-body recursion (O(n)), M and f by composite inertias then an
+/// unrolled LDL^T (O(n^3)), or whichever has fewer operations.
+enum class DynamicsMethod { automatic, recursive, composite };
+
+/// What forward_dynamics was made with, and the operations of both ways
+/// (recursive_operations is -1 where the recursion does not apply).
+struct DynamicsChoice {
+  bool recursive = false;
+  long composite_operations = 0, recursive_operations = -1;
+};
+
 /// In kernel-table order; the Jacobian kernels only with `jacobians`, the
 /// quadratic controller kernels only with `controller` (which needs
-/// `jacobians`); the bodies in the floating-point type `scalar`.
+/// `jacobians`); the bodies in the floating-point type `scalar`; `dynamics`:
+/// forward_dynamics's method (recursive needs Equations::recursive_accelerations,
+/// else std::logic_error), reported in `choice`.
 std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Equations& equations,
                                        const symbolic::Variables& vars, ExpressionGraph& graph,
                                        bool jacobians = false, bool controller = false,
-                                       const ScalarType& scalar = ScalarType());
+                                       const ScalarType& scalar = ScalarType(),
+                                       DynamicsMethod dynamics = DynamicsMethod::automatic,
+                                       DynamicsChoice* choice = nullptr);
 
 /// The code of `kernel` in `kernels`; throws std::logic_error if it is missing.
 const KernelCode& find_kernel(const std::vector<KernelCode>& kernels, Kernel kernel);

@@ -6,6 +6,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "kane/articulated_body.hpp"
 #include "kane/beam_node.hpp"
 #include "kane/flexible_body.hpp"
 #include "kane/force_elements.hpp"
@@ -477,6 +478,44 @@ void newton_euler(Derivation& d, const BodySums& own) {
   }
 }
 
+/// Why the articulated-body recursion does not apply, or "" if it does:
+/// it covers rigid trees whose every speed is solved for.
+std::string recursive_unavailable(const Derivation& d) {
+  if (!d.flexible.empty())
+    return "it has flexible bodies (their elastic coordinates are not in the recursion)";
+  if (d.eq.loops.size() > 0)
+    return "it has closed loops (their constraint forces need the saddle-point solve)";
+  if (!d.eq.prescribed.empty())
+    return "it has prescribed motions (their accelerations are given, not solved for)";
+  return "";
+}
+
+/// u_dot by the articulated-body recursion over the bodies' own inertias and
+/// wrenches (`own`, before the composites); the joints' own forces are f less
+/// the bodies' share (`body_forcing`).
+void recursive_dynamics(Derivation& d, const BodySums& own, const std::vector<ex>& body_forcing) {
+  d.eq.recursive_unavailable = recursive_unavailable(d);
+  if (!d.eq.recursive_unavailable.empty()) return;
+  std::vector<TreeBody> bodies;
+  for (std::size_t i = 0; i < own.inertia.size(); ++i)
+    bodies.push_back({own.inertia[i].mass, own.inertia[i].moment, own.inertia[i].second, own.wrench[i].moment,
+                      own.wrench[i].force});
+  std::vector<ex> joint_forces(d.eq.nu);
+  for (int r = 0; r < d.eq.nu; ++r) joint_forces[r] = d.eq.forcing[r] - body_forcing[r];
+  RecursiveDynamics r = articulated_body_dynamics(d.tree, bodies, joint_forces, d.program);
+  if (r.zero_pivot >= 0) {
+    for (std::size_t k = 0; k < d.model.joints.size(); ++k)
+      if (d.tree.joints()[k].speed == r.zero_pivot)
+        d.eq.recursive_unavailable = "joint '" + d.model.joints[k].name +
+                                     "' moves no inertia about or along its axis in any state (the "
+                                     "recursion divides by it)";
+    return;
+  }
+  d.eq.recursive_accelerations = std::move(r.accelerations);
+  d.eq.recursive_pivots = std::move(r.pivots);
+  d.eq.recursive_pivot_order = std::move(r.pivot_order);
+}
+
 /// The joint's own forces on its speed r: spring, damper, actuator, efforts; the spring's energy.
 void add_joint_forces(Derivation& d, const model::Joint& joint, int r) {
   const symbolic::Variables& vars = d.vars;
@@ -703,6 +742,7 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
     for (int r = 0; r < eq.nu; ++r) eq.inverse_dynamics[r] -= eq.forcing[r] - body_forcing[r];
   }
   eq.loops = derive_loop_constraints(model, vars, program, tree, flexible);
+  recursive_dynamics(d, own, body_forcing);
   coordinate_roles(d);
   expand_outputs(d);
   GiNaC::exmap no_inputs;

@@ -65,6 +65,13 @@ struct Equations {
   /// dV_gravity/dq, both by the recursion of Newton and Euler over the tree
   /// (accelerations outward, subtree wrenches inward): O(n), M never formed.
   std::vector<GiNaC::ex> inverse_dynamics, gravity_forces;
+  /// Rigid trees without loops or prescribed motions: u_dot by the
+  /// articulated-body recursion (kane/articulated_body.hpp), O(n), M never
+  /// formed; by speed, with the pivots D it divides by and their order.
+  /// Empty otherwise, and `recursive_unavailable` says why.
+  std::vector<GiNaC::ex> recursive_accelerations, recursive_pivots;
+  std::vector<int> recursive_pivot_order;
+  std::string recursive_unavailable;
   /// Outputs that are constraint forces: (index in outputs, row of lambda).
   std::vector<std::pair<int, int>> reaction_outputs;
 };

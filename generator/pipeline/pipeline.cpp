@@ -48,6 +48,30 @@ void refuse_controller_kernels(const model::Model& model) {
                               "generate without --controller; " + why);
 }
 
+/// The articulated-body recursion solves rigid trees whose every speed is
+/// free: `--dynamics recursive` on anything else is refused, naming why.
+void refuse_recursive_dynamics(const model::Model& model) {
+  const std::string fix = "use --dynamics composite, or auto (the default), which picks composite here";
+  for (const model::Body& body : model.bodies)
+    if (body.flexible)
+      throw model::ModelError(model.source_file, body.where,
+                              "--dynamics recursive is for rigid trees, and body '" + body.name +
+                                  "' is flexible (its elastic coordinates are not in the recursion)",
+                              fix);
+  if (!model.loops.empty())
+    throw model::ModelError(model.source_file, model.loops.front().where,
+                            "--dynamics recursive is for open trees, and this model closes " +
+                                std::to_string(model.loops.size()) +
+                                " loop(s) (their constraint forces need the saddle-point solve)",
+                            fix);
+  for (const model::Joint& joint : model.joints)
+    if (joint.is_prescribed())
+      throw model::ModelError(model.source_file, joint.where + "/prescribed",
+                              "--dynamics recursive solves for every speed, and joint '" + joint.name +
+                                  "' has a prescribed motion",
+                              fix);
+}
+
 }  // namespace
 
 std::string digest(const std::string& bytes) {
@@ -74,6 +98,7 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
   check_precision(model, generate_options);
 
   if (generate_options.controller) refuse_controller_kernels(model);
+  if (generate_options.dynamics == codegen::DynamicsMethod::recursive) refuse_recursive_dynamics(model);
 
   // The finite-element bodies: element matrices, invariants, modal bases.
   kane::FlexibleBodies flexible;
@@ -85,7 +110,8 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
     flexible.emplace(static_cast<int>(b), std::move(beam));
   }
 
-  // Derive and emit with each way of summing M; keep the shorter code.
+  // Derive and emit with each way of summing M; keep the shorter code (the
+  // composite forward_dynamics's count: the recursion does not use M).
   const symbolic::Variables vars(model, elastic_counts);
   codegen::EmittedModel emitted;
   symbolic::Program chosen_program;
@@ -96,12 +122,19 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
     symbolic::Program program;
     kane::Equations equations = kane::derive_equations(model, vars, program, method, flexible);
     out.seconds.derive += seconds_since(start);
+    if (generate_options.dynamics == codegen::DynamicsMethod::recursive &&
+        !equations.recursive_unavailable.empty())
+      throw model::ModelError(
+          model.source_file, "",
+          "--dynamics recursive cannot solve this model: " + equations.recursive_unavailable,
+          "use --dynamics composite, or auto (the default)");
     start = std::chrono::steady_clock::now();
-    codegen::EmittedModel candidate = codegen::emit_model(model, equations, vars, program, hash,
-                                                          {false, false, generate_options.precision});
+    codegen::EmittedModel candidate =
+        codegen::emit_model(model, equations, vars, program, hash,
+                            {false, false, generate_options.precision, generate_options.dynamics});
     out.seconds.emit += seconds_since(start);
-    if (emitted.files.empty() || candidate.operations.at(codegen::Kernel::forward_dynamics) <
-                                     emitted.operations.at(codegen::Kernel::forward_dynamics)) {
+    if (emitted.files.empty() ||
+        candidate.dynamics.composite_operations < emitted.dynamics.composite_operations) {
       emitted = std::move(candidate);
       chosen_program = std::move(program);
       chosen = std::move(equations);
@@ -111,14 +144,16 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
   // double the cost of the option for code that is thrown away.
   if (generate_options.jacobians || generate_options.controller) {
     start = std::chrono::steady_clock::now();
-    emitted = codegen::emit_model(model, chosen, vars, chosen_program, hash,
-                                  {true, generate_options.controller, generate_options.precision});
+    emitted = codegen::emit_model(
+        model, chosen, vars, chosen_program, hash,
+        {true, generate_options.controller, generate_options.precision, generate_options.dynamics});
     out.seconds.jacobians = seconds_since(start);
   }
 
   out.name = model.name;
   out.files = std::move(emitted.files);
   out.operations = std::move(emitted.operations);
+  out.dynamics = emitted.dynamics;
   out.intermediates = chosen_program.size();
   out.nq = chosen.nq;
   out.nu = chosen.nu;

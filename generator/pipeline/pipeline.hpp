@@ -7,6 +7,7 @@
 #include <string>
 
 #include "codegen/kernel_table.hpp"
+#include "codegen/model_kernels.hpp"
 #include "codegen/scalar_type.hpp"
 #include "model/load.hpp"
 
@@ -21,6 +22,7 @@ struct GeneratedModel {
   std::string name;
   std::map<std::string, std::string> files;    ///< file name -> content
   std::map<codegen::Kernel, long> operations;  ///< operation count of each counted kernel
+  codegen::DynamicsChoice dynamics;            ///< forward_dynamics's method and both counts
   std::size_t intermediates = 0;               ///< named intermediates of the derivation
   int nq = 0, nu = 0;
   StageTimes seconds;
@@ -38,6 +40,10 @@ struct GenerateOptions {
   /// The kernels' floating-point type (`--precision float`: <name>_float.hpp
   /// and .cpp, no runner; not for models with loops or with Jacobians).
   codegen::Precision precision = codegen::Precision::double_precision;
+  /// How forward_dynamics solves (`--dynamics`): by operation count, or the
+  /// articulated-body recursion or composite inertias + LDL^T as asked. The
+  /// recursion is for rigid trees without loops or prescribed motions.
+  codegen::DynamicsMethod dynamics = codegen::DynamicsMethod::automatic;
 };
 
 /// Runs every stage on the model file. Throws model::ModelError for a bad

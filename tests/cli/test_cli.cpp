@@ -809,3 +809,81 @@ TEST_CASE("a number out of range is refused without the range's 309 digits", "[c
   CHECK(negative.status != 0);
   CHECK(negative.err.rfind("--trajectories: needs a number >= 0, got '-1'\n", 0) == 0);
 }
+
+TEST_CASE("generate --dynamics picks forward_dynamics's method, states it and refuses what it cannot solve",
+          "[cli][recursive]") {
+  const fs::path dir = scratch() / "gen_dynamics";
+  // arm7: auto keeps the composite solve (fewer operations at 7 joints) and names both counts.
+  const Result automatic = kanegen("generate " + model("arm7.urdf") + " -o " + (dir / "auto").string());
+  REQUIRE(automatic.status == 0);
+  CHECK(automatic.out.find("forward_dynamics: composite inertias (recursive ") != std::string::npos);
+  const std::string header = slurp(dir / "auto" / "arm7.hpp");
+  CHECK(std::regex_search(header, std::regex("forward_dynamics: [0-9]+ \\(composite inertias, [0-9]+ of them "
+                                             "in LDL\\^T; recursive: [0-9]+\\)")));
+  const Result recursive = kanegen("generate " + model("arm7.urdf") + " -o " + (dir / "recursive").string() +
+                                   " --dynamics recursive");
+  REQUIRE(recursive.status == 0);
+  const std::string recursive_header = slurp(dir / "recursive" / "arm7.hpp");
+  CHECK(std::regex_search(recursive_header,
+                          std::regex("forward_dynamics: [0-9]+ \\(recursive; composite inertias and LDL\\^T: "
+                                     "[0-9]+\\)")));
+  CHECK(slurp(dir / "recursive" / "arm7.cpp").find("Articulated-body recursion") != std::string::npos);
+  CHECK(slurp(dir / "auto" / "arm7.cpp").find("Articulated-body recursion") == std::string::npos);
+
+  // Loops, flexible bodies and prescribed motions are refused, naming why and the way out; nothing written.
+  const Result loops = kanegen("generate " + model("four_bar.json") + " -o " + (dir / "loops").string() +
+                               " --dynamics recursive");
+  CHECK(loops.status == 2);
+  CHECK(
+      loops.err.find("four_bar.json: /loops/0: --dynamics recursive is for open trees, and this model "
+                     "closes 1 loop(s) (their constraint forces need the saddle-point solve); use --dynamics "
+                     "composite, or auto (the default), which picks composite here") != std::string::npos);
+  const Result flexible = kanegen("generate " + model("spatial_arm2.json") + " -o " +
+                                  (dir / "flexible").string() + " --dynamics recursive");
+  CHECK(flexible.status == 2);
+  CHECK(flexible.err.find("spatial_arm2.json: /bodies/0: --dynamics recursive is for rigid trees, and body "
+                          "'link1' is flexible") != std::string::npos);
+  const fs::path prescribed = scratch() / "prescribed_hub.json";
+  std::ofstream(prescribed) << R"({"format": "kanegen-model", "version": 1, "name": "hub",
+    "bodies": [{"name": "hub", "mass": 1, "inertia": {"ixx": 0.1, "iyy": 0.1, "izz": 0.1}},
+               {"name": "rod", "mass": 1, "com": [0.5, 0, 0], "inertia": {"ixx": 0.1, "iyy": 0.1, "izz": 0.1}}],
+    "joints": [{"name": "spin", "type": "revolute", "parent": "ground", "child": "hub", "prescribed": "t^2"},
+               {"name": "swing", "type": "revolute", "parent": "hub", "child": "rod", "axis": [0, 1, 0]}]})";
+  const Result given = kanegen("generate " + prescribed.string() + " -o " + (dir / "prescribed").string() +
+                               " --dynamics recursive");
+  CHECK(given.status == 2);
+  CHECK(given.err.find(
+            "prescribed_hub.json: /joints/0/prescribed: --dynamics recursive solves for every speed, "
+            "and joint 'spin' has a prescribed motion") != std::string::npos);
+  CHECK(kanegen("generate " + prescribed.string() + " -o " + (dir / "prescribed").string()).status == 0);
+  // A point mass on the axis of its hinge: no inertia about it in any state, so no 1/D; composite still
+  // generates.
+  const fs::path point = scratch() / "point_on_axis.json";
+  std::ofstream(point) << R"({"format": "kanegen-model", "version": 1, "name": "point_on_axis",
+    "bodies": [{"name": "a", "mass": 1, "com": [0.5, 0, 0], "inertia": {"ixx": 0.1, "iyy": 0.1, "izz": 0.1}},
+               {"name": "b", "mass": 1, "inertia": {"ixx": 0, "iyy": 0, "izz": 0}}],
+    "joints": [{"name": "j1", "type": "revolute", "parent": "ground", "child": "a", "axis": [0, 1, 0]},
+               {"name": "j2", "type": "revolute", "parent": "a", "child": "b", "axis": [0, 1, 0]}]})";
+  const Result zero =
+      kanegen("generate " + point.string() + " -o " + (dir / "point").string() + " --dynamics recursive");
+  CHECK(zero.status == 2);
+  CHECK(zero.err.find(
+            "point_on_axis.json: /: --dynamics recursive cannot solve this model: joint 'j2' moves no "
+            "inertia about or along its axis in any state (the recursion divides by it); use "
+            "--dynamics composite, or auto (the default)") != std::string::npos);
+  CHECK(!fs::exists(dir / "point"));
+  CHECK(kanegen("generate " + point.string() + " -o " + (dir / "point").string()).status == 0);
+  CHECK(kanegen("generate " + model("arm7.urdf") + " -o " + dir.string() + " --dynamics fast").status != 0);
+  for (const char* sub : {"loops", "flexible"}) CHECK(!fs::exists(dir / sub));
+  CHECK(kanegen("generate --help").out.find("--dynamics") != std::string::npos);
+  CHECK(kanegen("simulate --help").out.find("--dynamics") != std::string::npos);
+}
+
+TEST_CASE("a subtree without mass under the recursive forward_dynamics names its joint", "[cli][recursive]") {
+  // Both rods massless: the recursion's pivot of the outer joint (leaves first) is zero.
+  const Result r = kanegen("simulate " + model("double_pendulum.json") +
+                           " --dynamics recursive --t-end 1 --quiet --set m1=0 --set m2=0 -o " +
+                           (scratch() / "massless_recursive.csv").string());
+  CHECK(r.status == 1);
+  CHECK(r.err.find("error: mass matrix is not positive definite at coordinate 'elbow' (pivot 2") == 0);
+}

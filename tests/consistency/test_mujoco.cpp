@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // Consistency of the generated equations of motion with MuJoCo.
 //
-// For the shipped URDF models (arm7, chain20), at random states, the
+// For the shipped URDF models (arm7, chain20) and a branched tree with slides
+// (data/mixed_tree.urdf, generated with the recursive forward_dynamics), at random states, the
 // generated kernels must reproduce what MuJoCo computes from the same file:
 //   mass_matrix       == M            (mj_fullM of qM)
 //   forcing (tau = 0) == qfrc_passive - qfrc_bias   (gravity + velocity terms)
@@ -23,6 +24,7 @@
 #if KANEGEN_HAVE_GENERATED_MODELS
 #include <arm7.hpp>
 #include <chain20.hpp>
+#include <mixed_tree.hpp>
 #endif
 
 using kanegen_consistency::MujocoDynamics;
@@ -268,6 +270,12 @@ TEST_CASE("chain20: generated kernels agree with MuJoCo", "[generated][chain20]"
   using S = kanegen_models::chain20::System;
   CHECK(std::string(S::name) == "chain20");
   compare_with_mujoco<S>(KANEGEN_CHAIN20_URDF, 2025, 30);
+}
+
+TEST_CASE("mixed_tree: the recursive forward_dynamics agrees with MuJoCo", "[generated][recursive]") {
+  using S = kanegen_models::mixed_tree::System;
+  CHECK(std::string(S::name) == "mixed_tree");
+  compare_with_mujoco<S>(KANEGEN_MIXED_TREE_URDF, 2026, 40);
 }
 
 #endif  // KANEGEN_HAVE_GENERATED_MODELS

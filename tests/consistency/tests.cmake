@@ -20,6 +20,7 @@ if(KANEGEN_WITH_MUJOCO)
     target_compile_definitions(test_consistency PRIVATE
       KANEGEN_ARM7_URDF="${PROJECT_SOURCE_DIR}/models/arm7.urdf"
       KANEGEN_CHAIN20_URDF="${PROJECT_SOURCE_DIR}/models/chain20.urdf"
+      KANEGEN_MIXED_TREE_URDF="${_kg_cons_dir}/data/mixed_tree.urdf"
       KANEGEN_CONSISTENCY_DATA_DIR="${_kg_cons_dir}/data")
     target_link_libraries(test_consistency PRIVATE mujoco::mujoco kanegen_catch_main Eigen3::Eigen
                                                    PkgConfig::KANEGEN_CONSISTENCY_TINYXML2)
@@ -31,7 +32,10 @@ if(KANEGEN_WITH_MUJOCO)
           kanegen_add_model(kanegen_model_${_kg_model} ${PROJECT_SOURCE_DIR}/models/${_kg_model}.urdf)
         endif()
       endforeach()
-      target_link_libraries(test_consistency PRIVATE kanegen_model_arm7 kanegen_model_chain20)
+      # A branched tree with slides and turned frames, by the articulated-body recursion.
+      kanegen_add_model(kanegen_model_mixed_tree ${_kg_cons_dir}/data/mixed_tree.urdf DYNAMICS recursive)
+      target_link_libraries(test_consistency PRIVATE kanegen_model_arm7 kanegen_model_chain20
+                                                     kanegen_model_mixed_tree)
       target_compile_definitions(test_consistency PRIVATE KANEGEN_HAVE_GENERATED_MODELS=1)
     else()
       message(WARNING "kanegen: kanegen_add_model() is not defined; test_consistency checks MuJoCo only")

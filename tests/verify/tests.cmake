@@ -51,5 +51,12 @@ foreach(model ${KANEGEN_VERIFY_MODELS})
   set_tests_properties("verify: model ${stem}" PROPERTIES ENVIRONMENT "KANEGEN_CACHE_DIR=${KANEGEN_VERIFY_CACHE}")
 endforeach()
 
+# The recursive forward_dynamics (auto keeps the composite solve on this
+# small model): a slide, hinges, springs between points, efforts, a point force.
+add_test(NAME "verify: model force_elements --dynamics recursive"
+         COMMAND kanegen verify ${PROJECT_SOURCE_DIR}/tests/data/models/force_elements.json --dynamics recursive)
+set_tests_properties("verify: model force_elements --dynamics recursive"
+                     PROPERTIES ENVIRONMENT "KANEGEN_CACHE_DIR=${KANEGEN_VERIFY_CACHE}")
+
 add_test(NAME "verify: the numeric path shares no code with the symbolic one"
          COMMAND ${CMAKE_COMMAND} -DDIR=${PROJECT_SOURCE_DIR}/generator -P ${CMAKE_CURRENT_LIST_DIR}/check_independence.cmake)
