@@ -40,12 +40,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
-#include <memory>
 #include <random>
-#include <sstream>
 #include <string>
 #include <vector>
+
+#include "mujoco_urdf.hpp"
 
 namespace {
 
@@ -56,28 +55,10 @@ constexpr int kStates = 64;  // a power of two: index wraps with a mask
   std::exit(1);
 }
 
-// Loads a URDF into MuJoCo with fusestatic="true": links on fixed joints are
-// merged into their parent, as MuJoCo would by default, so that it does not
-// carry the extra bodies the consistency tests keep.
 mjModel* load_mujoco(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) die("cannot read " + path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  std::string text = ss.str();
-  const std::string from = "fusestatic=\"false\"", to = "fusestatic=\"true\"";
-  for (auto at = text.find(from); at != std::string::npos; at = text.find(from, at))
-    text.replace(at, from.size(), to);
-
-  auto vfs = std::make_unique<mjVFS>();
-  mj_defaultVFS(vfs.get());
-  const char* name = "model.urdf";
-  if (mj_makeEmptyFileVFS(vfs.get(), name, static_cast<int>(text.size())) != 0) die("VFS full");
-  std::copy(text.begin(), text.end(), static_cast<char*>(vfs->filedata[mj_findFileVFS(vfs.get(), name)]));
-  char error[1000] = "";
-  mjModel* m = mj_loadXML(name, vfs.get(), error, sizeof error);
-  mj_deleteVFS(vfs.get());
-  if (m == nullptr) die(path + ": " + error);
+  std::string error;
+  mjModel* m = kanegen_bench::load_urdf(path, error);
+  if (m == nullptr) die(error);
   return m;
 }
 

@@ -11,7 +11,7 @@ spatial chains of N links from scripts/make_chain_urdf.py, and for each
   per call (bench/scaling_driver.cpp; it checks that both compute the same
   udot before it times anything);
 - for the --sympy sizes, SymPy's KanesMethod on the same chain
-  (bench/sympy_chain.py; its M[0][0] at q = 0 must match kanegen's).
+  (bench/sympy_chain.py; its M and f at a check state must be kanegen's).
 
     bench/scaling.py [--sizes 7,20,50,100] [--sympy 7] [--kanegen build/generator/kanegen]
                      [--out DIR] [--reps 3] [--plot FIG.png] [--dynamics auto]
@@ -49,15 +49,21 @@ def wall(command, reps=1):
 
 
 def operation_counts(header):
-    """The forward_dynamics counts from the generated header's comment lines."""
-    text = open(header).read()
-    counts = {}
-    for line in text.splitlines():
-        match = re.match(r"//\s+forward_dynamics(?: \((\w+)\))?:\s*(\d+)", line)
-        if match:
-            counts[match.group(1) or "chosen"] = int(match.group(2))
-    method = re.search(r"forward_dynamics.*?\b(recursive|composite)\b", text)
-    return counts, method.group(1) if method else "composite"
+    """forward_dynamics's operation counts from the generated header's note,
+    e.g. "forward_dynamics: 13603 (recursive; composite inertias and LDL^T: 15290)"
+    or "forward_dynamics: 1851 (composite inertias, 252 of them in LDL^T; recursive: 2291)"."""
+    for line in open(header):
+        match = re.match(r"//\s+forward_dynamics:\s*(\d+)\s*\((.*)\)", line)
+        if not match:
+            continue
+        chosen, note = int(match.group(1)), match.group(2)
+        method = "recursive" if note.startswith("recursive") else "composite"
+        other = re.search(r"(?:LDL\^T|recursive): (\d+)$", note)
+        counts = {"chosen": chosen, method: chosen}
+        if other:
+            counts["composite" if method == "recursive" else "recursive"] = int(other.group(1))
+        return counts, method
+    sys.exit("bench/scaling.py: no forward_dynamics operation count in %s" % header)
 
 
 def measure(args, n, work):
@@ -97,10 +103,15 @@ def sympy_peer(n, kanegen_row, timeout):
         return {"links": n, "seconds": None, "note": "failed: " + result.stderr.strip().splitlines()[-1]}
     row = json.loads(result.stdout)
     if kanegen_row is not None:
-        expected = kanegen_row["m00_at_zero"]
-        if abs(row["check"] - expected) > 1e-9 * max(1.0, abs(expected)):
-            sys.exit("bench/scaling.py: SymPy's M[0][0] %r differs from kanegen's %r: not the same model" %
-                     (row["check"], expected))
+        for key in ("mass", "forcing"):
+            ours, theirs = kanegen_row[key], row[key]
+            scale = max(1.0, max(abs(x) for x in ours))
+            worst = max(abs(a - b) for a, b in zip(ours, theirs)) / scale if len(ours) == len(theirs) else float("inf")
+            if not worst < 1e-9:
+                sys.exit("bench/scaling.py: SymPy's %s differs from kanegen's by %g (relative): not the same model" %
+                         (key, worst))
+            row["max_%s_difference" % key] = worst
+            del row[key]
         row["kanegen_generation_s"] = kanegen_row["generation_s"]
     return row
 

@@ -4,9 +4,10 @@
 // per chain length, with
 //   -DKANEGEN_SCALING_HEADER="<chainN.hpp>" -DKANEGEN_SCALING_NAMESPACE=chainN
 // and runs it as `scaling_driver URDF`. It prints one JSON object:
-//   {"kanegen_ns": ..., "mujoco_ns": ..., "max_udot_difference": ..., "m00_at_zero": ...}
-// with the median time per call of a batch over a fixed set of states, and
-// M[0][0] at q = 0 (bench/scaling.py compares it with SymPy's model).
+//   {"kanegen_ns": ..., "mujoco_ns": ..., "max_udot_difference": ..., "mass": [...], "forcing": [...]}
+// with the median time per call of a batch over a fixed set of states, and M
+// (row-major) and f (tau = 0) at q_i = 0.3 sin(i), u_i = 0.5 cos(i), i = 1..N,
+// which bench/scaling.py compares with SymPy's model (bench/sympy_chain.py).
 //
 // MuJoCo loads the URDF with fusestatic="true" and contacts disabled, as in
 // bench_dynamics.cpp (the full mj_forward, as a simulator calls it). Before
@@ -21,12 +22,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
-#include <memory>
 #include <random>
-#include <sstream>
 #include <string>
 #include <vector>
+
+#include "mujoco_urdf.hpp"
 
 #include KANEGEN_SCALING_HEADER
 
@@ -42,22 +42,9 @@ constexpr int kStates = 64;
 }
 
 mjModel* load_mujoco(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) die("cannot read " + path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  std::string text = ss.str();
-  const std::string from = "fusestatic=\"false\"", to = "fusestatic=\"true\"";
-  for (auto at = text.find(from); at != std::string::npos; at = text.find(from, at)) text.replace(at, from.size(), to);
-  auto vfs = std::make_unique<mjVFS>();
-  mj_defaultVFS(vfs.get());
-  const char* name = "model.urdf";
-  if (mj_makeEmptyFileVFS(vfs.get(), name, static_cast<int>(text.size())) != 0) die("VFS full");
-  std::copy(text.begin(), text.end(), static_cast<char*>(vfs->filedata[mj_findFileVFS(vfs.get(), name)]));
-  char error[1000] = "";
-  mjModel* m = mj_loadXML(name, vfs.get(), error, sizeof error);
-  mj_deleteVFS(vfs.get());
-  if (m == nullptr) die(path + ": " + error);
+  std::string error;
+  mjModel* m = kanegen_bench::load_urdf(path, error);
+  if (m == nullptr) die(error);
   m->opt.disableflags |= mjDSBL_CONTACT;
   return m;
 }
@@ -68,7 +55,8 @@ double median_ns(Call call) {
   const auto batch = [&] {
     const auto start = std::chrono::steady_clock::now();
     for (int k = 0; k < kStates; ++k) call(k);
-    return std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count() / kStates;
+    return std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count() /
+           kStates;
   };
   double total = 0;
   int warmup = 0;
@@ -86,7 +74,8 @@ int main(int argc, char** argv) {
   if (argc != 2) die("usage: scaling_driver URDF");
   mjModel* m = load_mujoco(argv[1]);
   mjData* d = mj_makeData(m);
-  if (m->nv != S::nu) die("MuJoCo has " + std::to_string(m->nv) + " dofs, the model " + std::to_string(S::nu));
+  if (m->nv != S::nu)
+    die("MuJoCo has " + std::to_string(m->nv) + " dofs, the model " + std::to_string(S::nu));
   std::vector<int> qadr, dadr;
   for (int i = 0; i < S::nq; ++i) {
     const int j = mj_name2id(m, mjOBJ_JOINT, S::coordinate_names()[i]);
@@ -125,10 +114,24 @@ int main(int argc, char** argv) {
     for (int i = 0; i < S::nu; ++i) d->qvel[dadr[i]] = u[k * S::nu + i];
     mj_forward(m, d);
   });
-  std::vector<double> zero(S::nq, 0.0), mass(S::nu * S::nu);
-  S::mass_matrix(p, zero.data(), mass.data());
-  std::printf("{\"kanegen_ns\": %.1f, \"mujoco_ns\": %.1f, \"max_udot_difference\": %.3g, \"m00_at_zero\": %.17g}\n",
-              kanegen_ns, mujoco_ns, worst, mass[0]);
+  std::vector<double> check_q(S::nq), check_u(S::nu), mass(S::nu * S::nu), forcing(S::nu);
+  for (int i = 0; i < S::nq; ++i) check_q[i] = 0.3 * std::sin(i + 1.0);
+  for (int i = 0; i < S::nu; ++i) check_u[i] = 0.5 * std::cos(i + 1.0);
+  S::mass_matrix(p, check_q.data(), mass.data());
+  S::forcing(p, 0.0, check_q.data(), check_u.data(), tau.data(), forcing.data());
+  const auto list = [](const std::vector<double>& v) {
+    std::string s = "[";
+    char number[32];
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      std::snprintf(number, sizeof number, "%.17g", v[i]);
+      s += (i ? ", " : "") + std::string(number);
+    }
+    return s + "]";
+  };
+  std::printf(
+      "{\"kanegen_ns\": %.1f, \"mujoco_ns\": %.1f, \"max_udot_difference\": %.3g, \"mass\": %s, "
+      "\"forcing\": %s}\n",
+      kanegen_ns, mujoco_ns, worst, list(mass).c_str(), list(forcing).c_str());
   mj_deleteData(d);
   mj_deleteModel(m);
   return 0;
