@@ -164,13 +164,18 @@ def main():
     here = os.path.dirname(os.path.abspath(__file__))
     default_out = os.path.join(here, os.pardir, "models", "chain20.urdf")
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("-o", "--output", default=default_out, help="output file (default: models/chain20.urdf)")
+    parser.add_argument("-o", "--output", help="output file (default: models/chain20.urdf; required with --links other than 20)")
     parser.add_argument("--links", type=int, default=DEFAULT_LINKS,
                         help="number of moving links, at least 1 (default: %d); the robot is named chain<N>" % DEFAULT_LINKS)
     parser.add_argument("--check", action="store_true", help="exit 1 if the output file differs from what would be written")
     args = parser.parse_args()
     if args.links < 1:
         parser.error("--links must be at least 1, not %d" % args.links)
+    if args.output is None:
+        if args.links != DEFAULT_LINKS:
+            parser.error("--links %d writes chain%d: give the output file with -o (models/chain20.urdf is the "
+                         "20-link chain)" % (args.links, args.links))
+        args.output = default_out
     text = make_urdf(args.links)
     if args.check:
         try:
