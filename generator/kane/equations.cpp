@@ -505,10 +505,12 @@ void recursive_dynamics(Derivation& d, const BodySums& own, const std::vector<ex
   RecursiveDynamics r = articulated_body_dynamics(d.tree, bodies, joint_forces, d.program);
   if (r.zero_pivot >= 0) {
     for (std::size_t k = 0; k < d.model.joints.size(); ++k)
-      if (d.tree.joints()[k].speed == r.zero_pivot)
+      if (d.tree.joints()[k].speed == r.zero_pivot) {
         d.eq.recursive_unavailable = "joint '" + d.model.joints[k].name +
                                      "' moves no inertia about or along its axis in any state (the "
                                      "recursion divides by it)";
+        d.eq.recursive_unavailable_place = d.model.joints[k].where;
+      }
     return;
   }
   d.eq.recursive_accelerations = std::move(r.accelerations);

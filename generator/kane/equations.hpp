@@ -72,6 +72,8 @@ struct Equations {
   std::vector<GiNaC::ex> recursive_accelerations, recursive_pivots;
   std::vector<int> recursive_pivot_order;
   std::string recursive_unavailable;
+  /// Where in the model file the reason lies (a joint's place), or "".
+  std::string recursive_unavailable_place;
   /// Outputs that are constraint forces: (index in outputs, row of lambda).
   std::vector<std::pair<int, int>> reaction_outputs;
 };

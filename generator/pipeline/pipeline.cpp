@@ -125,7 +125,7 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
     if (generate_options.dynamics == codegen::DynamicsMethod::recursive &&
         !equations.recursive_unavailable.empty())
       throw model::ModelError(
-          model.source_file, "",
+          model.source_file, equations.recursive_unavailable_place,
           "--dynamics recursive cannot solve this model: " + equations.recursive_unavailable,
           "use --dynamics composite, or auto (the default)");
     start = std::chrono::steady_clock::now();

@@ -38,7 +38,8 @@ struct GenerateOptions {
   /// the Jacobian kernels they use; not for loops or prescribed motions.
   bool controller = false;
   /// The kernels' floating-point type (`--precision float`: <name>_float.hpp
-  /// and .cpp, no runner; not for models with loops or with Jacobians).
+  /// and .cpp, no runner; every kernel, closed loops included; not with the
+  /// Jacobian or controller kernels).
   codegen::Precision precision = codegen::Precision::double_precision;
   /// How forward_dynamics solves (`--dynamics`): by operation count, or the
   /// articulated-body recursion or composite inertias + LDL^T as asked. The
