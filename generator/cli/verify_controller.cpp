@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <stdexcept>
 #include <tuple>
 
 namespace kanegen::cli {
@@ -30,6 +31,17 @@ Vector flat(const json& rows) {
 Vector numbers(const json& a) {
   Vector v;
   for (const json& x : a) v.push_back(x.is_null() ? std::nan("") : x.get<double>());
+  return v;
+}
+
+/// The reply's entry of `expected` numbers; another size means the runner's
+/// kernels are not the model's (files from another kanegen), which verify
+/// reports rather than reading past the end.
+Vector sized(Vector v, std::size_t expected, const char* key) {
+  if (v.size() != expected)
+    throw std::runtime_error(std::string("the runner's ") + key + " has " + std::to_string(v.size()) +
+                             " entries, not " + std::to_string(expected) +
+                             "; its kernels do not match the model (regenerate them with this kanegen)");
   return v;
 }
 
@@ -361,13 +373,18 @@ std::vector<Row> controller_rows(RunnerProcess& process, const std::vector<Contr
                                                    {"controller", true}});
     const PointCheck point(p, check);
     Compared compared[kRows];
-    const Vector C = flat(reply["coriolis_matrix"]);
+    const std::size_t n = check.coordinates.size(), ny = check.outputs.size(), nx = 2 * n;
+    const Vector C = sized(flat(reply["coriolis_matrix"]), n * n, "coriolis_matrix");
     compared[kCu] = point.velocity_terms(C);
     compared[kSkew] = point.skew(C);
-    compared[kJacobian] = point.output_jacobian(flat(reply["output_jacobian"]));
-    compared[kRate] = point.output_jacobian_rate(numbers(reply["output_jacobian_rate"]));
+    compared[kJacobian] =
+        point.output_jacobian(sized(flat(reply["output_jacobian"]), ny * n, "output_jacobian"));
+    compared[kRate] =
+        point.output_jacobian_rate(sized(numbers(reply["output_jacobian_rate"]), ny, "output_jacobian_rate"));
     std::tie(compared[kA], compared[kB]) = point.linearization(
-        flat(reply["linearize_A"]), flat(reply["linearize_B"]), reply["linearize_status"].get<int>());
+        sized(flat(reply["linearize_A"]), nx * nx, "linearize A"),
+        sized(flat(reply["linearize_B"]), nx * static_cast<std::size_t>(ntau), "linearize B"),
+        reply["linearize_status"].get<int>());
     for (int j = 0; j < kRows; ++j) {
       const Compared& c = compared[j];
       if (c.reference.empty()) continue;
