@@ -21,6 +21,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "andrews_squeezer.hpp"
@@ -299,13 +300,16 @@ TEST_CASE("float kernels agree with double on every shipped rigid model") {
                          KANEGEN_LOOPS(nfourbar40, 1e-3, 500), KANEGEN_LOOPS(andrews_squeezer, 1e-5, 1000)}) {
     INFO(m.name);
     const Figures w = compare(m);
-    CHECK(w.mass_matrix < 1e-5);
-    CHECK(w.forcing < 1e-5);
-    CHECK(w.outputs < 1e-3);
-    CHECK(w.dynamics < 1e-3);
-    CHECK(w.constraints < 1e-5);
-    CHECK(w.jacobian < 1e-5);
-    CHECK(w.bias < 1e-5);
-    CHECK(w.lambda < 1e-3);
+    // About ten times the largest figure measured over these models
+    // (docs/embedded.md), so that a loss of a digit fails; nfourbar40's loop
+    // forces pass through its 80 x 80 C M^-1 C^T and get their own bound.
+    CHECK(w.mass_matrix < 5e-6);
+    CHECK(w.forcing < 5e-6);
+    CHECK(w.outputs < 1e-4);
+    CHECK(w.dynamics < 5e-5);
+    CHECK(w.constraints < 5e-6);
+    CHECK(w.jacobian < 5e-6);
+    CHECK(w.bias < 5e-6);
+    CHECK(w.lambda < (std::string(m.name) == "nfourbar40" ? 2e-3 : 2e-5));
   }
 }
