@@ -60,9 +60,9 @@ class Model {
     return table_.kinetic_energy(params(), q, u);
   }
   double potential_energy(const double* q) const { return table_.potential_energy(params(), q); }
+  bool has_nonconservative_power() const { return table_.nonconservative_power != nullptr; }
   /// The power of the non-conservative forces (the kernel's doc), without
   /// the drivers of prescribed motions; 0 for a table without the kernel.
-  bool has_nonconservative_power() const { return table_.nonconservative_power != nullptr; }
   double nonconservative_power(double t, const double* q, const double* u, const double* tau) const {
     return table_.nonconservative_power ? table_.nonconservative_power(params(), t, q, u, tau) : 0.0;
   }
