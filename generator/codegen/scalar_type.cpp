@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <set>
+#include <stdexcept>
 
 #include "codegen/cpp_printer.hpp"
 
@@ -51,9 +52,23 @@ std::string ScalarType::in_code(const std::string& double_code) const {
                                              "atan2", "exp", "log", "sqrt", "pow",  "fabs"};
   const auto identifier = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
   const std::string& in = double_code;
+  const auto refuse = [&](std::size_t at, const char* what) {
+    const std::size_t line = static_cast<std::size_t>(std::count(in.begin(), in.begin() + at, '\n')) + 1;
+    throw std::logic_error(std::string("ScalarType::in_code: ") + what + " on line " + std::to_string(line) +
+                           " of the code to convert is not handled; write it without, or extend in_code");
+  };
   std::string out;
   std::size_t at = 0;
   while (at < in.size()) {
+    if (in[at] == '"' || in[at] == '\'') refuse(at, "a string or character literal");
+    if (in.compare(at, 2, "/*") == 0) refuse(at, "a block comment");
+    if (in[at] == '.' && at + 1 < in.size() && std::isdigit(static_cast<unsigned char>(in[at + 1])) &&
+        (at == 0 || !identifier(in[at - 1])))
+      refuse(at, "a number with a leading dot");
+    if (in.compare(at, 5, "std::") == 0 && (at == 0 || !identifier(in[at - 1]))) refuse(at, "a std:: name");
+    if (in.compare(at, 2, "0x") == 0 || in.compare(at, 2, "0X") == 0) refuse(at, "a hexadecimal number");
+    if (in.compare(at, 2, "M_") == 0 && (at == 0 || !identifier(in[at - 1])))
+      refuse(at, "a <math.h> constant");
     if (in.compare(at, 2, "//") == 0) {  // a comment, to the end of its line
       const std::size_t end = std::min(in.find('\n', at), in.size());
       out += in.substr(at, end - at);

@@ -30,6 +30,11 @@ class ScalarType {
   /// C++ code written for double (the saddle-point solve of
   /// templates/solve_saddle.hpp) in this type: the word "double", every
   /// floating literal and every <math.h> call; comments are left as they are.
+  /// It reads the subset of C++ the template is written in, and throws
+  /// std::logic_error on anything it would get wrong (a string or character
+  /// literal, a block comment, a hexadecimal or a leading-dot number, a
+  /// std:: qualified call, M_PI), so that a template edit cannot leave a
+  /// double behind unnoticed.
   std::string in_code(const std::string& double_code) const;
 
  private:

@@ -93,4 +93,10 @@ TEST_CASE("in_code writes double code in float: the type, floating literals and 
         "  if (!(s > 1e-06f * largest) || s < 0.0f) return -(j + 1);\n"
         "  const float l = sqrtf(s) + fabsf(2.5e+03f), my_sqrt = doubled;\n");
   CHECK(ScalarType().in_code(code) == code);
+  // What it would get wrong, it refuses, naming the line.
+  const ScalarType single(Precision::single_precision);
+  for (const char* unhandled :
+       {"x = .5;", "x = 0x1p3;", "x = std::sqrt(y);", "x = M_PI;", "s = \"1.0\";", "c = '1';", "/* 1.0 */"})
+    CHECK_THROWS_WITH(single.in_code(std::string("a = 1.0;\n") + unhandled), Catch::Contains("on line 2"));
+  CHECK_NOTHROW(single.in_code("x1 = a.b + v0.x;  // \"quoted\" in a comment, std::sqrt, 0x1, .5\n"));
 }
