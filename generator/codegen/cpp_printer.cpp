@@ -80,10 +80,8 @@ class Printer {
     const long k = static_cast<long>(n.args.size());
     switch (n.op) {
       case Op::number:
-      case Op::input:
-        return 0;
-      case Op::add:
-        return k - 1;
+      case Op::input: return 0;
+      case Op::add: return k - 1;
       case Op::mul: {
         long c = k - 1;
         for (int a : n.args)
@@ -95,8 +93,7 @@ class Printer {
         const long e = std::labs(static_cast<long>(n.value));
         return (e - 1) + (n.value < 0 ? 1 : 0);
       }
-      default:
-        return 1;
+      default: return 1;
     }
   }
 
@@ -174,10 +171,8 @@ class Printer {
   std::string expression(int id) const {
     const Node& n = node(id);
     switch (n.op) {
-      case Op::number:
-        return scalar_.literal(n.value);
-      case Op::input:
-        return n.name;
+      case Op::number: return scalar_.literal(n.value);
+      case Op::input: return n.name;
       case Op::add: {
         std::string s;
         for (int a : n.args) {
@@ -210,20 +205,13 @@ class Printer {
           return scalar_.literal(1.0) + "/(" + repeated(n.args[0], static_cast<long>(-n.value)) + ")";
         return scalar_.function("pow") + "(" + text(n.args[0]) + ", " + scalar_.literal(n.value) + ")";
       }
-      case Op::sqrt:
-        return call("sqrt", n);
-      case Op::sin:
-        return call("sin", n);
-      case Op::cos:
-        return call("cos", n);
-      case Op::tan:
-        return call("tan", n);
-      case Op::exp:
-        return call("exp", n);
-      case Op::log:
-        return call("log", n);
-      case Op::abs:
-        return call("fabs", n);
+      case Op::sqrt: return call("sqrt", n);
+      case Op::sin: return call("sin", n);
+      case Op::cos: return call("cos", n);
+      case Op::tan: return call("tan", n);
+      case Op::exp: return call("exp", n);
+      case Op::log: return call("log", n);
+      case Op::abs: return call("fabs", n);
     }
     return "";
   }
