@@ -408,6 +408,14 @@ int run_verify(VerifyCommand& c) {
   stop_on_signal("verify");
   c.options.model = c.run.model;
   c.options.build = build_options(c.run);
+  // With --kernels nothing is generated, so --dynamics would be ignored:
+  // the files' forward_dynamics is the one they were generated with.
+  if (!c.options.kernels_dir.empty() && c.command->get_option("--dynamics")->count() > 0)
+    throw kanegen::runtime::UsageError("--dynamics has no effect with --kernels: the kernels in " +
+                                       c.options.kernels_dir +
+                                       " were generated already; regenerate them with 'kanegen generate "
+                                       "--dynamics " +
+                                       c.run.dynamics + "' or leave --dynamics out");
   c.options.build.jacobians = c.jacobians;
   c.options.build.controller = c.controller;
   return kanegen::cli::verify(c.options);

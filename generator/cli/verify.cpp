@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "cli/verify_controller.hpp"
+#include "cli/verify_differences.hpp"
 #include "cli/verify_jacobians.hpp"
 #include "cli/verify_power.hpp"
 #include "cli/verify_report.hpp"
@@ -325,19 +326,6 @@ class Sampler {
   int redrawn_ = 0;
 };
 
-std::vector<double> flatten(const json& rows) {
-  std::vector<double> flat;
-  for (const json& row : rows)
-    for (const json& x : row) flat.push_back(x.is_null() ? std::nan("") : x.get<double>());
-  return flat;
-}
-
-std::vector<double> numbers(const json& a) {
-  std::vector<double> v;
-  for (const json& x : a) v.push_back(x.is_null() ? std::nan("") : x.get<double>());
-  return v;
-}
-
 double scalar(const json& x) { return x.is_null() ? std::nan("") : x.get<double>(); }
 
 void evaluate_generated(RunnerProcess& runner, const Link& link, Sample& s) {
@@ -346,24 +334,24 @@ void evaluate_generated(RunnerProcess& runner, const Link& link, Sample& s) {
   if (link.inverse_dynamics) request["inverse_dynamics_udot"] = s.id_udot;
   const json reply = batch_request(runner, request);
   if (link.inverse_dynamics) {
-    s.inverse_dynamics = numbers(reply["inverse_dynamics"]);
-    s.gravity = numbers(reply["gravity"]);
+    s.inverse_dynamics = json_numbers(reply["inverse_dynamics"]);
+    s.gravity = json_numbers(reply["gravity"]);
   }
   s.power = reply.contains("nonconservative_power") ? scalar(reply["nonconservative_power"]) : std::nan("");
   s.pivot = reply["pivot"].get<int>();
-  if (s.pivot == 0) s.udot = numbers(reply["udot"]);
-  s.mass_matrix = flatten(reply["mass_matrix"]);
-  s.forcing = numbers(reply["forcing"]);
-  s.outputs = numbers(reply["outputs"]);
-  s.hessian = flatten(reply["kinetic_energy_hessian"]);
+  if (s.pivot == 0) s.udot = json_numbers(reply["udot"]);
+  s.mass_matrix = json_rows_flat(reply["mass_matrix"]);
+  s.forcing = json_numbers(reply["forcing"]);
+  s.outputs = json_numbers(reply["outputs"]);
+  s.hessian = json_rows_flat(reply["kinetic_energy_hessian"]);
   s.kinetic = scalar(reply["kinetic_energy"]);
   s.potential = scalar(reply["potential_energy"]);
   if (reply.contains("constraints")) {
-    s.phi = numbers(reply["constraints"]);
-    s.jacobian = flatten(reply["constraint_jacobian"]);
-    s.bias = numbers(reply["constraint_bias"]);
+    s.phi = json_numbers(reply["constraints"]);
+    s.jacobian = json_rows_flat(reply["constraint_jacobian"]);
+    s.bias = json_numbers(reply["constraint_bias"]);
     s.lambda = reply["lambda"].is_null() ? std::vector<double>(s.phi.size(), std::nan(""))
-                                         : numbers(reply["lambda"]);
+                                         : json_numbers(reply["lambda"]);
   }
 }
 

@@ -8,31 +8,15 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "cli/verify_differences.hpp"
+
 namespace kanegen::cli {
 namespace {
 
 using nlohmann::json;
 using Vector = std::vector<double>;
 
-constexpr double kEpsilon = 2.2e-16;
-/// The differences' round-off, in eps of the magnitude of the differenced
-/// quantity (as verify_jacobians.cpp: the Richardson step, sums that partly cancel).
-constexpr double kNoiseFactor = 1000;
-
 enum RowIndex { kCu, kSkew, kJacobian, kRate, kA, kB, kRows };
-
-Vector flat(const json& rows) {
-  Vector v;
-  for (const json& row : rows)
-    for (const json& x : row) v.push_back(x.is_null() ? std::nan("") : x.get<double>());
-  return v;
-}
-
-Vector numbers(const json& a) {
-  Vector v;
-  for (const json& x : a) v.push_back(x.is_null() ? std::nan("") : x.get<double>());
-  return v;
-}
 
 /// The reply's entry of `expected` numbers; another size means the runner's
 /// kernels are not the model's (files from another kanegen), which verify
@@ -74,26 +58,6 @@ Vector second_derivative(const std::function<Vector(double)>& g, double h) {
   return d;
 }
 
-/// Each entry's scale, as in verify_jacobians.cpp: its size, not below
-/// 1e-3 of the largest entry of its row nor 1e-6 of the largest overall,
-/// plus the differences' round-off over the tolerance.
-Vector scales(const Vector& reference, const Vector& noise, int columns, double tolerance) {
-  Vector s(reference.size());
-  double all = 0;
-  for (double x : reference) all = std::max(all, std::abs(x));
-  for (int r = 0; columns > 0 && r * columns < static_cast<int>(reference.size()); ++r) {
-    double row = 0;
-    for (int c = 0; c < columns; ++c) row = std::max(row, std::abs(reference[r * columns + c]));
-    for (int c = 0; c < columns; ++c) {
-      const int k = r * columns + c;
-      double size = std::max({std::abs(reference[k]), 1e-3 * row, 1e-6 * all});
-      if (size == 0) size = 1.0;
-      s[k] = size + noise[k] / tolerance;
-    }
-  }
-  return s;
-}
-
 /// One row's comparison at one point.
 struct Compared {
   Vector generated, reference, noise;
@@ -127,7 +91,7 @@ class PointCheck {
       for (int k = 0; k < n_; ++k) cu += C[r * n_ + k] * s.u[k];
       c.generated.push_back(cu);
       c.reference.push_back(-((plus.forcing[r] + back.forcing[r]) / 2 - rest.forcing[r]));
-      c.noise.push_back(kNoiseFactor * kEpsilon *
+      c.noise.push_back(kDifferenceNoiseFactor * kDifferenceEpsilon *
                         (plus.forcing_magnitude[r] + back.forcing_magnitude[r] + rest.forcing_magnitude[r]));
     }
     return c;
@@ -147,7 +111,7 @@ class PointCheck {
       for (int k = 0; k < n_; ++k) {
         c.generated.push_back(C[r * n_ + k] + C[k * n_ + r]);
         const double size = std::abs(M[r * n_ + k]) + std::sqrt(std::abs(M[r * n_ + r] * M[k * n_ + k]));
-        c.noise.push_back(kNoiseFactor * kEpsilon * size / h);
+        c.noise.push_back(kDifferenceNoiseFactor * kDifferenceEpsilon * size / h);
       }
     return c;
   }
@@ -187,7 +151,7 @@ class PointCheck {
           h);
       for (int i = 0; i < ny; ++i) {
         c.reference[i * n_ + j] = column[i];
-        c.noise[i * n_ + j] = kNoiseFactor * kEpsilon * std::abs(y[i]) / h;
+        c.noise[i * n_ + j] = kDifferenceNoiseFactor * kDifferenceEpsilon * std::abs(y[i]) / h;
       }
     }
     return c;
@@ -208,7 +172,7 @@ class PointCheck {
     c.reference =
         second_derivative([&](double step) { return at(shifted(s.q, step), s.u, s.tau).outputs; }, h);
     for (double y : output_magnitudes(at(s.q, s.u, s.tau).outputs))
-      c.noise.push_back(kNoiseFactor * kEpsilon * y / (h * h));
+      c.noise.push_back(kDifferenceNoiseFactor * kDifferenceEpsilon * y / (h * h));
     return c;
   }
 
@@ -281,14 +245,14 @@ class PointCheck {
         for (int k = 0; k < n_; ++k) sum += M[r * n_ + k] * A[(n_ + k) * wide + j];
         ca.generated.push_back(status == 0 ? sum : std::nan(""));
         ca.reference.push_back(dq[r * wide + j]);
-        ca.noise.push_back(kNoiseFactor * kEpsilon * magnitude[r] / steps[j]);
+        ca.noise.push_back(kDifferenceNoiseFactor * kDifferenceEpsilon * magnitude[r] / steps[j]);
       }
       for (int k = 0; k < ntau; ++k) {
         double sum = 0;
         for (int i = 0; i < n_; ++i) sum += M[r * n_ + i] * B[(n_ + i) * ntau + k];
         cb.generated.push_back(status == 0 ? sum : std::nan(""));
         cb.reference.push_back(dtau[r * ntau + k]);
-        cb.noise.push_back(kNoiseFactor * kEpsilon * magnitude[r]);
+        cb.noise.push_back(kDifferenceNoiseFactor * kDifferenceEpsilon * magnitude[r]);
       }
     }
     return {ca, cb};
@@ -374,22 +338,22 @@ std::vector<Row> controller_rows(RunnerProcess& process, const std::vector<Contr
     const PointCheck point(p, check);
     Compared compared[kRows];
     const std::size_t n = check.coordinates.size(), ny = check.outputs.size(), nx = 2 * n;
-    const Vector C = sized(flat(reply["coriolis_matrix"]), n * n, "coriolis_matrix");
+    const Vector C = sized(json_rows_flat(reply["coriolis_matrix"]), n * n, "coriolis_matrix");
     compared[kCu] = point.velocity_terms(C);
     compared[kSkew] = point.skew(C);
     compared[kJacobian] =
-        point.output_jacobian(sized(flat(reply["output_jacobian"]), ny * n, "output_jacobian"));
+        point.output_jacobian(sized(json_rows_flat(reply["output_jacobian"]), ny * n, "output_jacobian"));
     compared[kRate] =
-        point.output_jacobian_rate(sized(numbers(reply["output_jacobian_rate"]), ny, "output_jacobian_rate"));
+        point.output_jacobian_rate(sized(json_numbers(reply["output_jacobian_rate"]), ny, "output_jacobian_rate"));
     std::tie(compared[kA], compared[kB]) = point.linearization(
-        sized(flat(reply["linearize_A"]), nx * nx, "linearize A"),
-        sized(flat(reply["linearize_B"]), nx * static_cast<std::size_t>(ntau), "linearize B"),
+        sized(json_rows_flat(reply["linearize_A"]), nx * nx, "linearize A"),
+        sized(json_rows_flat(reply["linearize_B"]), nx * static_cast<std::size_t>(ntau), "linearize B"),
         reply["linearize_status"].get<int>());
     for (int j = 0; j < kRows; ++j) {
       const Compared& c = compared[j];
       if (c.reference.empty()) continue;
       rows[j].consider(compare_entries(c.generated, c.reference,
-                                       scales(c.reference, c.noise, c.columns, check.tolerance), names[j],
+                                       difference_scales(c.reference, c.noise, c.columns, check.tolerance), names[j],
                                        p.sample));
       ++rows[j].compared;
     }
@@ -416,11 +380,7 @@ std::vector<Row> controller_rows_not_applicable(const std::string& reason) {
 }
 
 Row controller_absent_row(bool requested) {
-  Row row("controller kernels", "numeric path", 0.0);
-  row.applicable = false;
-  row.note = requested ? "the kernels have none (generate them with --controller)"
-                       : "not generated (kanegen verify --controller checks them)";
-  return row;
+  return optional_kernels_absent_row("controller kernels", "numeric path", "--controller", requested);
 }
 
 }  // namespace kanegen::cli

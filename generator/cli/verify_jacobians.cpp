@@ -6,21 +6,13 @@
 #include <functional>
 #include <random>
 
+#include "cli/verify_differences.hpp"
+
 namespace kanegen::cli {
 namespace {
 
 using nlohmann::json;
 using Vector = std::vector<double>;
-
-constexpr double kEpsilon = 2.2e-16;
-/// The differences' round-off is taken as this many eps of the magnitude of
-/// the differenced row over the step: the Richardson step triples it, the
-/// magnitude is itself a sum of terms that partly cancel, and with
-/// foreshortening in modes the numeric M and f are a weighted sum of five
-/// evaluations (numeric/dynamics.cpp, truncation_samples), whose round-off
-/// is larger again (free_strip_modal: 1.3e-10 in d(M a)/dq, where 100 eps
-/// allowed as much).
-constexpr double kNoiseFactor = 1000;
 
 /// The numeric quantities that are differenced, stacked: f (n), M a (n) and
 /// C^T lambda (n), with the magnitude of the terms summed into each row.
@@ -72,7 +64,7 @@ Differences differences(const std::function<Stacked(const Vector&)>& g, const Ve
     const Vector coarse = central(h[k]), fine = central(h[k] / 2);
     for (std::size_t i = 0; i < m; ++i) {
       d.jacobian[i * n + k] = (4 * fine[i] - coarse[i]) / 3;
-      d.noise[i * n + k] = kNoiseFactor * kEpsilon * at.magnitude[i] / h[k];
+      d.noise[i * n + k] = difference_noise(at.magnitude[i], h[k]);
     }
   }
   return d;
@@ -102,17 +94,11 @@ Compared evaluate_point(RunnerProcess& process, const JacobianPoint& p, const Ja
                {"p", p.runner_p}, {"eval", "energy"}, {"jacobians", true}, {"jacobian_a", a}};
   if (loops > 0) request["jacobian_lambda"] = lambda;
   const json reply = batch_request(process, request);
-  const auto flat = [](const json& rows) {
-    Vector v;
-    for (const json& row : rows)
-      for (const json& x : row) v.push_back(x.is_null() ? std::nan("") : x.get<double>());
-    return v;
-  };
   Compared c;
-  c.generated[0] = flat(reply["forcing_jacobian_q"]);
-  c.generated[1] = flat(reply["forcing_jacobian_u"]);
-  c.generated[2] = flat(reply["mass_matrix_product_jacobian"]);
-  if (loops > 0) c.generated[3] = flat(reply["constraint_force_jacobian"]);
+  c.generated[0] = json_rows_flat(reply["forcing_jacobian_q"]);
+  c.generated[1] = json_rows_flat(reply["forcing_jacobian_u"]);
+  c.generated[2] = json_rows_flat(reply["mass_matrix_product_jacobian"]);
+  if (loops > 0) c.generated[3] = json_rows_flat(reply["constraint_force_jacobian"]);
 
   // Steps: f is quadratic in u, so its steps can be large; in q they are
   // small against each coordinate's range of values.
@@ -146,28 +132,6 @@ Compared evaluate_point(RunnerProcess& process, const JacobianPoint& p, const Ja
   return c;
 }
 
-/// Each entry's scale: its size, not below 1e-3 of the largest entry of its
-/// row at that point nor 1e-6 of the largest overall (an entry that is zero
-/// by structure is held to the round-off of its row); plus the differences'
-/// round-off over the tolerance, so that error <= tolerance * scale means
-/// |generated - reference| <= tolerance * size + round-off.
-Vector scales(const Vector& reference, const Vector& noise, int n, double tolerance) {
-  Vector s(reference.size());
-  double all = 0;
-  for (double x : reference) all = std::max(all, std::abs(x));
-  for (int r = 0; r * n < static_cast<int>(reference.size()); ++r) {
-    double row = 0;
-    for (int c = 0; c < n; ++c) row = std::max(row, std::abs(reference[r * n + c]));
-    for (int c = 0; c < n; ++c) {
-      const int k = r * n + c;
-      double size = std::max({std::abs(reference[k]), 1e-3 * row, 1e-6 * all});
-      if (size == 0) size = 1.0;
-      s[k] = size + noise[k] / tolerance;
-    }
-  }
-  return s;
-}
-
 }  // namespace
 
 std::vector<Row> jacobian_rows(RunnerProcess& process, const std::vector<JacobianPoint>& points,
@@ -190,7 +154,7 @@ std::vector<Row> jacobian_rows(RunnerProcess& process, const std::vector<Jacobia
     loops = !c.generated[3].empty();
     for (int j = 0; j < (loops ? 4 : 3); ++j) {
       rows[j].consider(compare_entries(c.generated[j], c.reference[j],
-                                       scales(c.reference[j], c.noise[j], n, check.tolerance), name,
+                                       difference_scales(c.reference[j], c.noise[j], n, check.tolerance), name,
                                        p.sample));
       ++rows[j].compared;
     }
@@ -203,11 +167,7 @@ std::vector<Row> jacobian_rows(RunnerProcess& process, const std::vector<Jacobia
 }
 
 Row jacobians_absent_row(bool requested) {
-  Row row("Jacobians", "differences of the numeric path", 0.0);
-  row.applicable = false;
-  row.note = requested ? "the kernels have none (generate them with --jacobians)"
-                       : "not generated (kanegen verify --jacobians checks them)";
-  return row;
+  return optional_kernels_absent_row("Jacobians", "differences of the numeric path", "--jacobians", requested);
 }
 
 }  // namespace kanegen::cli

@@ -34,9 +34,10 @@ Eigen::Matrix3d deformed_second_moment(const InertiaInvariants& inv, const Eigen
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b) {
       c(a, b) = inv.S_r.row(3 * a + b).dot(q);
-      d(a, b) = q.dot(inv.S_nn[3 * a + b] * q);
+      // Symmetric; q.S_nn[3b+a] q rounds differently from its twin q.S_nn[3a+b] q.
+      d(a, b) = b < a ? d(b, a) : q.dot(inv.S_nn[3 * a + b] * q);
     }
-  return inv.second_moment + c + c.transpose() + d;
+  return inv.second_moment + (c + c.transpose()) + d;  // grouped so that the sum is symmetric too
 }
 
 Eigen::MatrixXd ffr_mass_matrix(const InertiaInvariants& inv, const Eigen::VectorXd& q) {

@@ -157,6 +157,15 @@ TEST_CASE("verify --kernels of another model is a clear error", "[verify]") {
   CHECK(contains(r.err, "error: the kernels do not match"));
 }
 
+TEST_CASE("verify --kernels with --dynamics is refused, not ignored", "[verify]") {
+  const fs::path dir = generate("models/simple_pendulum.json", "dynamics");
+  const Result r = kanegen("verify " + source("models/simple_pendulum.json") + " --kernels " + dir.string() +
+                           " --dynamics recursive --quiet");
+  CHECK(r.status == 2);
+  CHECK(contains(r.err, "error: --dynamics has no effect with --kernels"));
+  CHECK(contains(r.err, "kanegen generate --dynamics recursive"));
+}
+
 TEST_CASE("verify refuses loops that are dependent everywhere, naming the fix", "[verify][loops]") {
   // The four-bar with a spatial revolute: its out-of-plane rows vanish identically.
   nlohmann::json model = nlohmann::json::parse(slurp(source("models/four_bar.json")));
