@@ -37,8 +37,8 @@ std::vector<double> difference_scales(const std::vector<double>& reference, cons
   return s;
 }
 
-Row optional_kernels_absent_row(const std::string& title, const std::string& reference, const std::string& flag,
-                                bool requested) {
+Row optional_kernels_absent_row(const std::string& title, const std::string& reference,
+                                const std::string& flag, bool requested) {
   Row row(title, reference, 0.0);
   row.applicable = false;
   row.note = requested ? "the kernels have none (generate them with " + flag + ")"

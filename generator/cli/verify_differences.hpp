@@ -45,7 +45,7 @@ std::vector<double> difference_scales(const std::vector<double>& reference, cons
 /// The row of an optional kernel group (`title`, e.g. "Jacobians", checked
 /// against `reference`) that the kernels do not have: `requested` with its
 /// `flag` (e.g. "--jacobians") or not.
-Row optional_kernels_absent_row(const std::string& title, const std::string& reference, const std::string& flag,
-                                bool requested);
+Row optional_kernels_absent_row(const std::string& title, const std::string& reference,
+                                const std::string& flag, bool requested);
 
 }  // namespace kanegen::cli

@@ -4,12 +4,12 @@
 // (an independent check of any solver), on banded, dense and pivoting
 // matrices; singular matrices refused with their column; the envelope
 // product against the plain one.
+#include "envelope_lu.hpp"
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
 #include <vector>
-
-#include "envelope_lu.hpp"
 
 using namespace kanegen::runtime::detail;
 
@@ -46,7 +46,8 @@ Matrix banded(int n, int half_band, std::mt19937_64& rng, bool dominant) {
   std::uniform_real_distribution<double> value(-1, 1);
   Matrix a(n * n, 0.0);
   for (int i = 0; i < n; ++i)
-    for (int j = std::max(0, i - half_band); j <= std::min(n - 1, i + half_band); ++j) a[i * n + j] = value(rng);
+    for (int j = std::max(0, i - half_band); j <= std::min(n - 1, i + half_band); ++j)
+      a[i * n + j] = value(rng);
   if (dominant)
     for (int i = 0; i < n; ++i) a[i * n + i] += 2 * half_band + 1;
   return a;
