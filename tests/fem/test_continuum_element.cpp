@@ -203,3 +203,26 @@ TEST_CASE("continuum: inverted elements and bad input are refused", "[continuum]
   CHECK_THROWS_WITH(ContinuumElement(ContinuumFamily::kQuad4, tilted, kSteel, 0.01),
                     Catch::Contains("not in one plane z = const"));
 }
+
+TEST_CASE("continuum: consistent mass of a rectangle and a brick is the textbook matrix", "[continuum]") {
+  // Per direction, the bilinear consistent mass couples node pairs with weight 2 (same) or 1 (other)
+  // over 6 (m = 1): M_ij = m prod_k (c_ik c_jk == 1 ? 2 : 1) / 6^d, the textbook m/36 [4 2 1 2] of the
+  // rectangle and m/216 [8 4 2 1] of the brick; every translation component carries the same matrix.
+  for (ContinuumFamily family : {ContinuumFamily::kQuad4, ContinuumFamily::kHex8}) {
+    INFO(ccx_type_name(family));
+    const int d = family_dimension(family);
+    const Eigen::Matrix3d A = Eigen::Vector3d(0.3, 0.1, d == 2 ? 0.0 : 0.05).asDiagonal();
+    const ContinuumElement element(family, element_nodes(family, A, Eigen::Vector3d(1, 1, 0), 0.0), kSteel,
+                                   0.004);
+    const double m = kSteel.rho * (d == 2 ? 0.3 * 0.1 * 0.004 : 0.3 * 0.1 * 0.05);
+    const Eigen::MatrixXd c = family_natural_nodes(family), M = element.mass();
+    for (int i = 0; i < c.cols(); ++i)
+      for (int j = 0; j < c.cols(); ++j) {
+        double expected = m;
+        for (int k = 0; k < d; ++k) expected *= (c(k, i) == c(k, j) ? 2.0 : 1.0) / 6.0;
+        for (int a = 0; a < d; ++a)
+          for (int b = 0; b < d; ++b)
+            CHECK(M(d * i + a, d * j + b) == Approx(a == b ? expected : 0.0).margin(1e-15 * m));
+      }
+  }
+}
