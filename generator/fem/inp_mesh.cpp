@@ -44,6 +44,7 @@ std::vector<std::string> fields(const std::string& line) {
 }
 
 const char* kSupported = "CPS4, CPS8, C3D8, C3D20";
+constexpr long kMaxGenerated = 10000000;
 
 bool family_of(const std::string& type, ContinuumFamily& family) {
   static const std::map<std::string, ContinuumFamily> types = {{"CPS4", ContinuumFamily::kQuad4},
@@ -238,6 +239,10 @@ class Reader {
       const int first = integer(f[0], "a first id"), last = integer(f[1], "a last id");
       const int step = f.size() == 3 ? integer(f[2], "an increment") : 1;
       if (last < first) fail(line_, "GENERATE's last id is below its first", "write: first, last, increment");
+      // A typo in an id must not make a set of a billion members.
+      if ((static_cast<long>(last) - first) / step >= kMaxGenerated)
+        fail(line_, "GENERATE would list more than " + std::to_string(kMaxGenerated) + " ids",
+             "check first, last and increment");
       for (long id = first; id <= last; id += step) members.push_back(static_cast<int>(id));
       return;
     }

@@ -121,6 +121,8 @@ TEST_CASE("inp mesh: bad meshes get an error naming the file, the line and the e
   CHECK_THROWS_WITH(read_text("*NODE\n1,0,0\n*ELEMENT, TYPE=CPS4\n1, 1,1,1,1\n*NSET, NSET=A\nB\n"),
                     Catch::Contains("line 6: set 'B' is not defined before this line"));
   CHECK_THROWS_WITH(read_text("*NODE\n-1, 0, 0\n"), Catch::Contains("'-1' is not a node id"));
+  CHECK_THROWS_WITH(read_text("*NSET, NSET=A, GENERATE\n1, 2000000000, 1\n"),
+                    Catch::Contains("line 2: GENERATE would list more than 10000000 ids"));
   CHECK_THROWS_WITH(read_text("*INCLUDE, INPUT=x.inp\n"), Catch::Contains("*INCLUDE is not supported"));
   // A degenerate element (all nodes at one point) is refused as well, with its line.
   CHECK_THROWS_WITH(
