@@ -14,6 +14,16 @@ const DofLayout& spatial_layout() {
   return layout;
 }
 
+const DofLayout& plane_layout() {
+  static const DofLayout layout{DofKind::kUx, DofKind::kUy};
+  return layout;
+}
+
+const DofLayout& solid_layout() {
+  static const DofLayout layout{DofKind::kUx, DofKind::kUy, DofKind::kUz};
+  return layout;
+}
+
 Eigen::MatrixXd Element::mass() const {
   const int n = num_dofs();
   Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n, n);

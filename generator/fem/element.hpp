@@ -24,6 +24,10 @@ using DofLayout = std::vector<DofKind>;
 const DofLayout& planar_layout();
 /// Spatial layout (u, v, w, theta_x, theta_y, theta_z).
 const DofLayout& spatial_layout();
+/// Plane continuum layout (u, v): plane-stress elements in the x-y plane, no rotations.
+const DofLayout& plane_layout();
+/// Solid continuum layout (u, v, w): solid elements, no rotations.
+const DofLayout& solid_layout();
 
 /// An element's kinematics at one point of natural coordinates xi.
 struct ShapeSample {

@@ -1,0 +1,272 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "fem/continuum_element.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "fem/quadrature.hpp"
+
+namespace kanegen::fem {
+
+namespace {
+
+bool is_quadratic(ContinuumFamily family) {
+  return family == ContinuumFamily::kQuad8 || family == ContinuumFamily::kHex20;
+}
+
+/// Gauss points per direction: full integration, as CalculiX's CPS4/C3D8 (2) and CPS8/C3D20 (3).
+int gauss_order(ContinuumFamily family) { return is_quadratic(family) ? 3 : 2; }
+
+/// The shape function of the node at natural coordinates c, and its gradient, at x.
+/// Linear: prod_k (1 + x_k c_k) / 2. Serendipity corner: that product times
+/// (sum_k x_k c_k - (d - 1)); serendipity mid-edge node (c_m = 0): (1 - x_m^2)
+/// prod_{k != m} (1 + x_k c_k) / 2.
+double node_shape(bool quadratic, int d, const Eigen::VectorXd& c, const Eigen::Vector3d& x,
+                  Eigen::Ref<Eigen::RowVectorXd, 0, Eigen::InnerStride<>> grad) {
+  int mid = -1;
+  for (int k = 0; k < d; ++k)
+    if (c[k] == 0.0) mid = k;
+  // p_k = (1 + x_k c_k) / 2 over the non-mid directions; prod_except(j) leaves p_j out.
+  auto p = [&](int k) { return 0.5 * (1.0 + x[k] * c[k]); };
+  auto prod_except = [&](int skip1, int skip2) {
+    double out = 1.0;
+    for (int k = 0; k < d; ++k)
+      if (k != skip1 && k != skip2) out *= p(k);
+    return out;
+  };
+  if (mid >= 0) {
+    const double bubble = 1.0 - x[mid] * x[mid];
+    for (int j = 0; j < d; ++j)
+      grad[j] = j == mid ? -2.0 * x[mid] * prod_except(mid, -1) : bubble * 0.5 * c[j] * prod_except(mid, j);
+    return bubble * prod_except(mid, -1);
+  }
+  const double product = prod_except(-1, -1);
+  if (!quadratic) {
+    for (int j = 0; j < d; ++j) grad[j] = 0.5 * c[j] * prod_except(j, -1);
+    return product;
+  }
+  double s = -(d - 1.0);
+  for (int k = 0; k < d; ++k) s += x[k] * c[k];
+  for (int j = 0; j < d; ++j) grad[j] = 0.5 * c[j] * prod_except(j, -1) * s + product * c[j];
+  return product * s;
+}
+
+/// Isotropic elasticity matrix: plane stress (3 x 3, strains xx, yy, gamma_xy)
+/// or 3D (6 x 6, strains xx, yy, zz, gamma_xy, gamma_yz, gamma_zx).
+Eigen::MatrixXd elasticity(int dimension, double E, double nu) {
+  if (dimension == 2) {
+    Eigen::MatrixXd d(3, 3);
+    d << 1.0, nu, 0.0, nu, 1.0, 0.0, 0.0, 0.0, 0.5 * (1.0 - nu);
+    return E / (1.0 - nu * nu) * d;
+  }
+  const double lambda = E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), mu = E / (2.0 * (1.0 + nu));
+  Eigen::MatrixXd d = Eigen::MatrixXd::Zero(6, 6);
+  d.topLeftCorner(3, 3).setConstant(lambda);
+  d.topLeftCorner(3, 3).diagonal().array() += 2.0 * mu;
+  d.bottomRightCorner(3, 3).diagonal().setConstant(mu);
+  return d;
+}
+
+/// Strain-displacement matrix B (3 or 6 rows x num_dofs) from dN/dx.
+Eigen::MatrixXd strain_matrix(const Eigen::MatrixXd& dNdx) {
+  const int n = static_cast<int>(dNdx.rows()), d = static_cast<int>(dNdx.cols());
+  if (d == 2) {
+    Eigen::MatrixXd b = Eigen::MatrixXd::Zero(3, 2 * n);
+    for (int i = 0; i < n; ++i) {
+      b(0, 2 * i) = b(2, 2 * i + 1) = dNdx(i, 0);
+      b(1, 2 * i + 1) = b(2, 2 * i) = dNdx(i, 1);
+    }
+    return b;
+  }
+  Eigen::MatrixXd b = Eigen::MatrixXd::Zero(6, 3 * n);
+  for (int i = 0; i < n; ++i) {
+    const double dx = dNdx(i, 0), dy = dNdx(i, 1), dz = dNdx(i, 2);
+    const int u = 3 * i, v = u + 1, w = u + 2;
+    b(0, u) = dx;
+    b(1, v) = dy;
+    b(2, w) = dz;
+    b(3, u) = dy, b(3, v) = dx;
+    b(4, v) = dz, b(4, w) = dy;
+    b(5, w) = dx, b(5, u) = dz;
+  }
+  return b;
+}
+
+std::string describe(const Eigen::Vector3d& xi, int dimension) {
+  std::ostringstream out;
+  out << "xi = (";
+  for (int k = 0; k < dimension; ++k) out << (k ? ", " : "") << xi[k];
+  out << ")";
+  return out.str();
+}
+
+}  // namespace
+
+const char* ccx_type_name(ContinuumFamily family) {
+  switch (family) {
+    case ContinuumFamily::kQuad4:
+      return "CPS4";
+    case ContinuumFamily::kQuad8:
+      return "CPS8";
+    case ContinuumFamily::kHex8:
+      return "C3D8";
+    case ContinuumFamily::kHex20:
+      return "C3D20";
+  }
+  return "?";
+}
+
+int family_num_nodes(ContinuumFamily family) {
+  switch (family) {
+    case ContinuumFamily::kQuad4:
+      return 4;
+    case ContinuumFamily::kQuad8:
+    case ContinuumFamily::kHex8:
+      return 8;
+    case ContinuumFamily::kHex20:
+      return 20;
+  }
+  return 0;
+}
+
+int family_dimension(ContinuumFamily family) {
+  return family == ContinuumFamily::kQuad4 || family == ContinuumFamily::kQuad8 ? 2 : 3;
+}
+
+Eigen::MatrixXd family_natural_nodes(ContinuumFamily family) {
+  // Corners counter-clockwise seen from +z (bottom face first for hexahedra),
+  // then the mid-edge nodes in CalculiX's order.
+  static const double quad[2][8] = {{-1, 1, 1, -1, 0, 1, 0, -1}, {-1, -1, 1, 1, -1, 0, 1, 0}};
+  static const double hex[3][20] = {{-1, 1, 1, -1, -1, 1, 1, -1, 0, 1, 0, -1, 0, 1, 0, -1, -1, 1, 1, -1},
+                                    {-1, -1, 1, 1, -1, -1, 1, 1, -1, 0, 1, 0, -1, 0, 1, 0, -1, -1, 1, 1},
+                                    {-1, -1, -1, -1, 1, 1, 1, 1, -1, -1, -1, -1, 1, 1, 1, 1, 0, 0, 0, 0}};
+  const int d = family_dimension(family), n = family_num_nodes(family);
+  Eigen::MatrixXd c(d, n);
+  for (int k = 0; k < d; ++k)
+    for (int i = 0; i < n; ++i) c(k, i) = d == 2 ? quad[k][i] : hex[k][i];
+  return c;
+}
+
+NaturalShape natural_shape(ContinuumFamily family, const Eigen::Vector3d& xi) {
+  const Eigen::MatrixXd c = family_natural_nodes(family);
+  const int d = static_cast<int>(c.rows()), n = static_cast<int>(c.cols());
+  NaturalShape s{Eigen::VectorXd(n), Eigen::MatrixXd(n, d)};
+  for (int i = 0; i < n; ++i) s.N[i] = node_shape(is_quadratic(family), d, c.col(i), xi, s.dN.row(i));
+  return s;
+}
+
+ContinuumElement::ContinuumElement(ContinuumFamily family, const Eigen::Matrix3Xd& nodes,
+                                   const ContinuumMaterial& material, double thickness)
+    : family_(family), nodes_(nodes), material_(material), thickness_(thickness) {
+  const int d = dimension(), n = num_nodes();
+  if (nodes.cols() != n)
+    throw std::invalid_argument(std::string(ccx_type_name(family)) + " element: expected " +
+                                std::to_string(n) + " nodes, got " + std::to_string(nodes.cols()));
+  if (!(material.E > 0.0 && material.rho > 0.0 && material.nu > -1.0 && material.nu < 0.5))
+    throw std::invalid_argument("continuum element: material needs E > 0, rho > 0 and -1 < nu < 0.5");
+  if (d == 2) {
+    if (!(thickness > 0.0)) throw std::invalid_argument("plane element: thickness must be positive");
+    const double scale = nodes.cwiseAbs().maxCoeff();
+    if ((nodes.row(2).array() - nodes(2, 0)).abs().maxCoeff() > 1e-9 * std::max(scale, 1e-300))
+      throw std::invalid_argument("plane element: its nodes are not in one plane z = const");
+  } else {
+    thickness_ = 1.0;
+  }
+  // det J must be positive at the nodes as well as at the Gauss points: a
+  // folded element can still be positive at every Gauss point.
+  const Eigen::MatrixXd corners = family_natural_nodes(family);
+  double det_j = 0.0;
+  for (int i = 0; i < n; ++i) {
+    Eigen::Vector3d xi = Eigen::Vector3d::Zero();
+    xi.head(d) = corners.col(i);
+    physical_gradient(natural_shape(family, xi), xi, det_j);
+  }
+  const QuadratureRule rule = gauss_legendre(gauss_order(family));
+  const int m = static_cast<int>(rule.points.size());
+  const int count = d == 2 ? m * m : m * m * m;
+  for (int p = 0; p < count; ++p) {
+    // Map [0, 1] to [-1, 1]: the weights double per direction.
+    const int index[3] = {p % m, (p / m) % m, p / (m * m)};
+    Eigen::Vector3d xi = Eigen::Vector3d::Zero();
+    double w = thickness_;
+    for (int k = 0; k < d; ++k) {
+      xi[k] = 2.0 * rule.points[index[k]] - 1.0;
+      w *= 2.0 * rule.weights[index[k]];
+    }
+    const NaturalShape s = natural_shape(family, xi);
+    const Eigen::MatrixXd dNdx = physical_gradient(s, xi, det_j);
+    gauss_.push_back({xi, s.N, dNdx, w * det_j});
+  }
+}
+
+Eigen::MatrixXd ContinuumElement::physical_gradient(const NaturalShape& shape, const Eigen::Vector3d& xi,
+                                                    double& det_j) const {
+  const int d = dimension();
+  // J_kl = d x_l / d xi_k.
+  const Eigen::MatrixXd jac = shape.dN.transpose() * nodes_.topRows(d).transpose();
+  det_j = jac.determinant();
+  if (!(det_j > 0.0)) throw InvertedElementError(det_j, describe(xi, d));
+  return shape.dN * jac.inverse().transpose();
+}
+
+const DofLayout& ContinuumElement::node_layout() const {
+  return dimension() == 2 ? plane_layout() : solid_layout();
+}
+
+ShapeSample ContinuumElement::sample(const Eigen::VectorXd& N, const Eigen::MatrixXd& dNdx) const {
+  const int d = dimension(), n = num_nodes();
+  ShapeSample s{nodes_ * N, Eigen::MatrixXd::Zero(3, d * n), Eigen::MatrixXd::Zero(3, d * n)};
+  for (int i = 0; i < n; ++i) {
+    for (int a = 0; a < d; ++a) s.N(a, d * i + a) = N[i];
+    // theta = curl(d) / 2: theta_z = (dv/dx - du/dy) / 2, and for solids
+    // theta_x = (dw/dy - dv/dz) / 2, theta_y = (du/dz - dw/dx) / 2.
+    s.Nrot(2, d * i + 1) += 0.5 * dNdx(i, 0);
+    s.Nrot(2, d * i + 0) -= 0.5 * dNdx(i, 1);
+    if (d == 3) {
+      s.Nrot(0, 3 * i + 2) += 0.5 * dNdx(i, 1);
+      s.Nrot(0, 3 * i + 1) -= 0.5 * dNdx(i, 2);
+      s.Nrot(1, 3 * i + 0) += 0.5 * dNdx(i, 2);
+      s.Nrot(1, 3 * i + 2) -= 0.5 * dNdx(i, 0);
+    }
+  }
+  return s;
+}
+
+ShapeSample ContinuumElement::shape(const Eigen::Vector3d& xi) const {
+  const NaturalShape s = natural_shape(family_, xi);
+  double det_j = 0.0;
+  return sample(s.N, physical_gradient(s, xi, det_j));
+}
+
+std::vector<MassPoint> ContinuumElement::mass_points() const {
+  std::vector<MassPoint> points;
+  for (const GaussSample& g : gauss_) {
+    ShapeSample s = sample(g.N, g.dNdx);
+    points.push_back(
+        {material_.rho * g.weight, s.r, std::move(s.N), Eigen::Matrix3d::Zero(), std::move(s.Nrot)});
+  }
+  return points;
+}
+
+Eigen::MatrixXd ContinuumElement::stiffness() const {
+  const Eigen::MatrixXd D = elasticity(dimension(), material_.E, material_.nu);
+  Eigen::MatrixXd k = Eigen::MatrixXd::Zero(num_dofs(), num_dofs());
+  for (const GaussSample& g : gauss_) {
+    const Eigen::MatrixXd b = strain_matrix(g.dNdx);
+    k.noalias() += g.weight * b.transpose() * D * b;
+  }
+  return 0.5 * (k + k.transpose());  // exactly symmetric
+}
+
+Eigen::MatrixXd ContinuumElement::geometric_stiffness(const Prestress&) const {
+  throw std::logic_error(std::string("the geometric stiffness of ") + ccx_type_name(family_) +
+                         " elements is not implemented yet (issue 18)");
+}
+
+double ContinuumElement::volume() const {
+  double v = 0.0;
+  for (const GaussSample& g : gauss_) v += g.weight;
+  return v;
+}
+
+}  // namespace kanegen::fem
