@@ -1092,12 +1092,12 @@ int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const doubl
   udot[4] = z[2];
   udot[5] = z[3];
   udot[6] = z[4];
-  lambda[0] = z[7];
-  lambda[1] = z[8];
-  lambda[2] = z[9];
-  lambda[3] = z[10];
-  lambda[4] = z[11];
-  lambda[5] = z[12];
+  lambda[0] = -z[7];
+  lambda[1] = -z[8];
+  lambda[2] = -z[9];
+  lambda[3] = -z[10];
+  lambda[4] = -z[11];
+  lambda[5] = -z[12];
   return 0;
 }
 

@@ -431,8 +431,8 @@ int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const doubl
   udot[0] = z[1];
   udot[1] = z[2];
   udot[2] = z[0];
-  lambda[0] = z[3];
-  lambda[1] = z[4];
+  lambda[0] = -z[3];
+  lambda[1] = -z[4];
   return 0;
 }
 

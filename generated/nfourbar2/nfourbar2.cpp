@@ -608,10 +608,10 @@ int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const doubl
   udot[2] = z[0];
   udot[3] = z[3];
   udot[4] = z[1];
-  lambda[0] = z[5];
-  lambda[1] = z[6];
-  lambda[2] = z[7];
-  lambda[3] = z[8];
+  lambda[0] = -z[5];
+  lambda[1] = -z[6];
+  lambda[2] = -z[7];
+  lambda[3] = -z[8];
   return 0;
 }
 

@@ -604,8 +604,8 @@ int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const doubl
   udot[4] = z[3];
   udot[5] = z[2];
   udot[6] = z[5];
-  lambda[0] = z[6];
-  lambda[1] = z[7];
+  lambda[0] = -z[6];
+  lambda[1] = -z[7];
   udot[0] = ap0;
   return 0;
 }

@@ -2296,8 +2296,8 @@ int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const doubl
   udot[24] = z[24];
   udot[25] = z[9];
   udot[26] = z[10];
-  lambda[0] = z[26];
-  lambda[1] = z[27];
+  lambda[0] = -z[26];
+  lambda[1] = -z[27];
   udot[0] = ap0;
   return 0;
 }

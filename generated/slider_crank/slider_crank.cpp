@@ -383,8 +383,8 @@ int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const doubl
   z[0] -= sl2_0*z[2];
   udot[1] = z[1];
   udot[2] = z[0];
-  lambda[0] = z[2];
-  lambda[1] = z[3];
+  lambda[0] = -z[2];
+  lambda[1] = -z[3];
   udot[0] = ap0;
   return 0;
 }

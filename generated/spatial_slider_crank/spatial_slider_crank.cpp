@@ -3017,9 +3017,9 @@ int constrained_dynamics([[maybe_unused]] const Params& p, [[maybe_unused]] doub
   udot[25] = z[4];
   udot[26] = z[22];
   udot[27] = z[16];
-  lambda[0] = z[27];
-  lambda[1] = z[28];
-  lambda[2] = z[29];
+  lambda[0] = -z[27];
+  lambda[1] = -z[28];
+  lambda[2] = -z[29];
   udot[0] = ap0;
   return 0;
 }

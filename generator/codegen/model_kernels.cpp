@@ -295,9 +295,11 @@ KernelCode sparse_constrained_dynamics_kernel(const Derivation& d, const SaddleN
   for (int i = 0; i < ns; ++i) saddle.push_back({"z[" + str(position[i]) + "]", nodes.b[i]});
   for (int r = 0; r < nc; ++r) saddle.push_back({"z[" + str(position[ns + r]) + "]", nodes.g[r]});
   const PrintedKernel body = print_kernel(d.graph, saddle, d.scalar);
-  std::string unpack;  // udot and lambda out of z, the prescribed accelerations given
+  // udot and lambda out of z, the prescribed accelerations given; z holds
+  // -lambda (M udot + C^T z = b), lambda as in M udot = f + C^T lambda.
+  std::string unpack;
   for (int i = 0; i < ns; ++i) unpack += "  udot[" + str(d.solved[i]) + "] = z[" + str(position[i]) + "];\n";
-  for (int r = 0; r < nc; ++r) unpack += "  lambda[" + str(r) + "] = z[" + str(position[ns + r]) + "];\n";
+  for (int r = 0; r < nc; ++r) unpack += "  lambda[" + str(r) + "] = -z[" + str(position[ns + r]) + "];\n";
   return {Kernel::constrained_dynamics,
           d.prescribed.body + "  " + d.scalar.name() + " z[" + str(ns + nc) +
               "];  // the right-hand side [b; g], then [udot; lambda], in elimination order\n" + body.body +
