@@ -321,13 +321,13 @@ KernelCode constrained_dynamics_kernel(const Derivation& d) {
   const long dense = dense_saddle_operations(ns, nc);
   if (sparse.operations < dense) {
     KernelCode code = sparse_constrained_dynamics_kernel(d, nodes, structure, order, sparse);
-    code.count_note = " (" + str(sparse.operations) + " of them in the sparse saddle-point LDL^T; dense: " +
-                      str(dense) + ")";
+    code.count_note = " (" + str(sparse.operations) +
+                      " of them in the sparse saddle-point LDL^T; dense: " + str(dense) + ")";
     return code;
   }
   KernelCode code = dense_constrained_dynamics_kernel(d, nodes);
-  code.count_note = " (" + str(dense) + " of them in the dense saddle-point solve; sparse: " +
-                    str(sparse.operations) + ")";
+  code.count_note =
+      " (" + str(dense) + " of them in the dense saddle-point solve; sparse: " + str(sparse.operations) + ")";
   return code;
 }
 
