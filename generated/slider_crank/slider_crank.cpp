@@ -318,40 +318,75 @@ void constraint_bias(const Params& p, const double* q, const double* u, double* 
 
 int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
                          const double* tau, double* udot, double* lambda) {
-  constexpr int NS = 2;  // speeds solved for (not prescribed)
   double ap0 = 0.0;  // prescribed acceleration of crank_angle_dot
   {
     ap0 = 0.0;
   }
-  double Ms[NS * NS], b[NS], Cs[NC * NS], g[NC];
+  double z[4];  // the right-hand side [b; g], then [udot; lambda], in elimination order
+  const double m0_0 = p.J2;
+  const double m1_1 = p.m3;
   const double x0 = cos(q[0]);
   const double x1 = sin(q[1]);
   const double x2 = sin(q[0]);
   const double x3 = cos(q[1]);
   const double x4 = x0*x1 + x2*x3;
-  Cs[0] = -p.L2*x4;
-  Cs[1] = -1.0;
-  const double x5 = p.L2*x4 + x2*p.L1;
-  const double x6 = x0*x3 - (x2*x1);
-  const double x7 = u[1]*x6*p.L2;
-  const double x8 = x6*p.L2;
-  const double x9 = x0*p.L1 + x8;
-  g[0] = ap0*x5 + u[1]*(x7 + u[0]*x6*p.L2) + u[0]*(u[0]*x9 + x7);
-  Cs[2] = x8;
-  Cs[3] = 0.0;
+  const double c0_0 = -p.L2*x4;
+  const double c0_1 = -1.0;
+  const double x5 = x0*x3 - (x2*x1);
+  const double x6 = x5*p.L2;
+  const double c1_0 = x6;
+  z[1] = tau[1] - 0.5*(p.m2*(u[0]*u[0]*x1*p.L1)*p.L2) - (ap0*(p.J2 + 0.5*(p.m2*x3*p.L1*p.L2)));
+  z[0] = tau[2];
+  const double x7 = p.L2*x4 + x2*p.L1;
+  const double x8 = u[1]*x5*p.L2;
+  const double x9 = x0*p.L1 + x6;
+  z[2] = ap0*x7 + u[1]*(x8 + u[0]*x5*p.L2) + u[0]*(u[0]*x9 + x8);
   const double x10 = u[1]*p.L2*x4;
-  g[1] = u[0]*(u[0]*x5 + x10) + u[1]*(x10 + u[0]*p.L2*x4) - (ap0*x9);
-  Ms[0] = p.J2;
-  Ms[1] = 0.0;
-  Ms[2] = 0.0;
-  Ms[3] = p.m3;
-  b[0] = tau[1] - 0.5*(p.m2*(u[0]*u[0]*x1*p.L1)*p.L2) - (ap0*(p.J2 + 0.5*(p.m2*x3*p.L1*p.L2)));
-  b[1] = tau[2];
-  const int status = solve_saddle<NS, NC>(Ms, b, Cs, g, lambda);
-  udot[1] = b[0];
-  udot[2] = b[1];
+  z[3] = u[0]*(u[0]*x7 + x10) + u[1]*(x10 + u[0]*p.L2*x4) - (ap0*x9);
+  // LDL^T of [M C^T; C 0], unrolled in the elimination order; sd<j> are the pivots.
+  const double sd0 = m1_1;
+  if (!(sd0 > 0.0)) return 2;
+  const double inv_sd0 = 1.0/sd0;
+  const double sld2_0 = c0_1;
+  const double sl2_0 = sld2_0*inv_sd0;
+  const double sd1 = m0_0;
+  if (!(sd1 > 0.0)) return 1;
+  const double inv_sd1 = 1.0/sd1;
+  const double sld2_1 = c0_0;
+  const double sl2_1 = sld2_1*inv_sd1;
+  const double sld3_1 = c1_0;
+  const double sl3_1 = sld3_1*inv_sd1;
+  double s_largest = 0.0;
+  const double ss2 = sl2_0*sld2_0 + sl2_1*sld2_1;
+  if (ss2 > s_largest) s_largest = ss2;
+  const double ss3 = sl3_1*sld3_1;
+  if (ss3 > s_largest) s_largest = ss3;
+  const double sd2 = -ss2;
+  if (!(-sd2 > 1e-06 * s_largest)) return -1;
+  const double inv_sd2 = 1.0/sd2;
+  const double sld3_2 = -sl3_1*sld2_1;
+  const double sl3_2 = sld3_2*inv_sd2;
+  const double sd3 = -ss3 - sl3_2*sld3_2;
+  if (!(-sd3 > 1e-06 * s_largest)) return -2;
+  const double inv_sd3 = 1.0/sd3;
+  z[2] -= sl2_0*z[0];
+  z[2] -= sl2_1*z[1];
+  z[3] -= sl3_1*z[1];
+  z[3] -= sl3_2*z[2];
+  z[0] *= inv_sd0;
+  z[1] *= inv_sd1;
+  z[2] *= inv_sd2;
+  z[3] *= inv_sd3;
+  z[2] -= sl3_2*z[3];
+  z[1] -= sl2_1*z[2];
+  z[1] -= sl3_1*z[3];
+  z[0] -= sl2_0*z[2];
+  udot[1] = z[1];
+  udot[2] = z[0];
+  lambda[0] = -z[2];
+  lambda[1] = -z[3];
   udot[0] = ap0;
-  return status;
+  return 0;
 }
 
 }  // namespace slider_crank

@@ -7,6 +7,7 @@
 #include "codegen/cpp_printer.hpp"
 #include "codegen/graph_derivative.hpp"
 #include "codegen/unrolled_ldlt.hpp"
+#include "codegen/unrolled_saddle.hpp"
 
 namespace kanegen::codegen {
 namespace {
@@ -225,28 +226,43 @@ KernelCode constraint_bias_kernel(const Derivation& d) {
   return printed(Kernel::constraint_bias, d, bias);
 }
 
-/// Closed loops: M, C and the right-hand sides over the solved speeds, then
-/// the saddle-point solve (templates/solve_saddle.hpp).
-KernelCode constrained_dynamics_kernel(const Derivation& d) {
+/// The saddle-point system over the solved speeds as graph nodes: M (ns*ns),
+/// C (nc*ns), b = f - M_p a_p and g = gamma - C_p a_p (p the prescribed speeds).
+struct SaddleNodes {
+  std::vector<int> m, c, b, g;
+};
+
+SaddleNodes saddle_nodes(const Derivation& d) {
   const int n = d.n(), ns = d.ns(), nc = d.eq.loops.size();
-  std::vector<Assignment> saddle;
-  for (int c = 0; c < nc; ++c) {
-    GiNaC::ex g = d.eq.loops.bias[c];  // gamma - sum_p C_cp a_p over the prescribed speeds p
+  SaddleNodes s;
+  for (int r = 0; r < nc; ++r) {
+    GiNaC::ex g = d.eq.loops.bias[r];
     for (int i = 0; i < n; ++i) {
-      const GiNaC::ex& entry = d.eq.loops.jacobian[c * n + i];
+      const GiNaC::ex& entry = d.eq.loops.jacobian[r * n + i];
       if (d.local[i] >= 0)
-        saddle.push_back({"Cs[" + str(c * ns + d.local[i]) + "]", d.graph.add(entry)});
+        s.c.push_back(d.graph.add(entry));
       else
         g -= entry * d.vars.prescribed_acceleration.at(i);
     }
-    saddle.push_back({"g[" + str(c) + "]", d.graph.add(g)});
+    s.g.push_back(d.graph.add(g));
   }
   for (int i = 0; i < ns; ++i)
-    for (int j = 0; j < ns; ++j)
-      saddle.push_back(
-          {"Ms[" + str(i * ns + j) + "]", d.graph.add(d.eq.mass_matrix[d.solved[i] * n + d.solved[j]])});
-  for (int i = 0; i < ns; ++i)
-    saddle.push_back({"b[" + str(i) + "]", d.graph.add(d.solved_rhs(d.solved[i]))});
+    for (int j = 0; j < ns; ++j) s.m.push_back(d.graph.add(d.eq.mass_matrix[d.solved[i] * n + d.solved[j]]));
+  for (int i = 0; i < ns; ++i) s.b.push_back(d.graph.add(d.solved_rhs(d.solved[i])));
+  return s;
+}
+
+/// Dense in everything: M, C and the right-hand sides as arrays, then
+/// templates/solve_saddle.hpp.
+KernelCode dense_constrained_dynamics_kernel(const Derivation& d, const SaddleNodes& nodes) {
+  const int ns = d.ns(), nc = d.eq.loops.size();
+  std::vector<Assignment> saddle;
+  for (int r = 0; r < nc; ++r) {
+    for (int i = 0; i < ns; ++i) saddle.push_back({"Cs[" + str(r * ns + i) + "]", nodes.c[r * ns + i]});
+    saddle.push_back({"g[" + str(r) + "]", nodes.g[r]});
+  }
+  for (int k = 0; k < ns * ns; ++k) saddle.push_back({"Ms[" + str(k) + "]", nodes.m[k]});
+  for (int i = 0; i < ns; ++i) saddle.push_back({"b[" + str(i) + "]", nodes.b[i]});
   const PrintedKernel body = print_kernel(d.graph, saddle, d.scalar);
   std::string unpack;  // the solved accelerations back into udot, the prescribed ones given
   for (int i = 0; i < ns; ++i) unpack += "  udot[" + str(d.solved[i]) + "] = b[" + str(i) + "];\n";
@@ -255,7 +271,64 @@ KernelCode constrained_dynamics_kernel(const Derivation& d) {
               d.prescribed.body + "  " + d.scalar.name() + " Ms[NS * NS], b[NS], Cs[NC * NS], g[NC];\n" +
               body.body + "  const int status = solve_saddle<NS, NC>(Ms, b, Cs, g, lambda);\n" + unpack +
               given_accelerations(d) + "  return status;\n",
-          body.operations + d.prescribed.operations, ""};
+          body.operations + d.prescribed.operations + dense_saddle_operations(ns, nc), ""};
+}
+
+/// Sparse: the entries of M and C that are not zero by structure as locals,
+/// the right-hand side in elimination order, then the unrolled LDL^T.
+KernelCode sparse_constrained_dynamics_kernel(const Derivation& d, const SaddleNodes& nodes,
+                                              const SaddleStructure& structure, const std::vector<int>& order,
+                                              const UnrolledSaddle& solve) {
+  const int ns = d.ns(), nc = d.eq.loops.size();
+  std::vector<int> position(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) position[order[k]] = static_cast<int>(k);
+  const std::string real = "const " + std::string(d.scalar.name()) + " ";
+  std::vector<Assignment> saddle;
+  for (int i = 0; i < ns; ++i)
+    for (int j = 0; j <= i; ++j)
+      if (structure.nonzero_m[i * ns + j])
+        saddle.push_back({real + "m" + str(i) + "_" + str(j), nodes.m[i * ns + j]});
+  for (int r = 0; r < nc; ++r)
+    for (int i = 0; i < ns; ++i)
+      if (structure.nonzero_c[r * ns + i])
+        saddle.push_back({real + "c" + str(r) + "_" + str(i), nodes.c[r * ns + i]});
+  for (int i = 0; i < ns; ++i) saddle.push_back({"z[" + str(position[i]) + "]", nodes.b[i]});
+  for (int r = 0; r < nc; ++r) saddle.push_back({"z[" + str(position[ns + r]) + "]", nodes.g[r]});
+  const PrintedKernel body = print_kernel(d.graph, saddle, d.scalar);
+  // udot and lambda out of z, the prescribed accelerations given; z holds
+  // -lambda (M udot + C^T z = b), lambda as in M udot = f + C^T lambda.
+  std::string unpack;
+  for (int i = 0; i < ns; ++i) unpack += "  udot[" + str(d.solved[i]) + "] = z[" + str(position[i]) + "];\n";
+  for (int r = 0; r < nc; ++r) unpack += "  lambda[" + str(r) + "] = -z[" + str(position[ns + r]) + "];\n";
+  return {Kernel::constrained_dynamics,
+          d.prescribed.body + "  " + d.scalar.name() + " z[" + str(ns + nc) +
+              "];  // the right-hand side [b; g], then [udot; lambda], in elimination order\n" + body.body +
+              solve.text + unpack + given_accelerations(d) + "  return 0;\n",
+          body.operations + d.prescribed.operations + solve.operations, ""};
+}
+
+/// Closed loops: M, C and the right-hand sides over the solved speeds, then
+/// the saddle-point solve, sparse (unrolled for the structure of M and C)
+/// or dense (templates/solve_saddle.hpp), whichever counts fewer operations.
+KernelCode constrained_dynamics_kernel(const Derivation& d) {
+  const int ns = d.ns(), nc = d.eq.loops.size();
+  const SaddleNodes nodes = saddle_nodes(d);
+  SaddleStructure structure{ns, nc, std::vector<bool>(nodes.m.size()), std::vector<bool>(nodes.c.size())};
+  for (std::size_t k = 0; k < nodes.m.size(); ++k) structure.nonzero_m[k] = !is_zero(d.graph, nodes.m[k]);
+  for (std::size_t k = 0; k < nodes.c.size(); ++k) structure.nonzero_c[k] = !is_zero(d.graph, nodes.c[k]);
+  const std::vector<int> order = saddle_elimination_order(structure);
+  const UnrolledSaddle sparse = unrolled_saddle(structure, order, d.scalar);
+  const long dense = dense_saddle_operations(ns, nc);
+  if (sparse.operations < dense) {
+    KernelCode code = sparse_constrained_dynamics_kernel(d, nodes, structure, order, sparse);
+    code.count_note = " (" + str(sparse.operations) +
+                      " of them in the sparse saddle-point LDL^T; dense: " + str(dense) + ")";
+    return code;
+  }
+  KernelCode code = dense_constrained_dynamics_kernel(d, nodes);
+  code.count_note =
+      " (" + str(dense) + " of them in the dense saddle-point solve; sparse: " + str(sparse.operations) + ")";
+  return code;
 }
 
 /// With loops, forward_dynamics is the constrained dynamics without the loop forces.
@@ -263,7 +336,7 @@ KernelCode loop_dynamics_kernel(const Derivation& d, const KernelCode& constrain
   return {Kernel::forward_dynamics,
           "  " + std::string(d.scalar.name()) +
               " lambda[NC];\n  return constrained_dynamics(p, t, q, u, tau, udot, lambda);\n",
-          constrained.operations, " (and the saddle-point solve)"};
+          constrained.operations, constrained.count_note};
 }
 
 KernelCode coordinate_rates_kernel(const Derivation& d) {
