@@ -88,6 +88,33 @@ Articulated own_terms(const TreeBody& body) {
   return s;
 }
 
+/// The coordinate (0, 1, 2) along which a unit axis lies, or -1.
+int coordinate_of(const Vec3& axis) {
+  int found = -1;
+  for (int k = 0; k < 3; ++k) {
+    if (axis[k].is_zero()) continue;
+    if (found >= 0 || !(axis[k].is_equal(1) || axis[k].is_equal(-1))) return -1;
+    found = k;
+  }
+  return found;
+}
+
+/// I^A - U U^T / D annihilates S exactly, but symbolically D/D stays a
+/// quotient: when S is along coordinate k, the passed inertia's entries that
+/// act on S (revolute: row and column k of A, row k of B; prismatic: row
+/// and column k of C, column k of B) are set to the zero they are, so the
+/// transform to the parent skips them. W's own entry S^T W = 1 likewise.
+void drop_joint_direction(Articulated& passed, JointTerms& terms, const kinematics::JointFrame& joint) {
+  const int k = coordinate_of(joint.axis);
+  if (k < 0) return;
+  Mat3& diagonal = joint.prismatic ? passed.c : passed.a;
+  for (int j = 0; j < 3; ++j) {
+    diagonal[3 * k + j] = diagonal[3 * j + k] = 0;
+    (joint.prismatic ? passed.b[3 * j + k] : passed.b[3 * k + j]) = 0;
+  }
+  (joint.prismatic ? terms.w_force : terms.w_moment)[k] = joint.axis[k];
+}
+
 void add(Articulated& sum, const Articulated& x) {
   for (int k = 0; k < 9; ++k) {
     sum.a[k] += x.a[k];
@@ -158,6 +185,7 @@ RecursiveDynamics articulated_body_dynamics(const kinematics::TreeKinematics& tr
         }
       passed.bias_moment = passed.bias_moment + t.residual_over_pivot * t.u_moment;
       passed.bias_force = passed.bias_force + t.residual_over_pivot * t.u_force;
+      drop_joint_direction(passed, t, joint);
     }
     if (state.parent_state < 0) continue;
     add(sums[state.parent_state], to_parent(program, named(program, passed), state.to_child, state.offset));
