@@ -54,23 +54,21 @@ Mat3 to_parent_axes(Program& program, const Mat3& to_child, const Mat3& m, bool 
 
 /// X^T I X: the child's articulated inertia and bias about the parent's
 /// origin, in parent axes (r: parent origin -> child origin, parent axes).
-/// With S = [r]x: A' = A - B S + S B^T - S C S, B' = B + S C, C' = C (rotated first).
+/// With S = [r]x: A' = A - B S + S B^T - S C S, B' = B + S C, C' = C (rotated
+/// first); formed as A' = A - B' S - (B S)^T, which reuses B' for S C S.
 Articulated to_parent(Program& program, const Articulated& child, const Mat3& to_child, const Vec3& r) {
   const Mat3 a = to_parent_axes(program, to_child, child.a, true);
   const Mat3 b = to_parent_axes(program, to_child, child.b, false);
   const Mat3 c = to_parent_axes(program, to_child, child.c, true);
   const Mat3 s = skew(r);
-  const Mat3 cs = named(program, mul(c, s));  // S C = -(C S)^T
-  const Mat3 bs = mul(b, s);
-  const Mat3 scs = mul(s, cs);
+  const Mat3 cs = mul(c, s);  // S C = -(C S)^T
   Articulated p;
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      p.b[3 * i + j] = program.define(at(b, i, j) - at(cs, j, i));
-      if (j >= i)
-        p.a[3 * i + j] = p.a[3 * j + i] =
-            program.define(at(a, i, j) - at(bs, i, j) - at(bs, j, i) - at(scs, i, j));
-    }
+    for (int j = 0; j < 3; ++j) p.b[3 * i + j] = program.define(at(b, i, j) - at(cs, j, i));
+  const Mat3 bs = mul(b, s), shifted_bs = mul(p.b, s);
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j)
+      p.a[3 * i + j] = p.a[3 * j + i] = program.define(at(a, i, j) - at(shifted_bs, i, j) - at(bs, j, i));
   p.c = c;
   p.bias_force = named(program, mul_transposed(to_child, child.bias_force));
   p.bias_moment = named(program, mul_transposed(to_child, child.bias_moment) + cross(r, p.bias_force));
