@@ -6,7 +6,7 @@
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 6999
 //   forcing: 4839
-//   forward_dynamics: 13603 (recursive; composite inertias and LDL^T: 15290)
+//   forward_dynamics: 11837 (recursive; composite inertias and LDL^T: 15290)
 //   kinetic_energy: 2137
 //   potential_energy: 941
 //   nonconservative_power: 39

@@ -54,23 +54,21 @@ Mat3 to_parent_axes(Program& program, const Mat3& to_child, const Mat3& m, bool 
 
 /// X^T I X: the child's articulated inertia and bias about the parent's
 /// origin, in parent axes (r: parent origin -> child origin, parent axes).
-/// With S = [r]x: A' = A - B S + S B^T - S C S, B' = B + S C, C' = C (rotated first).
+/// With S = [r]x: A' = A - B S + S B^T - S C S, B' = B + S C, C' = C (rotated
+/// first); formed as A' = A - B' S - (B S)^T, which reuses B' for S C S.
 Articulated to_parent(Program& program, const Articulated& child, const Mat3& to_child, const Vec3& r) {
   const Mat3 a = to_parent_axes(program, to_child, child.a, true);
   const Mat3 b = to_parent_axes(program, to_child, child.b, false);
   const Mat3 c = to_parent_axes(program, to_child, child.c, true);
   const Mat3 s = skew(r);
-  const Mat3 cs = named(program, mul(c, s));  // S C = -(C S)^T
-  const Mat3 bs = mul(b, s);
-  const Mat3 scs = mul(s, cs);
+  const Mat3 cs = mul(c, s);  // S C = -(C S)^T
   Articulated p;
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      p.b[3 * i + j] = program.define(at(b, i, j) - at(cs, j, i));
-      if (j >= i)
-        p.a[3 * i + j] = p.a[3 * j + i] =
-            program.define(at(a, i, j) - at(bs, i, j) - at(bs, j, i) - at(scs, i, j));
-    }
+    for (int j = 0; j < 3; ++j) p.b[3 * i + j] = program.define(at(b, i, j) - at(cs, j, i));
+  const Mat3 bs = mul(b, s), shifted_bs = mul(p.b, s);
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j)
+      p.a[3 * i + j] = p.a[3 * j + i] = program.define(at(a, i, j) - at(shifted_bs, i, j) - at(bs, j, i));
   p.c = c;
   p.bias_force = named(program, mul_transposed(to_child, child.bias_force));
   p.bias_moment = named(program, mul_transposed(to_child, child.bias_moment) + cross(r, p.bias_force));
@@ -86,6 +84,33 @@ Articulated own_terms(const TreeBody& body) {
   s.bias_moment = zero_vec() - body.wrench_moment;
   s.bias_force = zero_vec() - body.wrench_force;
   return s;
+}
+
+/// The coordinate (0, 1, 2) along which a unit axis lies, or -1.
+int coordinate_of(const Vec3& axis) {
+  int found = -1;
+  for (int k = 0; k < 3; ++k) {
+    if (axis[k].is_zero()) continue;
+    if (found >= 0 || !(axis[k].is_equal(1) || axis[k].is_equal(-1))) return -1;
+    found = k;
+  }
+  return found;
+}
+
+/// I^A - U U^T / D annihilates S exactly, but symbolically D/D stays a
+/// quotient: when S is along coordinate k, the passed inertia's entries that
+/// act on S (revolute: row and column k of A, row k of B; prismatic: row
+/// and column k of C, column k of B) are set to the zero they are, so the
+/// transform to the parent skips them. W's own entry S^T W = 1 likewise.
+void drop_joint_direction(Articulated& passed, JointTerms& terms, const kinematics::JointFrame& joint) {
+  const int k = coordinate_of(joint.axis);
+  if (k < 0) return;
+  Mat3& diagonal = joint.prismatic ? passed.c : passed.a;
+  for (int j = 0; j < 3; ++j) {
+    diagonal[3 * k + j] = diagonal[3 * j + k] = 0;
+    (joint.prismatic ? passed.b[3 * j + k] : passed.b[3 * k + j]) = 0;
+  }
+  (joint.prismatic ? terms.w_force : terms.w_moment)[k] = joint.axis[k];
 }
 
 void add(Articulated& sum, const Articulated& x) {
@@ -158,6 +183,7 @@ RecursiveDynamics articulated_body_dynamics(const kinematics::TreeKinematics& tr
         }
       passed.bias_moment = passed.bias_moment + t.residual_over_pivot * t.u_moment;
       passed.bias_force = passed.bias_force + t.residual_over_pivot * t.u_force;
+      drop_joint_direction(passed, t, joint);
     }
     if (state.parent_state < 0) continue;
     add(sums[state.parent_state], to_parent(program, named(program, passed), state.to_child, state.offset));

@@ -2,9 +2,9 @@
 // The articulated-body recursion (kane/articulated_body.*) against the
 // composite solve of the same equations, M u_dot = f with M and f summed by
 // composite bodies and solved by Eigen, on random rigid trees: branches,
-// revolute and prismatic joints on oblique axes, rotated joint frames, fixed
-// joints, gravity in any direction, joint springs, dampers, inputs and
-// efforts, body-fixed and world-fixed forces and a spring between two bodies.
+// revolute and prismatic joints on frame axes (either way) and oblique axes,
+// rotated joint frames, fixed joints, gravity in any direction, joint
+// springs, dampers, inputs and efforts, body-fixed and world-fixed forces and a spring between two bodies.
 // Both are evaluated from the expression graph the kernels are printed from.
 #include <unistd.h>
 
@@ -122,9 +122,12 @@ std::string random_tree(std::mt19937& rng, int bodies) {
       << ", \"rpy\": " << any() << "}";
     if (type != "fixed") {
       moving.push_back(name);
-      // Half the axes along a frame axis (the structural zeros), half oblique.
-      const int axis = std::uniform_int_distribution<int>(0, 5)(rng);
-      m << ", \"axis\": " << (axis < 3 ? vec(axis == 0, axis == 1, axis == 2) : any());
+      // Two thirds of the axes along a frame axis, either way (the structural
+      // zeros, which the recursion sets exactly), one third oblique.
+      const int axis = std::uniform_int_distribution<int>(0, 8)(rng);
+      const double sign = axis < 3 ? 1.0 : -1.0;
+      const auto along = [&](int k) { return axis % 3 == k ? sign : 0.0; };
+      m << ", \"axis\": " << (axis < 6 ? vec(along(0), along(1), along(2)) : any());
       if (b % 2 == 0)
         m << ", \"spring\": {\"stiffness\": " << 5 * positive(rng) << ", \"rest\": " << 0.2 * unit(rng)
           << "}, \"damping\": " << 0.5 * positive(rng);
