@@ -39,6 +39,12 @@ std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Eq
                                        DynamicsMethod dynamics = DynamicsMethod::automatic,
                                        DynamicsChoice* choice = nullptr);
 
+/// The `choice` derive_kernels would report, from operation counts alone
+/// (no kernel printed): to compare two derivations before emitting one.
+DynamicsChoice dynamics_choice(const model::Model& model, const kane::Equations& equations,
+                               const symbolic::Variables& vars, ExpressionGraph& graph,
+                               const ScalarType& scalar, DynamicsMethod dynamics);
+
 /// The code of `kernel` in `kernels`; throws std::logic_error if it is missing.
 const KernelCode& find_kernel(const std::vector<KernelCode>& kernels, Kernel kernel);
 

@@ -110,12 +110,17 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
     flexible.emplace(static_cast<int>(b), std::move(beam));
   }
 
-  // Derive and emit with each way of summing M; keep the shorter code (the
-  // composite forward_dynamics's count: the recursion does not use M).
+  // Derive with each way of summing M and keep the one whose composite
+  // forward_dynamics is shorter (the recursion does not use M), by counting
+  // alone: only the equations kept are printed, Jacobians included.
   const symbolic::Variables vars(model, elastic_counts);
-  codegen::EmittedModel emitted;
+  const codegen::EmitOptions emit_options{generate_options.jacobians || generate_options.controller,
+                                          generate_options.controller, generate_options.precision,
+                                          generate_options.dynamics};
+  codegen::DynamicsChoice best;
   symbolic::Program chosen_program;
   kane::Equations chosen;
+  bool first = true;
   for (kane::MassMatrixMethod method :
        {kane::MassMatrixMethod::body_frames, kane::MassMatrixMethod::world_projection}) {
     start = std::chrono::steady_clock::now();
@@ -129,26 +134,20 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
           "--dynamics recursive cannot solve this model: " + equations.recursive_unavailable,
           "use --dynamics composite, or auto (the default)");
     start = std::chrono::steady_clock::now();
-    codegen::EmittedModel candidate =
-        codegen::emit_model(model, equations, vars, program, hash,
-                            {false, false, generate_options.precision, generate_options.dynamics});
+    const codegen::DynamicsChoice choice =
+        codegen::dynamics_choice(model, equations, vars, program, emit_options);
     out.seconds.emit += seconds_since(start);
-    if (emitted.files.empty() ||
-        candidate.dynamics.composite_operations < emitted.dynamics.composite_operations) {
-      emitted = std::move(candidate);
+    if (first || choice.composite_operations < best.composite_operations) {
+      best = choice;
       chosen_program = std::move(program);
       chosen = std::move(equations);
+      first = false;
     }
   }
-  // The Jacobians only for the equations kept: differentiating both would
-  // double the cost of the option for code that is thrown away.
-  if (generate_options.jacobians || generate_options.controller) {
-    start = std::chrono::steady_clock::now();
-    emitted = codegen::emit_model(
-        model, chosen, vars, chosen_program, hash,
-        {true, generate_options.controller, generate_options.precision, generate_options.dynamics});
-    out.seconds.jacobians = seconds_since(start);
-  }
+  start = std::chrono::steady_clock::now();
+  codegen::EmittedModel emitted =
+      codegen::emit_model(model, chosen, vars, chosen_program, hash, emit_options);
+  (emit_options.jacobians ? out.seconds.jacobians : out.seconds.emit) += seconds_since(start);
 
   out.name = model.name;
   out.files = std::move(emitted.files);
