@@ -231,11 +231,11 @@ EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, co
   return emitted;
 }
 
-DynamicsChoice dynamics_choice(const model::Model& model, const kane::Equations& eq,
-                               const symbolic::Variables& vars, const symbolic::Program& program,
-                               const EmitOptions& options) {
+long composite_operations(const model::Model& model, const kane::Equations& eq,
+                          const symbolic::Variables& vars, const symbolic::Program& program,
+                          const EmitOptions& options) {
   ExpressionGraph graph(vars, program);
-  return dynamics_choice(model, eq, vars, graph, ScalarType(options.precision), options.dynamics);
+  return composite_operations(model, eq, vars, graph, ScalarType(options.precision));
 }
 
 void write_files_atomically(const std::string& dir, const std::map<std::string, std::string>& files) {

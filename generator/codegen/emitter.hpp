@@ -41,11 +41,11 @@ struct EmitOptions {
 /// The name of the emitted files and namespace: the model's, "_float" added for float.
 std::string emitted_name(const std::string& model_name, const ScalarType& scalar);
 
-/// The `dynamics` emit_model would report for these equations, from
-/// operation counts alone: to compare derivations before emitting one.
-DynamicsChoice dynamics_choice(const model::Model& model, const kane::Equations& equations,
-                               const symbolic::Variables& vars, const symbolic::Program& program,
-                               const EmitOptions& options = {});
+/// emit_model's dynamics.composite_operations for these equations, from
+/// counts alone: to compare derivations before emitting one.
+long composite_operations(const model::Model& model, const kane::Equations& equations,
+                          const symbolic::Variables& vars, const symbolic::Program& program,
+                          const EmitOptions& options = {});
 
 /// model_hash: a digest of the model file, quoted in the header comment.
 EmittedModel emit_model(const model::Model& model, const kane::Equations& equations,

@@ -446,7 +446,7 @@ GiNaC::ex unforced(const Derivation& d, int r) {
 
 /// tau = M udot - f(tau = 0): on a rigid tree Newton and Euler's recursion
 /// (Equations::inverse_dynamics); M udot - f formed from M and f is
-/// printed too, for its count in the header (and is the body with flexible bodies).
+/// counted too, for the header (and is the body with flexible bodies).
 KernelCode inverse_dynamics_kernel(const Derivation& d) {
   std::vector<Assignment> recursive, formed;
   for (int r = 0; r < d.n(); ++r) {
@@ -461,12 +461,13 @@ KernelCode inverse_dynamics_kernel(const Derivation& d) {
       recursive.push_back({target, d.graph.add(d.eq.inverse_dynamics[r].subs(no_inputs))});
     }
   }
-  const PrintedKernel from_m = print_kernel(d.graph, formed, d.scalar);
-  if (recursive.empty())
+  if (recursive.empty()) {
+    const PrintedKernel from_m = print_kernel(d.graph, formed, d.scalar);
     return {Kernel::inverse_dynamics, from_m.body, from_m.operations, " (M udot - f: flexible bodies)"};
+  }
   const PrintedKernel p = print_kernel(d.graph, recursive, d.scalar);
   return {Kernel::inverse_dynamics, p.body, p.operations,
-          " (recursive; M udot - f from M and f: " + str(from_m.operations) + ")"};
+          " (recursive; M udot - f from M and f: " + str(count_operations(d.graph, formed)) + ")"};
 }
 
 /// g = dV_gravity/dq: the recursion's on a rigid tree, else the gradient of
@@ -705,16 +706,12 @@ std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Eq
   return kernels;
 }
 
-DynamicsChoice dynamics_choice(const model::Model& model, const kane::Equations& eq,
-                               const symbolic::Variables& vars, ExpressionGraph& graph,
-                               const ScalarType& scalar, DynamicsMethod dynamics) {
+long composite_operations(const model::Model& model, const kane::Equations& eq,
+                          const symbolic::Variables& vars, ExpressionGraph& graph, const ScalarType& scalar) {
   Derivation d{model, eq, vars, graph, scalar, {}, {}, {}};
   split_speeds(d);
   print_prescribed_accelerations(d);
-  if (!d.loops()) return tree_dynamics_choice(d, dynamics);
-  DynamicsChoice choice;
-  choice.composite_operations = constrained_dynamics_kernel(d).operations;
-  return choice;
+  return d.loops() ? constrained_dynamics_kernel(d).operations : composite_dynamics_operations(d);
 }
 
 const KernelCode& find_kernel(const std::vector<KernelCode>& kernels, Kernel kernel) {

@@ -117,7 +117,7 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
   const codegen::EmitOptions emit_options{generate_options.jacobians || generate_options.controller,
                                           generate_options.controller, generate_options.precision,
                                           generate_options.dynamics};
-  codegen::DynamicsChoice best;
+  long fewest = 0;
   symbolic::Program chosen_program;
   kane::Equations chosen;
   bool first = true;
@@ -134,11 +134,10 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
           "--dynamics recursive cannot solve this model: " + equations.recursive_unavailable,
           "use --dynamics composite, or auto (the default)");
     start = std::chrono::steady_clock::now();
-    const codegen::DynamicsChoice choice =
-        codegen::dynamics_choice(model, equations, vars, program, emit_options);
+    const long operations = codegen::composite_operations(model, equations, vars, program, emit_options);
     out.seconds.emit += seconds_since(start);
-    if (first || choice.composite_operations < best.composite_operations) {
-      best = choice;
+    if (first || operations < fewest) {
+      fewest = operations;
       chosen_program = std::move(program);
       chosen = std::move(equations);
       first = false;
