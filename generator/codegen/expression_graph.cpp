@@ -184,7 +184,7 @@ int ExpressionGraph::convert(const GiNaC::ex& e) {
   int id = -1;
   if (GiNaC::is_a<GiNaC::symbol>(e)) {
     const auto& s = GiNaC::ex_to<GiNaC::symbol>(e);
-    if (const GiNaC::ex* definition = program_.definition(s)) {
+    if (const GiNaC::ex* definition = program_.definition(e)) {
       id = convert(*definition);
     } else {
       Node n;
