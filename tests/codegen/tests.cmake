@@ -9,7 +9,8 @@ add_executable(test_codegen ${CMAKE_CURRENT_LIST_DIR}/test_solve_saddle.cpp
                             ${CMAKE_CURRENT_LIST_DIR}/test_generalized_momentum.cpp
                             ${CMAKE_CURRENT_LIST_DIR}/test_moved_bodies.cpp
                             ${CMAKE_CURRENT_LIST_DIR}/test_graph_derivative.cpp
-                            ${CMAKE_CURRENT_LIST_DIR}/test_recursive_dynamics.cpp)
+                            ${CMAKE_CURRENT_LIST_DIR}/test_recursive_dynamics.cpp
+                            ${CMAKE_CURRENT_LIST_DIR}/test_dynamics_choice.cpp)
 target_include_directories(test_codegen PRIVATE ${PROJECT_SOURCE_DIR}/templates)
 target_compile_definitions(test_codegen PRIVATE KANEGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 target_compile_options(test_codegen PRIVATE ${KANEGEN_WARNINGS})
