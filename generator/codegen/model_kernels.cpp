@@ -177,8 +177,8 @@ KernelCode composite_dynamics_kernel(const Derivation& d) {
 /// composite_dynamics_kernel's operation count, without its text.
 long composite_dynamics_operations(const Derivation& d) {
   const CompositeParts parts = composite_parts(d);
-  return count_operations(d.graph, parts.assignments) +
-         unrolled_ldlt(parts.nonzero, d.solved, d.scalar).operations + d.prescribed.operations;
+  return count_operations(d.graph, parts.assignments) + unrolled_ldlt_operations(parts.nonzero, d.solved) +
+         d.prescribed.operations;
 }
 
 /// The recursion's statements: the pivots, then u_dot.
