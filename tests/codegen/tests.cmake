@@ -2,7 +2,8 @@
 # The code generator's parts on their own: the helper code that generated
 # models include verbatim (templates/solve_saddle.hpp), compiled and solved
 # against Eigen, the kernel table's printer, generalized_momentum, and the
-# expression graph's derivatives (the Jacobian kernels').
+# expression graph's derivatives (the Jacobian kernels'), and the counts of the
+# forward_dynamics that is counted but not printed.
 find_package(Eigen3 REQUIRED NO_MODULE)
 add_executable(test_codegen ${CMAKE_CURRENT_LIST_DIR}/test_solve_saddle.cpp
                             ${CMAKE_CURRENT_LIST_DIR}/test_kernel_printer.cpp
