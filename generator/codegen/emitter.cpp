@@ -207,10 +207,15 @@ std::string fill_template(const std::string& text, const std::map<std::string, s
 EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, const symbolic::Variables& vars,
                         const symbolic::Program& program, const std::string& model_hash,
                         const EmitOptions& options) {
+  ExpressionGraph graph(vars, program);
+  return emit_model(model, eq, vars, graph, model_hash, options);
+}
+
+EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, const symbolic::Variables& vars,
+                        ExpressionGraph& graph, const std::string& model_hash, const EmitOptions& options) {
   const ScalarType scalar(options.precision);
   // The Jacobian kernels (and linearize, which calls them) are written in double.
   if (!scalar.is_double() && options.jacobians) throw std::logic_error("float kernels with Jacobians");
-  ExpressionGraph graph(vars, program);
   DynamicsChoice dynamics;
   const std::vector<KernelCode> kernels = derive_kernels(
       model, eq, vars, graph, options.jacobians, options.controller, scalar, options.dynamics, &dynamics);
@@ -229,13 +234,6 @@ EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, co
   if (scalar.is_double())  // the runner is the runtime's, which is double
     emitted.files[name + "_runner.cpp"] = fill_template(embedded::runner_cpp_template, values);
   return emitted;
-}
-
-long composite_operations(const model::Model& model, const kane::Equations& eq,
-                          const symbolic::Variables& vars, const symbolic::Program& program,
-                          const EmitOptions& options) {
-  ExpressionGraph graph(vars, program);
-  return composite_operations(model, eq, vars, graph, ScalarType(options.precision));
 }
 
 void write_files_atomically(const std::string& dir, const std::map<std::string, std::string>& files) {

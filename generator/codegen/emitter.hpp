@@ -6,6 +6,7 @@
 #include <map>
 #include <string>
 
+#include "codegen/expression_graph.hpp"
 #include "codegen/kernel_table.hpp"
 #include "codegen/model_kernels.hpp"
 #include "codegen/scalar_type.hpp"
@@ -41,16 +42,16 @@ struct EmitOptions {
 /// The name of the emitted files and namespace: the model's, "_float" added for float.
 std::string emitted_name(const std::string& model_name, const ScalarType& scalar);
 
-/// emit_model's dynamics.composite_operations for these equations, from
-/// counts alone: to compare derivations before emitting one.
-long composite_operations(const model::Model& model, const kane::Equations& equations,
-                          const symbolic::Variables& vars, const symbolic::Program& program,
-                          const EmitOptions& options = {});
-
 /// model_hash: a digest of the model file, quoted in the header comment.
 EmittedModel emit_model(const model::Model& model, const kane::Equations& equations,
                         const symbolic::Variables& vars, const symbolic::Program& program,
                         const std::string& model_hash, const EmitOptions& options = {});
+/// The same on a graph that already holds some of these equations (e.g.
+/// from codegen::composite_operations), so that they are not converted again;
+/// the text does not depend on what the graph held.
+EmittedModel emit_model(const model::Model& model, const kane::Equations& equations,
+                        const symbolic::Variables& vars, ExpressionGraph& graph,
+                        const std::string& model_hash, const EmitOptions& options);
 
 /// Replaces every {{KEY}} of `text`; throws std::logic_error on a key left over.
 std::string fill_template(const std::string& text, const std::map<std::string, std::string>& values);
