@@ -50,7 +50,12 @@ class Printer {
  public:
   Printer(const ExpressionGraph& graph, const std::string& indent, const std::string& prefix,
           const ScalarType& scalar)
-      : graph_(graph), indent_(indent), prefix_(prefix), scalar_(scalar) {}
+      : graph_(graph),
+        indent_(indent),
+        prefix_(prefix),
+        scalar_(scalar),
+        uses_(graph.size(), 0),
+        temps_(graph.size(), -1) {}
 
   PrintedKernel run(const std::vector<Assignment>& assignments) {
     for (const Assignment& a : assignments) count_uses(a.node);
@@ -58,8 +63,13 @@ class Printer {
       emit_temporaries(a.node);
       out_.body += indent_ + a.target + " = " + text(a.node) + ";\n";
     }
-    out_.temporaries = static_cast<int>(temps_.size());
+    out_.temporaries = temporaries_;
     return out_;
+  }
+
+  long count(const std::vector<Assignment>& assignments) {
+    for (const Assignment& a : assignments) count_uses(a.node);
+    return out_.operations;
   }
 
  private:
@@ -99,31 +109,29 @@ class Printer {
 
   bool wants_temp(int id) const {
     const Node& n = node(id);
-    return !is_leaf(n) && uses_.at(id) > 1;
+    return !is_leaf(n) && uses_[id] > 1;
   }
 
   void emit_temporaries(int id) {
-    if (temps_.count(id) || is_leaf(node(id))) return;
+    if (has_temp(id) || is_leaf(node(id))) return;
     for (int a : node(id).args) emit_temporaries(a);
     if (wants_temp(id)) {
-      const std::string name = prefix_ + std::to_string(temps_.size());
-      out_.body += indent_ + "const " + scalar_.name() + " " + name + " = " + expression(id) + ";\n";
-      temps_.emplace(id, name);
+      const std::string value = expression(id);
+      temps_[id] = temporaries_++;
+      out_.body += indent_ + "const " + scalar_.name() + " " + temp_name(id) + " = " + value + ";\n";
     }
   }
 
   // The text of a node where it is used: its temporary's name if it has one.
-  std::string text(int id) const {
-    auto t = temps_.find(id);
-    if (t != temps_.end()) return t->second;
-    return expression(id);
-  }
+  std::string text(int id) const { return has_temp(id) ? temp_name(id) : expression(id); }
+  bool has_temp(int id) const { return temps_[id] >= 0; }
+  std::string temp_name(int id) const { return prefix_ + std::to_string(temps_[id]); }
 
   // Text safe to use as a factor of a product.
   std::string factor(int id) const {
     const Node& n = node(id);
     const std::string s = text(id);
-    if (temps_.count(id)) return s;
+    if (has_temp(id)) return s;
     if (n.op == Op::add || n.op == Op::mul || (n.op == Op::number && n.value < 0) ||
         (n.op == Op::power && n.value < 0))
       return "(" + s + ")";
@@ -138,7 +146,7 @@ class Printer {
       const Node& f = node(a);
       if (f.op == Op::number) {
         coefficient *= f.value;
-      } else if (f.op == Op::power && is_integer(f.value) && f.value < 0 && !temps_.count(a)) {
+      } else if (f.op == Op::power && is_integer(f.value) && f.value < 0 && !has_temp(a)) {
         denominator.push_back(repeated(f.args[0], static_cast<long>(-f.value)));
       } else {
         numerator.push_back(factor(a));
@@ -179,7 +187,7 @@ class Printer {
           const Node& term = node(a);
           bool negative = false;
           std::string t;
-          if (term.op == Op::mul && !temps_.count(a)) {
+          if (term.op == Op::mul && !has_temp(a)) {
             t = product(term, negative);
           } else if (term.op == Op::number) {
             negative = term.value < 0;
@@ -219,8 +227,11 @@ class Printer {
   const ExpressionGraph& graph_;
   std::string indent_, prefix_;
   ScalarType scalar_;
-  std::map<int, int> uses_;
-  std::map<int, std::string> temps_;
+  // Indexed by node: a kernel's uses and temporaries' numbers (-1 for none),
+  // where ordered maps cost a logarithm on every lookup of a large graph.
+  std::vector<int> uses_;
+  std::vector<int> temps_;
+  int temporaries_ = 0;
   PrintedKernel out_;
 };
 
@@ -230,6 +241,10 @@ PrintedKernel print_kernel(const ExpressionGraph& graph, const std::vector<Assig
                            const ScalarType& scalar, const std::string& indent,
                            const std::string& temp_prefix) {
   return Printer(graph, indent, temp_prefix, scalar).run(assignments);
+}
+
+long count_operations(const ExpressionGraph& graph, const std::vector<Assignment>& assignments) {
+  return Printer(graph, "", "", ScalarType()).count(assignments);
 }
 
 }  // namespace kanegen::codegen

@@ -31,6 +31,10 @@ PrintedKernel print_kernel(const ExpressionGraph& graph, const std::vector<Assig
                            const ScalarType& scalar, const std::string& indent = "  ",
                            const std::string& temp_prefix = "x");
 
+/// print_kernel's operation count without forming the text: for a kernel
+/// that is only compared (the forward dynamics that loses the choice).
+long count_operations(const ExpressionGraph& graph, const std::vector<Assignment>& assignments);
+
 /// Shortest decimal text that reads back as the same double, always with a
 /// '.' or an exponent so that C++ reads it as a double.
 std::string format_double(double v);

@@ -207,10 +207,15 @@ std::string fill_template(const std::string& text, const std::map<std::string, s
 EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, const symbolic::Variables& vars,
                         const symbolic::Program& program, const std::string& model_hash,
                         const EmitOptions& options) {
+  ExpressionGraph graph(vars, program);
+  return emit_model(model, eq, vars, graph, model_hash, options);
+}
+
+EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, const symbolic::Variables& vars,
+                        ExpressionGraph& graph, const std::string& model_hash, const EmitOptions& options) {
   const ScalarType scalar(options.precision);
   // The Jacobian kernels (and linearize, which calls them) are written in double.
   if (!scalar.is_double() && options.jacobians) throw std::logic_error("float kernels with Jacobians");
-  ExpressionGraph graph(vars, program);
   DynamicsChoice dynamics;
   const std::vector<KernelCode> kernels = derive_kernels(
       model, eq, vars, graph, options.jacobians, options.controller, scalar, options.dynamics, &dynamics);

@@ -6,6 +6,7 @@
 #include <map>
 #include <string>
 
+#include "codegen/expression_graph.hpp"
 #include "codegen/kernel_table.hpp"
 #include "codegen/model_kernels.hpp"
 #include "codegen/scalar_type.hpp"
@@ -45,6 +46,12 @@ std::string emitted_name(const std::string& model_name, const ScalarType& scalar
 EmittedModel emit_model(const model::Model& model, const kane::Equations& equations,
                         const symbolic::Variables& vars, const symbolic::Program& program,
                         const std::string& model_hash, const EmitOptions& options = {});
+/// The same on a graph that already holds some of these equations (e.g.
+/// from codegen::composite_operations), so that they are not converted again;
+/// the text does not depend on what the graph held.
+EmittedModel emit_model(const model::Model& model, const kane::Equations& equations,
+                        const symbolic::Variables& vars, ExpressionGraph& graph,
+                        const std::string& model_hash, const EmitOptions& options);
 
 /// Replaces every {{KEY}} of `text`; throws std::logic_error on a key left over.
 std::string fill_template(const std::string& text, const std::map<std::string, std::string>& values);

@@ -74,13 +74,17 @@ int ExpressionGraph::intern(Node node) {
   key = mix(key, model::fnv1a(node.name));
   for (int a : node.args) key = mix(key, nodes_[a].key);
   node.key = key;
-  auto index_key = std::make_tuple(static_cast<int>(node.op), bits(node.value), node.name, node.args);
-  auto it = index_.find(index_key);
-  if (it != index_.end()) return it->second;
+  std::vector<int>& candidates = index_[key];
+  for (int id : candidates)
+    if (same(nodes_[id], node)) return id;
   nodes_.push_back(std::move(node));
   const int id = static_cast<int>(nodes_.size()) - 1;
-  index_.emplace(std::move(index_key), id);
+  candidates.push_back(id);
   return id;
+}
+
+bool ExpressionGraph::same(const Node& a, const Node& b) const {
+  return a.op == b.op && bits(a.value) == bits(b.value) && a.name == b.name && a.args == b.args;
 }
 
 int ExpressionGraph::number(double v) {
@@ -180,7 +184,7 @@ int ExpressionGraph::convert(const GiNaC::ex& e) {
   int id = -1;
   if (GiNaC::is_a<GiNaC::symbol>(e)) {
     const auto& s = GiNaC::ex_to<GiNaC::symbol>(e);
-    if (const GiNaC::ex* definition = program_.definition(s)) {
+    if (const GiNaC::ex* definition = program_.definition(e)) {
       id = convert(*definition);
     } else {
       Node n;

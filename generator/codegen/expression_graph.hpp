@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
-#include <tuple>
+#include <unordered_map>
 #include <vector>
 
 #include "symbolic/program.hpp"
@@ -62,6 +62,7 @@ class ExpressionGraph {
   int make_mul(std::vector<int> factors);
   int make_add(std::vector<int> terms);
   int intern(Node node);
+  bool same(const Node& a, const Node& b) const;
   int number(double v);
   int convert(const GiNaC::ex& e);
   double fold(const Node& n) const;
@@ -70,8 +71,12 @@ class ExpressionGraph {
   const symbolic::Variables& vars_;
   const symbolic::Program& program_;
   std::vector<Node> nodes_;
-  std::map<std::tuple<int, std::uint64_t, std::string, std::vector<int>>, int> index_;
-  std::map<GiNaC::ex, int, GiNaC::ex_is_less> converted_;
+  // Hash-consing on the structural key (ids with that key; equal keys are
+  // told apart by same()), and the GiNaC expressions already converted, on
+  // GiNaC's hash: both O(1) where ordered maps on deep compares grew with the
+  // model. Neither is iterated, so their order never reaches the output.
+  std::unordered_map<std::uint64_t, std::vector<int>> index_;
+  std::unordered_map<GiNaC::ex, int, std::hash<GiNaC::ex>, GiNaC::ex_is_equal> converted_;
 };
 
 }  // namespace kanegen::codegen

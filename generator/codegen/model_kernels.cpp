@@ -132,46 +132,72 @@ KernelCode forcing_kernel(const Derivation& d) {
   return printed(Kernel::forcing, d, force);
 }
 
-/// An open tree: M and the right-hand side as locals, then the LDL^T
-/// unrolled for the model's structure, the prescribed speeds given.
-KernelCode composite_dynamics_kernel(const Derivation& d) {
-  std::vector<Assignment> dynamics;
-  std::vector<bool> nonzero(static_cast<std::size_t>(d.ns()) * d.ns(), false);
+/// The composite solve's statements before its LDL^T: the lower triangle of
+/// M over the solved speeds as locals (`nonzero`: its structure) and the
+/// right-hand sides into udot.
+struct CompositeParts {
+  std::vector<Assignment> assignments;
+  std::vector<bool> nonzero;
+};
+
+CompositeParts composite_parts(const Derivation& d) {
+  CompositeParts parts{{}, std::vector<bool>(static_cast<std::size_t>(d.ns()) * d.ns(), false)};
   for (int i = 0; i < d.n(); ++i)
     for (int j = 0; j < d.n(); ++j) {
       const int node = d.graph.add(d.eq.mass_matrix[i * d.n() + j]);
       const int li = d.local[i], lj = d.local[j];
       if (li < 0 || lj < 0 || lj > li) continue;
       const Node& entry = d.graph.node(node);
-      nonzero[li * d.ns() + lj] = !(entry.op == Op::number && entry.value == 0.0);
-      if (nonzero[li * d.ns() + lj])
-        dynamics.push_back({"const " + std::string(d.scalar.name()) + " m" + str(li) + "_" + str(lj), node});
+      parts.nonzero[li * d.ns() + lj] = !(entry.op == Op::number && entry.value == 0.0);
+      if (parts.nonzero[li * d.ns() + lj])
+        parts.assignments.push_back(
+            {"const " + std::string(d.scalar.name()) + " m" + str(li) + "_" + str(lj), node});
     }
   for (int i = 0; i < d.n(); ++i) {
     const int node = d.graph.add(d.eq.forcing[i]);
     if (d.local[i] < 0) continue;
-    dynamics.push_back({"udot[" + str(i) + "]",
-                        d.vars.prescribed_acceleration.empty() ? node : d.graph.add(d.solved_rhs(i))});
+    parts.assignments.push_back({"udot[" + str(i) + "]", d.vars.prescribed_acceleration.empty()
+                                                             ? node
+                                                             : d.graph.add(d.solved_rhs(i))});
   }
-  const PrintedKernel body = print_kernel(d.graph, dynamics, d.scalar);
-  const UnrolledLdlt solve = unrolled_ldlt(nonzero, d.solved, d.scalar);
+  return parts;
+}
+
+/// An open tree: M and the right-hand side as locals, then the LDL^T
+/// unrolled for the model's structure, the prescribed speeds given.
+KernelCode composite_dynamics_kernel(const Derivation& d) {
+  const CompositeParts parts = composite_parts(d);
+  const PrintedKernel body = print_kernel(d.graph, parts.assignments, d.scalar);
+  const UnrolledLdlt solve = unrolled_ldlt(parts.nonzero, d.solved, d.scalar);
   return {Kernel::forward_dynamics,
           d.prescribed.body + body.body + solve.text + given_accelerations(d) + "  return 0;\n",
           body.operations + solve.operations + d.prescribed.operations,
           " (" + str(solve.operations) + " of them in LDL^T)"};
 }
 
-/// An open rigid tree by the articulated-body recursion: u_dot straight
-/// from the graph; a pivot D that is not positive (a joint moving a subtree
-/// without mass or inertia about its axis) returns its speed + 1, leaves first.
-KernelCode recursive_dynamics_kernel(const Derivation& d) {
+/// composite_dynamics_kernel's operation count, without its text.
+long composite_dynamics_operations(const Derivation& d) {
+  const CompositeParts parts = composite_parts(d);
+  return count_operations(d.graph, parts.assignments) + unrolled_ldlt_operations(parts.nonzero, d.solved) +
+         d.prescribed.operations;
+}
+
+/// The recursion's statements: the pivots, then u_dot.
+std::vector<Assignment> recursive_assignments(const Derivation& d) {
   std::vector<Assignment> dynamics;
   const std::string real = "const " + std::string(d.scalar.name()) + " ";
   for (int s : d.eq.recursive_pivot_order)
     dynamics.push_back({real + "pivot" + str(s), d.graph.add(d.eq.recursive_pivots[s])});
   for (int r = 0; r < d.n(); ++r)
     dynamics.push_back({"udot[" + str(r) + "]", d.graph.add(d.eq.recursive_accelerations[r])});
-  const PrintedKernel body = print_kernel(d.graph, dynamics, d.scalar);
+  return dynamics;
+}
+
+/// An open rigid tree by the articulated-body recursion: u_dot straight
+/// from the graph; a pivot D that is not positive (a joint moving a subtree
+/// without mass or inertia about its axis) returns its speed + 1, leaves first.
+KernelCode recursive_dynamics_kernel(const Derivation& d) {
+  const PrintedKernel body = print_kernel(d.graph, recursive_assignments(d), d.scalar);
   std::string checks;
   for (int s : d.eq.recursive_pivot_order)
     checks += "  if (!(pivot" + str(s) + " > " + d.scalar.literal(0.0) + ")) return " + str(s + 1) + ";\n";
@@ -181,27 +207,43 @@ KernelCode recursive_dynamics_kernel(const Derivation& d) {
           body.operations, ""};
 }
 
-/// An open tree: the recursion or the composite solve, as asked or by operation count.
-KernelCode tree_dynamics_kernel(const Derivation& d, DynamicsMethod method, DynamicsChoice& choice) {
-  KernelCode composite = composite_dynamics_kernel(d);
-  choice.composite_operations = composite.operations;
-  if (!d.eq.recursive_unavailable.empty() || static_cast<int>(d.eq.recursive_accelerations.size()) != d.n()) {
+bool has_recursion(const Derivation& d) {
+  return d.eq.recursive_unavailable.empty() && static_cast<int>(d.eq.recursive_accelerations.size()) == d.n();
+}
+
+/// An open tree's choice between the recursion and the composite solve, as
+/// asked or by operation count, from the counts alone: the header gives both,
+/// but only the one chosen is printed, since the loser can be large (the
+/// composite's LDL^T grows as n^3).
+DynamicsChoice tree_dynamics_choice(const Derivation& d, DynamicsMethod method) {
+  DynamicsChoice choice;
+  choice.composite_operations = composite_dynamics_operations(d);
+  if (!has_recursion(d)) {
     if (method == DynamicsMethod::recursive)
       throw std::logic_error("recursive forward dynamics for a model without the recursion");
-    return composite;
+    return choice;
   }
-  KernelCode recursive = recursive_dynamics_kernel(d);
-  choice.recursive_operations = recursive.operations;
-  choice.recursive = method == DynamicsMethod::recursive ||
-                     (method == DynamicsMethod::automatic && recursive.operations < composite.operations);
+  choice.recursive_operations = count_operations(d.graph, recursive_assignments(d));
+  choice.recursive =
+      method == DynamicsMethod::recursive ||
+      (method == DynamicsMethod::automatic && choice.recursive_operations < choice.composite_operations);
+  return choice;
+}
+
+KernelCode tree_dynamics_kernel(const Derivation& d, DynamicsMethod method, DynamicsChoice& choice) {
+  choice = tree_dynamics_choice(d, method);
   if (choice.recursive) {
-    recursive.count_note = " (recursive; composite inertias and LDL^T: " + str(composite.operations) + ")";
+    KernelCode recursive = recursive_dynamics_kernel(d);
+    recursive.count_note =
+        " (recursive; composite inertias and LDL^T: " + str(choice.composite_operations) + ")";
     return recursive;
   }
+  KernelCode composite = composite_dynamics_kernel(d);
+  if (!has_recursion(d)) return composite;
   // " (N of them in LDL^T)" becomes " (composite inertias, N of them in LDL^T; recursive: R)".
   const std::string& note = composite.count_note;
   composite.count_note = " (composite inertias, " + note.substr(2, note.size() - 3) +
-                         "; recursive: " + str(recursive.operations) + ")";
+                         "; recursive: " + str(choice.recursive_operations) + ")";
   return composite;
 }
 
@@ -477,7 +519,7 @@ GiNaC::ex unforced(const Derivation& d, int r) {
 
 /// tau = M udot - f(tau = 0): on a rigid tree Newton and Euler's recursion
 /// (Equations::inverse_dynamics); M udot - f formed from M and f is
-/// printed too, for its count in the header (and is the body with flexible bodies).
+/// counted too, for the header (and is the body with flexible bodies).
 KernelCode inverse_dynamics_kernel(const Derivation& d) {
   std::vector<Assignment> recursive, formed;
   for (int r = 0; r < d.n(); ++r) {
@@ -492,12 +534,13 @@ KernelCode inverse_dynamics_kernel(const Derivation& d) {
       recursive.push_back({target, d.graph.add(d.eq.inverse_dynamics[r].subs(no_inputs))});
     }
   }
-  const PrintedKernel from_m = print_kernel(d.graph, formed, d.scalar);
-  if (recursive.empty())
+  if (recursive.empty()) {
+    const PrintedKernel from_m = print_kernel(d.graph, formed, d.scalar);
     return {Kernel::inverse_dynamics, from_m.body, from_m.operations, " (M udot - f: flexible bodies)"};
+  }
   const PrintedKernel p = print_kernel(d.graph, recursive, d.scalar);
   return {Kernel::inverse_dynamics, p.body, p.operations,
-          " (recursive; M udot - f from M and f: " + str(from_m.operations) + ")"};
+          " (recursive; M udot - f from M and f: " + str(count_operations(d.graph, formed)) + ")"};
 }
 
 /// g = dV_gravity/dq: the recursion's on a rigid tree, else the gradient of
@@ -734,6 +777,14 @@ std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Eq
     kernels.push_back(linearize_kernel(d));
   }
   return kernels;
+}
+
+long composite_operations(const model::Model& model, const kane::Equations& eq,
+                          const symbolic::Variables& vars, ExpressionGraph& graph, const ScalarType& scalar) {
+  Derivation d{model, eq, vars, graph, scalar, {}, {}, {}};
+  split_speeds(d);
+  print_prescribed_accelerations(d);
+  return d.loops() ? constrained_dynamics_kernel(d).operations : composite_dynamics_operations(d);
 }
 
 const KernelCode& find_kernel(const std::vector<KernelCode>& kernels, Kernel kernel) {

@@ -39,6 +39,12 @@ std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Eq
                                        DynamicsMethod dynamics = DynamicsMethod::automatic,
                                        DynamicsChoice* choice = nullptr);
 
+/// DynamicsChoice::composite_operations as derive_kernels reports it, from
+/// counts alone (the dynamics is not printed): to compare two derivations
+/// before emitting one.
+long composite_operations(const model::Model& model, const kane::Equations& equations,
+                          const symbolic::Variables& vars, ExpressionGraph& graph, const ScalarType& scalar);
+
 /// The code of `kernel` in `kernels`; throws std::logic_error if it is missing.
 const KernelCode& find_kernel(const std::vector<KernelCode>& kernels, Kernel kernel);
 

@@ -22,5 +22,7 @@ struct UnrolledLdlt {
 /// positive. The locals are of type `scalar`.
 UnrolledLdlt unrolled_ldlt(const std::vector<bool>& nonzero_m, const std::vector<int>& solved,
                            const ScalarType& scalar);
+/// unrolled_ldlt's operation count alone, without its text.
+long unrolled_ldlt_operations(const std::vector<bool>& nonzero_m, const std::vector<int>& solved);
 
 }  // namespace kanegen::codegen

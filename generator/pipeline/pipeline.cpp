@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 
@@ -110,17 +111,24 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
     flexible.emplace(static_cast<int>(b), std::move(beam));
   }
 
-  // Derive and emit with each way of summing M; keep the shorter code (the
-  // composite forward_dynamics's count: the recursion does not use M).
+  // Derive with each way of summing M and keep the one whose composite
+  // forward_dynamics is shorter (the recursion does not use M), by counting
+  // alone: only the equations kept are printed, Jacobians included, on the
+  // graph their count filled. The Program lives on the heap: the graph refers to it.
   const symbolic::Variables vars(model, elastic_counts);
-  codegen::EmittedModel emitted;
-  symbolic::Program chosen_program;
+  const codegen::EmitOptions emit_options{generate_options.jacobians || generate_options.controller,
+                                          generate_options.controller, generate_options.precision,
+                                          generate_options.dynamics};
+  const codegen::ScalarType scalar(generate_options.precision);
+  long fewest = 0;
+  std::unique_ptr<symbolic::Program> chosen_program;
+  std::unique_ptr<codegen::ExpressionGraph> chosen_graph;
   kane::Equations chosen;
   for (kane::MassMatrixMethod method :
        {kane::MassMatrixMethod::body_frames, kane::MassMatrixMethod::world_projection}) {
     start = std::chrono::steady_clock::now();
-    symbolic::Program program;
-    kane::Equations equations = kane::derive_equations(model, vars, program, method, flexible);
+    auto program = std::make_unique<symbolic::Program>();
+    kane::Equations equations = kane::derive_equations(model, vars, *program, method, flexible);
     out.seconds.derive += seconds_since(start);
     if (generate_options.dynamics == codegen::DynamicsMethod::recursive &&
         !equations.recursive_unavailable.empty())
@@ -129,32 +137,25 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
           "--dynamics recursive cannot solve this model: " + equations.recursive_unavailable,
           "use --dynamics composite, or auto (the default)");
     start = std::chrono::steady_clock::now();
-    codegen::EmittedModel candidate =
-        codegen::emit_model(model, equations, vars, program, hash,
-                            {false, false, generate_options.precision, generate_options.dynamics});
+    auto graph = std::make_unique<codegen::ExpressionGraph>(vars, *program);
+    const long operations = codegen::composite_operations(model, equations, vars, *graph, scalar);
     out.seconds.emit += seconds_since(start);
-    if (emitted.files.empty() ||
-        candidate.dynamics.composite_operations < emitted.dynamics.composite_operations) {
-      emitted = std::move(candidate);
+    if (!chosen_program || operations < fewest) {
+      fewest = operations;
+      chosen_graph = std::move(graph);
       chosen_program = std::move(program);
       chosen = std::move(equations);
     }
   }
-  // The Jacobians only for the equations kept: differentiating both would
-  // double the cost of the option for code that is thrown away.
-  if (generate_options.jacobians || generate_options.controller) {
-    start = std::chrono::steady_clock::now();
-    emitted = codegen::emit_model(
-        model, chosen, vars, chosen_program, hash,
-        {true, generate_options.controller, generate_options.precision, generate_options.dynamics});
-    out.seconds.jacobians = seconds_since(start);
-  }
+  start = std::chrono::steady_clock::now();
+  codegen::EmittedModel emitted = codegen::emit_model(model, chosen, vars, *chosen_graph, hash, emit_options);
+  (emit_options.jacobians ? out.seconds.jacobians : out.seconds.emit) += seconds_since(start);
 
   out.name = model.name;
   out.files = std::move(emitted.files);
   out.operations = std::move(emitted.operations);
   out.dynamics = emitted.dynamics;
-  out.intermediates = chosen_program.size();
+  out.intermediates = chosen_program->size();
   out.nq = chosen.nq;
   out.nu = chosen.nu;
   return out;

@@ -15,7 +15,7 @@ namespace kanegen::pipeline {
 
 struct StageTimes {
   double load = 0, derive = 0, emit = 0;  ///< seconds
-  double jacobians = 0;  ///< seconds: emitting again with the Jacobian kernels (0 without them)
+  double jacobians = 0;  ///< seconds: emitting with the Jacobian kernels (0 without them: then in emit)
 };
 
 struct GeneratedModel {

@@ -19,7 +19,9 @@ GiNaC::ex Program::define(const GiNaC::ex& value) {
   return s;
 }
 
-const GiNaC::ex* Program::definition(const GiNaC::symbol& s) const {
+const GiNaC::ex* Program::definition(const GiNaC::symbol& s) const { return definition(GiNaC::ex(s)); }
+
+const GiNaC::ex* Program::definition(const GiNaC::ex& s) const {
   auto it = definitions_.find(s);
   return it == definitions_.end() ? nullptr : &it->second;
 }

@@ -9,6 +9,7 @@
 
 #include <map>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace kanegen::symbolic {
@@ -22,12 +23,16 @@ class Program {
 
   /// The definition of an intermediate, or nullptr for an input symbol.
   const GiNaC::ex* definition(const GiNaC::symbol& s) const;
+  /// The same for a symbol held as an expression: no copy of the symbol.
+  const GiNaC::ex* definition(const GiNaC::ex& s) const;
 
   std::size_t size() const { return definitions_.size(); }
 
  private:
   std::vector<GiNaC::symbol> symbols_;
-  std::map<GiNaC::symbol, GiNaC::ex, GiNaC::ex_is_less> definitions_;
+  // On GiNaC's hash: an ordered map compared symbols through a copy of each
+  // (a symbol becomes an ex to compare), a large part of generation's time.
+  std::unordered_map<GiNaC::ex, GiNaC::ex, std::hash<GiNaC::ex>, GiNaC::ex_is_equal> definitions_;
 };
 
 }  // namespace kanegen::symbolic

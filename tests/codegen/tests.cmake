@@ -2,7 +2,8 @@
 # The code generator's parts on their own: the helper code that generated
 # models include verbatim (templates/solve_saddle.hpp), compiled and solved
 # against Eigen, the kernel table's printer, generalized_momentum, and the
-# expression graph's derivatives (the Jacobian kernels').
+# expression graph's derivatives (the Jacobian kernels'), and the counts of the
+# forward_dynamics that is counted but not printed.
 find_package(Eigen3 REQUIRED NO_MODULE)
 add_executable(test_codegen ${CMAKE_CURRENT_LIST_DIR}/test_solve_saddle.cpp
                             ${CMAKE_CURRENT_LIST_DIR}/test_kernel_printer.cpp
@@ -10,7 +11,8 @@ add_executable(test_codegen ${CMAKE_CURRENT_LIST_DIR}/test_solve_saddle.cpp
                             ${CMAKE_CURRENT_LIST_DIR}/test_moved_bodies.cpp
                             ${CMAKE_CURRENT_LIST_DIR}/test_graph_derivative.cpp
                             ${CMAKE_CURRENT_LIST_DIR}/test_recursive_dynamics.cpp
-                            ${CMAKE_CURRENT_LIST_DIR}/test_unrolled_saddle.cpp)
+                            ${CMAKE_CURRENT_LIST_DIR}/test_unrolled_saddle.cpp
+                            ${CMAKE_CURRENT_LIST_DIR}/test_dynamics_choice.cpp)
 target_include_directories(test_codegen PRIVATE ${PROJECT_SOURCE_DIR}/templates)
 target_compile_definitions(test_codegen PRIVATE KANEGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 target_compile_options(test_codegen PRIVATE ${KANEGEN_WARNINGS})
