@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <functional>
 #include <map>
+#include <set>
 
 namespace kanegen::codegen {
 
@@ -53,10 +54,14 @@ class Printer {
       : graph_(graph), indent_(indent), prefix_(prefix), scalar_(scalar) {}
 
   PrintedKernel run(const std::vector<Assignment>& assignments) {
+    out_.temp_prefix = prefix_;
     for (const Assignment& a : assignments) count_uses(a.node);
     for (const Assignment& a : assignments) {
       emit_temporaries(a.node);
-      out_.body += indent_ + a.target + " = " + text(a.node) + ";\n";
+      Statement s = statement(a.node, false);
+      s.target = a.target;
+      out_.body += indent_ + a.target + " = " + s.expression + ";\n";
+      out_.statements.push_back(std::move(s));
     }
     out_.temporaries = static_cast<int>(temps_.size());
     return out_;
@@ -107,15 +112,34 @@ class Printer {
     for (int a : node(id).args) emit_temporaries(a);
     if (wants_temp(id)) {
       const std::string name = prefix_ + std::to_string(temps_.size());
-      out_.body += indent_ + "const " + scalar_.name() + " " + name + " = " + expression(id) + ";\n";
+      Statement s = statement(id, true);
+      s.temporary = static_cast<int>(temps_.size());
+      out_.body += indent_ + "const " + scalar_.name() + " " + name + " = " + s.expression + ";\n";
+      out_.statements.push_back(std::move(s));
       temps_.emplace(id, name);
+      temp_index_.emplace(id, static_cast<int>(temp_index_.size()));
     }
+  }
+
+  // The statement of node `id`, with the temporaries and inputs its text reads
+  // (a temporary's own defining text is its expression, not its name).
+  Statement statement(int id, bool defining) {
+    read_temps_.clear();
+    read_inputs_.clear();
+    Statement s;
+    s.expression = defining ? expression(id) : text(id);
+    s.temporaries.assign(read_temps_.begin(), read_temps_.end());
+    s.inputs.assign(read_inputs_.begin(), read_inputs_.end());
+    return s;
   }
 
   // The text of a node where it is used: its temporary's name if it has one.
   std::string text(int id) const {
     auto t = temps_.find(id);
-    if (t != temps_.end()) return t->second;
+    if (t != temps_.end()) {
+      read_temps_.insert(temp_index_.at(id));
+      return t->second;
+    }
     return expression(id);
   }
 
@@ -172,7 +196,9 @@ class Printer {
     const Node& n = node(id);
     switch (n.op) {
       case Op::number: return scalar_.literal(n.value);
-      case Op::input: return n.name;
+      case Op::input:
+        read_inputs_.insert(n.name);
+        return n.name;
       case Op::add: {
         std::string s;
         for (int a : n.args) {
@@ -221,6 +247,10 @@ class Printer {
   ScalarType scalar_;
   std::map<int, int> uses_;
   std::map<int, std::string> temps_;
+  std::map<int, int> temp_index_;  // node -> k of its temporary x<k>
+  // What the statement being printed reads (filled by the const text functions).
+  mutable std::set<int> read_temps_;
+  mutable std::set<std::string> read_inputs_;
   PrintedKernel out_;
 };
 

@@ -213,7 +213,8 @@ EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, co
   ExpressionGraph graph(vars, program);
   DynamicsChoice dynamics;
   const std::vector<KernelCode> kernels = derive_kernels(
-      model, eq, vars, graph, options.jacobians, options.controller, scalar, options.dynamics, &dynamics);
+      model, eq, vars, graph, options.jacobians, options.controller, scalar, options.dynamics, &dynamics,
+      options.split_threshold);
   check_presence(kernels, eq.loops.size() > 0, options.jacobians, options.controller);
   TemplateValues values = model_values(model, eq, model_hash, scalar);
   add_moved_bodies(values, eq);

@@ -6,6 +6,7 @@
 
 #include "codegen/cpp_printer.hpp"
 #include "codegen/graph_derivative.hpp"
+#include "codegen/kernel_splitter.hpp"
 #include "codegen/unrolled_ldlt.hpp"
 
 namespace kanegen::codegen {
@@ -26,6 +27,8 @@ struct Derivation {
   std::vector<int> solved, local;
   /// The given accelerations, piece by piece, as the first statements of the dynamics.
   KernelCode prescribed{Kernel::forward_dynamics, "", 0, ""};
+  /// Kernels of more statements are split into functions (kernel_splitter.hpp); 0: never.
+  int split_threshold = 0;
 
   int n() const { return eq.nu; }
   int ns() const { return static_cast<int>(solved.size()); }
@@ -38,9 +41,13 @@ struct Derivation {
   }
 };
 
-KernelCode printed(Kernel kernel, const Derivation& d, const std::vector<Assignment>& assignments) {
+/// The assignments printed, split into functions past the threshold (the
+/// count note then says so); `arrays`: the kernel's local arrays that they assign.
+KernelCode printed(Kernel kernel, const Derivation& d, const std::vector<Assignment>& assignments,
+                   const std::vector<KernelArgument>& arrays = {}) {
   const PrintedKernel p = print_kernel(d.graph, assignments, d.scalar);
-  return {kernel, p.body, p.operations, ""};
+  const SplitBody split = split_kernel(p, signature(kernel), d.scalar, d.split_threshold, arrays);
+  return {kernel, split.body, p.operations, split.note()};
 }
 
 void split_speeds(Derivation& d) {
@@ -152,12 +159,12 @@ KernelCode composite_dynamics_kernel(const Derivation& d) {
     dynamics.push_back({"udot[" + str(i) + "]",
                         d.vars.prescribed_acceleration.empty() ? node : d.graph.add(d.solved_rhs(i))});
   }
-  const PrintedKernel body = print_kernel(d.graph, dynamics, d.scalar);
+  const KernelCode body = printed(Kernel::forward_dynamics, d, dynamics);
   const UnrolledLdlt solve = unrolled_ldlt(nonzero, d.solved, d.scalar);
   return {Kernel::forward_dynamics,
           d.prescribed.body + body.body + solve.text + given_accelerations(d) + "  return 0;\n",
           body.operations + solve.operations + d.prescribed.operations,
-          " (" + str(solve.operations) + " of them in LDL^T)"};
+          " (" + str(solve.operations) + " of them in LDL^T)" + body.count_note};
 }
 
 /// An open rigid tree by the articulated-body recursion: u_dot straight
@@ -170,14 +177,14 @@ KernelCode recursive_dynamics_kernel(const Derivation& d) {
     dynamics.push_back({real + "pivot" + str(s), d.graph.add(d.eq.recursive_pivots[s])});
   for (int r = 0; r < d.n(); ++r)
     dynamics.push_back({"udot[" + str(r) + "]", d.graph.add(d.eq.recursive_accelerations[r])});
-  const PrintedKernel body = print_kernel(d.graph, dynamics, d.scalar);
+  const KernelCode body = printed(Kernel::forward_dynamics, d, dynamics);
   std::string checks;
   for (int s : d.eq.recursive_pivot_order)
     checks += "  if (!(pivot" + str(s) + " > " + d.scalar.literal(0.0) + ")) return " + str(s + 1) + ";\n";
   return {Kernel::forward_dynamics,
           "  // Articulated-body recursion; pivot<k>: the subtree's inertia about joint k's axis.\n" +
               body.body + checks + "  return 0;\n",
-          body.operations, ""};
+          body.operations, body.count_note};
 }
 
 /// An open tree: the recursion or the composite solve, as asked or by operation count.
@@ -194,7 +201,8 @@ KernelCode tree_dynamics_kernel(const Derivation& d, DynamicsMethod method, Dyna
   choice.recursive = method == DynamicsMethod::recursive ||
                      (method == DynamicsMethod::automatic && recursive.operations < composite.operations);
   if (choice.recursive) {
-    recursive.count_note = " (recursive; composite inertias and LDL^T: " + str(composite.operations) + ")";
+    recursive.count_note =
+        " (recursive; composite inertias and LDL^T: " + str(composite.operations) + ")" + recursive.count_note;
     return recursive;
   }
   // " (N of them in LDL^T)" becomes " (composite inertias, N of them in LDL^T; recursive: R)".
@@ -247,7 +255,9 @@ KernelCode constrained_dynamics_kernel(const Derivation& d) {
           {"Ms[" + str(i * ns + j) + "]", d.graph.add(d.eq.mass_matrix[d.solved[i] * n + d.solved[j]])});
   for (int i = 0; i < ns; ++i)
     saddle.push_back({"b[" + str(i) + "]", d.graph.add(d.solved_rhs(d.solved[i]))});
-  const PrintedKernel body = print_kernel(d.graph, saddle, d.scalar);
+  const std::string real = std::string(d.scalar.name()) + "*";
+  const KernelCode body = printed(Kernel::constrained_dynamics, d, saddle,
+                                  {{real, "Ms"}, {real, "b"}, {real, "Cs"}, {real, "g"}});
   std::string unpack;  // the solved accelerations back into udot, the prescribed ones given
   for (int i = 0; i < ns; ++i) unpack += "  udot[" + str(d.solved[i]) + "] = b[" + str(i) + "];\n";
   return {Kernel::constrained_dynamics,
@@ -255,7 +265,7 @@ KernelCode constrained_dynamics_kernel(const Derivation& d) {
               d.prescribed.body + "  " + d.scalar.name() + " Ms[NS * NS], b[NS], Cs[NC * NS], g[NC];\n" +
               body.body + "  const int status = solve_saddle<NS, NC>(Ms, b, Cs, g, lambda);\n" + unpack +
               given_accelerations(d) + "  return status;\n",
-          body.operations + d.prescribed.operations, ""};
+          body.operations + d.prescribed.operations, body.count_note};
 }
 
 /// With loops, forward_dynamics is the constrained dynamics without the loop forces.
@@ -356,8 +366,9 @@ KernelCode forcing_jacobian_kernel(const Derivation& d) {
   const std::vector<Assignment> by_speed =
       jacobian_entries(d.graph, forcing, input_nodes(d.graph, d.vars.u), "dfdu", "NU * NU", fill);
   entries.insert(entries.end(), by_speed.begin(), by_speed.end());
-  const PrintedKernel p = print_kernel(d.graph, entries, d.scalar);
-  return {Kernel::forcing_jacobian, fill + p.body, p.operations, ""};
+  KernelCode code = printed(Kernel::forcing_jacobian, d, entries);
+  code.body = fill + code.body;
+  return code;
 }
 
 /// d(M(q) a)/dq: the rows sum_s M_rs a_s, a the kernel's argument.
@@ -373,8 +384,9 @@ KernelCode mass_matrix_product_jacobian_kernel(const Derivation& d) {
   std::string fill;
   const std::vector<Assignment> entries =
       jacobian_entries(d.graph, products, input_nodes(d.graph, d.vars.q), "dMa_dq", "NU * NQ", fill);
-  const PrintedKernel p = print_kernel(d.graph, entries, d.scalar);
-  return {Kernel::mass_matrix_product_jacobian, fill + p.body, p.operations, ""};
+  KernelCode code = printed(Kernel::mass_matrix_product_jacobian, d, entries);
+  code.body = fill + code.body;
+  return code;
 }
 
 /// d(C(q)^T lambda)/dq: the rows sum_c C_cr lambda_c, lambda the kernel's argument.
@@ -391,8 +403,9 @@ KernelCode constraint_force_jacobian_kernel(const Derivation& d) {
   std::string fill;
   const std::vector<Assignment> entries =
       jacobian_entries(d.graph, forces, input_nodes(d.graph, d.vars.q), "dCl_dq", "NU * NQ", fill);
-  const PrintedKernel p = print_kernel(d.graph, entries, d.scalar);
-  return {Kernel::constraint_force_jacobian, fill + p.body, p.operations, ""};
+  KernelCode code = printed(Kernel::constraint_force_jacobian, d, entries);
+  code.body = fill + code.body;
+  return code;
 }
 
 /// f with the inputs 0: what the model's own forces give.
@@ -419,12 +432,14 @@ KernelCode inverse_dynamics_kernel(const Derivation& d) {
       recursive.push_back({target, d.graph.add(d.eq.inverse_dynamics[r].subs(no_inputs))});
     }
   }
-  const PrintedKernel from_m = print_kernel(d.graph, formed, d.scalar);
-  if (recursive.empty())
-    return {Kernel::inverse_dynamics, from_m.body, from_m.operations, " (M udot - f: flexible bodies)"};
-  const PrintedKernel p = print_kernel(d.graph, recursive, d.scalar);
-  return {Kernel::inverse_dynamics, p.body, p.operations,
-          " (recursive; M udot - f from M and f: " + str(from_m.operations) + ")"};
+  KernelCode from_m = printed(Kernel::inverse_dynamics, d, formed);
+  if (recursive.empty()) {
+    from_m.count_note = " (M udot - f: flexible bodies)" + from_m.count_note;
+    return from_m;
+  }
+  KernelCode code = printed(Kernel::inverse_dynamics, d, recursive);
+  code.count_note = " (recursive; M udot - f from M and f: " + str(from_m.operations) + ")" + code.count_note;
+  return code;
 }
 
 /// g = dV_gravity/dq: the recursion's on a rigid tree, else the gradient of
@@ -478,8 +493,9 @@ KernelCode coriolis_matrix_kernel(const Derivation& d) {
       if (!is_zero(graph, c)) entries.push_back({"C[" + str(i * n + j) + "]", c});
     }
   if (static_cast<int>(entries.size()) < n * n) fill = "  for (int k = 0; k < NU * NU; ++k) C[k] = 0.0;\n";
-  const PrintedKernel p = print_kernel(graph, entries, d.scalar);
-  return {Kernel::coriolis_matrix, fill + p.body, p.operations, ""};
+  KernelCode code = printed(Kernel::coriolis_matrix, d, entries);
+  code.body = fill + code.body;
+  return code;
 }
 
 /// The outputs of position (independent of u) as nodes; 0 for the others.
@@ -512,8 +528,9 @@ KernelCode output_jacobian_kernel(const Derivation& d) {
     if (!is_zero(d.graph, entry[k])) out.push_back({"J[" + str(static_cast<long>(k)) + "]", entry[k]});
   const std::string fill =
       out.size() < entry.size() ? "  for (int k = 0; k < NY * NU; ++k) J[k] = 0.0;\n" : std::string();
-  const PrintedKernel p = print_kernel(d.graph, out, d.scalar);
-  return {Kernel::output_jacobian, fill + p.body, p.operations, ""};
+  KernelCode code = printed(Kernel::output_jacobian, d, out);
+  code.body = fill + code.body;
+  return code;
 }
 
 /// Jdot_u = d(J u)/dq u + d(J u)/dt with u held: the directional derivative
@@ -546,8 +563,7 @@ KernelCode output_jacobian_rate_kernel(const Derivation& d) {
     if (!is_zero(graph, dt)) terms[i].push_back(dt);
     out.push_back({"Jdot_u[" + str(static_cast<long>(i)) + "]", graph.sum(std::move(terms[i]))});
   }
-  const PrintedKernel p = print_kernel(graph, out, d.scalar);
-  return {Kernel::output_jacobian_rate, p.body, p.operations, ""};
+  return printed(Kernel::output_jacobian_rate, d, out);
 }
 
 /// x = (q, u), xdot = (u, udot): A = [0 I; dudot/dq dudot/du], B = [0; dudot/dtau]
@@ -618,8 +634,8 @@ KernelCode linearize_kernel(const Derivation& d) {
 std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Equations& eq,
                                        const symbolic::Variables& vars, ExpressionGraph& graph,
                                        bool jacobians, bool controller, const ScalarType& scalar,
-                                       DynamicsMethod dynamics, DynamicsChoice* choice) {
-  Derivation d{model, eq, vars, graph, scalar, {}, {}, {}};
+                                       DynamicsMethod dynamics, DynamicsChoice* choice, int split_threshold) {
+  Derivation d{model, eq, vars, graph, scalar, {}, {}, {}, split_threshold};
   split_speeds(d);
   print_prescribed_accelerations(d);
   std::vector<KernelCode> kernels{set_parameter_kernel(d), get_parameter_kernel(d), initial_state_kernel(d),

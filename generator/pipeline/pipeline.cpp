@@ -131,7 +131,8 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
     start = std::chrono::steady_clock::now();
     codegen::EmittedModel candidate =
         codegen::emit_model(model, equations, vars, program, hash,
-                            {false, false, generate_options.precision, generate_options.dynamics});
+                            {false, false, generate_options.precision, generate_options.dynamics,
+                             generate_options.split_threshold});
     out.seconds.emit += seconds_since(start);
     if (emitted.files.empty() ||
         candidate.dynamics.composite_operations < emitted.dynamics.composite_operations) {
@@ -146,7 +147,8 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
     start = std::chrono::steady_clock::now();
     emitted = codegen::emit_model(
         model, chosen, vars, chosen_program, hash,
-        {true, generate_options.controller, generate_options.precision, generate_options.dynamics});
+        {true, generate_options.controller, generate_options.precision, generate_options.dynamics,
+         generate_options.split_threshold});
     out.seconds.jacobians = seconds_since(start);
   }
 
