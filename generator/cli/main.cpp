@@ -184,7 +184,7 @@ void add_generate(CLI::App& app, GenerateCommand& c) {
   c.command->add_flag("--controller", c.controller, kControllerHelp);
   c.command
       ->add_option("--split-threshold", c.split_threshold,
-                   "emit a kernel of more than N statements as functions of at most N statements each, so "
+                   "emit a kernel of more than N operations as functions of at most about min(N, 1000) operations, so "
                    "that the compile time grows linearly with the model; 0: never split")
       ->type_name("N")
       ->capture_default_str()

@@ -126,8 +126,10 @@ class Printer {
   Statement statement(int id, bool defining) {
     read_temps_.clear();
     read_inputs_.clear();
+    read_operations_ = 0;
     Statement s;
     s.expression = defining ? expression(id) : text(id);
+    s.operations = read_operations_;
     s.temporaries.assign(read_temps_.begin(), read_temps_.end());
     s.inputs.assign(read_inputs_.begin(), read_inputs_.end());
     return s;
@@ -194,6 +196,7 @@ class Printer {
 
   std::string expression(int id) const {
     const Node& n = node(id);
+    read_operations_ += cost(n);
     switch (n.op) {
       case Op::number: return scalar_.literal(n.value);
       case Op::input:
@@ -206,6 +209,7 @@ class Printer {
           bool negative = false;
           std::string t;
           if (term.op == Op::mul && !temps_.count(a)) {
+            read_operations_ += cost(term);
             t = product(term, negative);
           } else if (term.op == Op::number) {
             negative = term.value < 0;
@@ -251,6 +255,7 @@ class Printer {
   // What the statement being printed reads (filled by the const text functions).
   mutable std::set<int> read_temps_;
   mutable std::set<std::string> read_inputs_;
+  mutable long read_operations_ = 0;
   PrintedKernel out_;
 };
 

@@ -27,6 +27,7 @@ struct Statement {
   std::string expression;            ///< the right-hand side
   std::vector<int> temporaries;      ///< the temporaries it reads, ascending, without repeats
   std::vector<std::string> inputs;   ///< the inputs it reads ("q[0]", "p.m1", "t"), without repeats
+  long operations = 0;               ///< of its text (what the compiler has to work on)
 };
 
 struct PrintedKernel {

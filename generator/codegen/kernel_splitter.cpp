@@ -18,31 +18,51 @@ std::string root(const std::string& name) { return name.substr(0, name.find_firs
 
 /// Where each statement goes and where each value that crosses parts lives.
 struct Layout {
-  int parts = 0, size = 0;                ///< part p holds statements [p * size, (p + 1) * size)
+  int parts = 0;
+  std::vector<std::size_t> first;         ///< of each part, then the number of statements
+  std::vector<int> part;                  ///< of each statement
   std::map<int, int> defined_in;          ///< temporary -> its part
   std::map<int, int> slot;                ///< crossing temporary -> workspace index
   std::map<std::size_t, int> local_slot;  ///< statement assigning a local -> workspace index
   int slots = 0;
 };
 
-Layout lay_out(const std::vector<Statement>& statements, int threshold,
+long total_operations(const std::vector<Statement>& statements) {
+  long total = 0;
+  for (const Statement& s : statements) total += s.operations;
+  return total;
+}
+
+Layout lay_out(const std::vector<Statement>& statements, long threshold,
                const std::set<std::string>& argument_names) {
   Layout layout;
   const int n = static_cast<int>(statements.size());
-  layout.parts = (n + threshold - 1) / threshold;
-  layout.size = (n + layout.parts - 1) / layout.parts;  // parts of even length
+  const long total = total_operations(statements);
+  const long parts = (total + threshold - 1) / threshold;
+  const long target = (total + parts - 1) / parts;  // parts of even operation counts
+  long in_part = 0;
+  for (int i = 0; i < n; ++i) {
+    if (i == 0 || (in_part >= target && layout.parts < parts)) {
+      layout.first.push_back(static_cast<std::size_t>(i));
+      ++layout.parts;
+      in_part = 0;
+    }
+    in_part += statements[i].operations;
+    layout.part.push_back(layout.parts - 1);
+  }
+  layout.first.push_back(statements.size());
   std::map<int, int> last_read_in;
   for (int i = 0; i < n; ++i) {
-    if (statements[i].temporary >= 0) layout.defined_in[statements[i].temporary] = i / layout.size;
-    for (int k : statements[i].temporaries) last_read_in[k] = i / layout.size;
+    if (statements[i].temporary >= 0) layout.defined_in[statements[i].temporary] = layout.part[i];
+    for (int k : statements[i].temporaries) last_read_in[k] = layout.part[i];
   }
   // Slots in statement order, the smallest free one first; a slot is free
   // again after the last part that reads its value (a local's never is).
   std::set<int> free;
   std::map<int, std::vector<int>> released_after;
   for (int i = 0; i < n; ++i) {
-    const int part = i / layout.size;
-    if (i > 0 && i % layout.size == 0)
+    const int part = layout.part[i];
+    if (i > 0 && part != layout.part[i - 1])
       for (int s : released_after[part - 1]) free.insert(s);
     const Statement& s = statements[i];
     const auto read = last_read_in.find(s.temporary);
@@ -83,9 +103,7 @@ Part part_function(const PrintedKernel& printed, const Layout& layout, int p,
   std::set<int> imports;  // temporaries of earlier parts that it reads
   std::string body;
   bool workspace = false;
-  const std::size_t first = static_cast<std::size_t>(p) * layout.size;
-  const std::size_t last = std::min(printed.statements.size(), first + layout.size);
-  for (std::size_t i = first; i < last; ++i) {
+  for (std::size_t i = layout.first[p]; i < layout.first[p + 1]; ++i) {
     const Statement& s = printed.statements[i];
     for (const std::string& input : s.inputs) names.insert(root(input));
     // A value of an earlier part is loaded where it is first read, not at
@@ -154,8 +172,8 @@ std::string SplitBody::note() const {
 SplitBody split_kernel(const PrintedKernel& printed, const KernelSignature& signature,
                        const ScalarType& scalar, int threshold, const std::vector<KernelArgument>& arrays) {
   SplitBody unchanged{printed.body, 1, 0};
-  const int n = static_cast<int>(printed.statements.size());
-  if (threshold <= 0 || n <= threshold) return unchanged;
+  const long total = total_operations(printed.statements);
+  if (threshold <= 0 || total <= threshold) return unchanged;
   std::vector<KernelArgument> parameters = arguments(signature);
   parameters.insert(parameters.end(), arrays.begin(), arrays.end());
   std::set<std::string> argument_names;
@@ -164,7 +182,8 @@ SplitBody split_kernel(const PrintedKernel& printed, const KernelSignature& sign
   for (const Statement& s : printed.statements)
     for (const std::string& input : s.inputs)
       if (!argument_names.count(root(input))) return unchanged;  // a local of the caller
-  const Layout layout = lay_out(printed.statements, threshold, argument_names);
+  const long part_operations = std::min<long>(threshold, kPartOperations);
+  const Layout layout = lay_out(printed.statements, part_operations, argument_names);
   std::string parts, calls, after;
   for (int p = 0; p < layout.parts; ++p) {
     const Part part = part_function(printed, layout, p, parameters, scalar);
@@ -176,10 +195,10 @@ SplitBody split_kernel(const PrintedKernel& printed, const KernelSignature& sign
   SplitBody split;
   split.parts = layout.parts;
   split.stack_bytes = static_cast<long>(layout.slots) * (scalar.is_double() ? 8 : 4);
-  split.body = "  // " + std::to_string(n) + " statements in " + std::to_string(layout.parts) +
-               " functions of at most " + std::to_string(layout.size) +
-               " (kanegen generate --split-threshold), so that\n"
-               "  // the compile time grows linearly; w: the " +
+  split.body = "  // " + std::to_string(total) + " operations in " + std::to_string(layout.parts) +
+               " functions of about " + std::to_string(part_operations) +
+               " at most (kanegen generate --split-threshold): the compile\n"
+               "  // time grows linearly; w holds the " +
                std::to_string(layout.slots) + " values passed between them (" +
                with_separators(split.stack_bytes) + " bytes of stack).\n  struct Part {\n" + parts +
                "  };\n" +
