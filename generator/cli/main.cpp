@@ -183,9 +183,10 @@ void add_generate(CLI::App& app, GenerateCommand& c) {
       ->check(CLI::IsMember({"double", "float"}));
   c.command->add_flag("--controller", c.controller, kControllerHelp);
   c.command
-      ->add_option("--split-threshold", c.split_threshold,
-                   "emit a kernel of more than N operations as functions of at most about min(N, 1000) operations, so "
-                   "that the compile time grows linearly with the model; 0: never split")
+      ->add_option(
+          "--split-threshold", c.split_threshold,
+          "emit a kernel of more than N operations as functions of at most about min(N, 1000) operations, so "
+          "that the compile time grows linearly with the model; 0: never split")
       ->type_name("N")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);

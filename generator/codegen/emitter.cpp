@@ -212,9 +212,9 @@ EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, co
   if (!scalar.is_double() && options.jacobians) throw std::logic_error("float kernels with Jacobians");
   ExpressionGraph graph(vars, program);
   DynamicsChoice dynamics;
-  const std::vector<KernelCode> kernels = derive_kernels(
-      model, eq, vars, graph, options.jacobians, options.controller, scalar, options.dynamics, &dynamics,
-      options.split_threshold);
+  const std::vector<KernelCode> kernels =
+      derive_kernels(model, eq, vars, graph, options.jacobians, options.controller, scalar, options.dynamics,
+                     &dynamics, options.split_threshold);
   check_presence(kernels, eq.loops.size() > 0, options.jacobians, options.controller);
   TemplateValues values = model_values(model, eq, model_hash, scalar);
   add_moved_bodies(values, eq);

@@ -201,8 +201,8 @@ KernelCode tree_dynamics_kernel(const Derivation& d, DynamicsMethod method, Dyna
   choice.recursive = method == DynamicsMethod::recursive ||
                      (method == DynamicsMethod::automatic && recursive.operations < composite.operations);
   if (choice.recursive) {
-    recursive.count_note =
-        " (recursive; composite inertias and LDL^T: " + str(composite.operations) + ")" + recursive.count_note;
+    recursive.count_note = " (recursive; composite inertias and LDL^T: " + str(composite.operations) + ")" +
+                           recursive.count_note;
     return recursive;
   }
   // " (N of them in LDL^T)" becomes " (composite inertias, N of them in LDL^T; recursive: R)".

@@ -145,10 +145,9 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
   // double the cost of the option for code that is thrown away.
   if (generate_options.jacobians || generate_options.controller) {
     start = std::chrono::steady_clock::now();
-    emitted = codegen::emit_model(
-        model, chosen, vars, chosen_program, hash,
-        {true, generate_options.controller, generate_options.precision, generate_options.dynamics,
-         generate_options.split_threshold});
+    emitted = codegen::emit_model(model, chosen, vars, chosen_program, hash,
+                                  {true, generate_options.controller, generate_options.precision,
+                                   generate_options.dynamics, generate_options.split_threshold});
     out.seconds.jacobians = seconds_since(start);
   }
 

@@ -6,8 +6,8 @@
 #include <map>
 #include <string>
 
-#include "codegen/kernel_table.hpp"
 #include "codegen/kernel_splitter.hpp"
+#include "codegen/kernel_table.hpp"
 #include "codegen/model_kernels.hpp"
 #include "codegen/scalar_type.hpp"
 #include "model/load.hpp"
