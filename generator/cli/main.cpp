@@ -189,7 +189,7 @@ void add_generate(CLI::App& app, GenerateCommand& c) {
           "that the compile time grows linearly with the model; 0: never split")
       ->type_name("N")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(kNonNegative);
 }
 
 int run_generate(const GenerateCommand& c) {
