@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: MIT
 # kanegen_add_model(<target> <model file> [NAME <model name>] [RUNNER] [JACOBIANS] [CONTROLLER] [PRECISION float]
-#                   [DYNAMICS recursive|composite|auto])
+#                   [DYNAMICS recursive|composite|auto] [SPLIT_THRESHOLD N])
 #
 # Generates the model's kernels at build time (again whenever the model file
 # or the kanegen generator changes) and makes <target> a static library with
@@ -13,11 +13,13 @@
 # "<model name>_float.hpp" and call kanegen_models::<model name>_float::...;
 # such a model has no runner (docs/embedded.md). DYNAMICS picks how
 # forward_dynamics solves (kanegen generate --dynamics; default auto).
+# SPLIT_THRESHOLD: kernels of more operations become several functions
+# (kanegen generate --split-threshold; 0: never).
 #
 # The model name is read from the file (JSON "name", URDF <robot name>, made
 # a C++ identifier as kanegen does); NAME overrides it if your file is unusual.
 function(kanegen_add_model target model)
-  cmake_parse_arguments(ARG "RUNNER;JACOBIANS;CONTROLLER" "NAME;PRECISION;DYNAMICS" "" ${ARGN})
+  cmake_parse_arguments(ARG "RUNNER;JACOBIANS;CONTROLLER" "NAME;PRECISION;DYNAMICS;SPLIT_THRESHOLD" "" ${ARGN})
   get_filename_component(model_path ${model} ABSOLUTE)
   if(NOT EXISTS ${model_path})
     message(FATAL_ERROR "kanegen_add_model(${target}): model file ${model_path} does not exist")
@@ -57,6 +59,12 @@ function(kanegen_add_model target model)
       message(FATAL_ERROR "kanegen_add_model(${target}): DYNAMICS is recursive, composite or auto, not ${ARG_DYNAMICS}")
     endif()
     list(APPEND options --dynamics ${ARG_DYNAMICS})
+  endif()
+  if(DEFINED ARG_SPLIT_THRESHOLD)
+    if(NOT ARG_SPLIT_THRESHOLD MATCHES "^[0-9]+$")
+      message(FATAL_ERROR "kanegen_add_model(${target}): SPLIT_THRESHOLD is a number of operations, not ${ARG_SPLIT_THRESHOLD}")
+    endif()
+    list(APPEND options --split-threshold ${ARG_SPLIT_THRESHOLD})
   endif()
   set(runner_source ${out}/${name}_runner.cpp)
   if(ARG_PRECISION STREQUAL "float")

@@ -156,6 +156,7 @@ struct GenerateCommand {
   bool jacobians = false;
   std::string precision = "double";
   bool controller = false;
+  int split_threshold = kanegen::codegen::kDefaultSplitThreshold;
 };
 
 constexpr const char* kControllerHelp =
@@ -181,6 +182,14 @@ void add_generate(CLI::App& app, GenerateCommand& c) {
                    "loops included; not with --jacobians or --controller; docs/embedded.md)")
       ->check(CLI::IsMember({"double", "float"}));
   c.command->add_flag("--controller", c.controller, kControllerHelp);
+  c.command
+      ->add_option(
+          "--split-threshold", c.split_threshold,
+          "emit a kernel of more than N operations as functions of at most about min(N, 1000) operations, so "
+          "that the compile time grows linearly with the model; 0: never split")
+      ->type_name("N")
+      ->capture_default_str()
+      ->check(kNonNegative);
 }
 
 int run_generate(const GenerateCommand& c) {
@@ -193,7 +202,7 @@ int run_generate(const GenerateCommand& c) {
         {c.jacobians, c.controller,
          c.precision == "float" ? kanegen::codegen::Precision::single_precision
                                 : kanegen::codegen::Precision::double_precision,
-         b.dynamics});
+         b.dynamics, c.split_threshold});
   }();
   kanegen::codegen::write_files_atomically(c.out_dir, g.files);
   if (!c.run.quiet) {

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <functional>
 #include <map>
+#include <set>
 
 namespace kanegen::codegen {
 
@@ -58,10 +59,14 @@ class Printer {
         temps_(graph.size(), -1) {}
 
   PrintedKernel run(const std::vector<Assignment>& assignments) {
+    out_.temp_prefix = prefix_;
     for (const Assignment& a : assignments) count_uses(a.node);
     for (const Assignment& a : assignments) {
       emit_temporaries(a.node);
-      out_.body += indent_ + a.target + " = " + text(a.node) + ";\n";
+      Statement s = statement(a.node, false);
+      s.target = a.target;
+      out_.body += indent_ + a.target + " = " + s.expression + ";\n";
+      out_.statements.push_back(std::move(s));
     }
     out_.temporaries = temporaries_;
     return out_;
@@ -116,14 +121,34 @@ class Printer {
     if (has_temp(id) || is_leaf(node(id))) return;
     for (int a : node(id).args) emit_temporaries(a);
     if (wants_temp(id)) {
-      const std::string value = expression(id);
+      Statement s = statement(id, true);
+      s.temporary = temporaries_;
       temps_[id] = temporaries_++;
-      out_.body += indent_ + "const " + scalar_.name() + " " + temp_name(id) + " = " + value + ";\n";
+      out_.body += indent_ + "const " + scalar_.name() + " " + temp_name(id) + " = " + s.expression + ";\n";
+      out_.statements.push_back(std::move(s));
     }
   }
 
+  // The statement of node `id`, with the temporaries and inputs its text reads
+  // (a temporary's own defining text is its expression, not its name).
+  Statement statement(int id, bool defining) {
+    read_temps_.clear();
+    read_inputs_.clear();
+    read_operations_ = 0;
+    Statement s;
+    s.expression = defining ? expression(id) : text(id);
+    s.operations = read_operations_;
+    s.temporaries.assign(read_temps_.begin(), read_temps_.end());
+    s.inputs.assign(read_inputs_.begin(), read_inputs_.end());
+    return s;
+  }
+
   // The text of a node where it is used: its temporary's name if it has one.
-  std::string text(int id) const { return has_temp(id) ? temp_name(id) : expression(id); }
+  std::string text(int id) const {
+    if (!has_temp(id)) return expression(id);
+    read_temps_.insert(temps_[id]);
+    return temp_name(id);
+  }
   bool has_temp(int id) const { return temps_[id] >= 0; }
   std::string temp_name(int id) const { return prefix_ + std::to_string(temps_[id]); }
 
@@ -178,9 +203,12 @@ class Printer {
 
   std::string expression(int id) const {
     const Node& n = node(id);
+    read_operations_ += cost(n);
     switch (n.op) {
       case Op::number: return scalar_.literal(n.value);
-      case Op::input: return n.name;
+      case Op::input:
+        read_inputs_.insert(n.name);
+        return n.name;
       case Op::add: {
         std::string s;
         for (int a : n.args) {
@@ -188,6 +216,7 @@ class Printer {
           bool negative = false;
           std::string t;
           if (term.op == Op::mul && !has_temp(a)) {
+            read_operations_ += cost(term);
             t = product(term, negative);
           } else if (term.op == Op::number) {
             negative = term.value < 0;
@@ -232,6 +261,10 @@ class Printer {
   std::vector<int> uses_;
   std::vector<int> temps_;
   int temporaries_ = 0;
+  // What the statement being printed reads (filled by the const text functions).
+  mutable std::set<int> read_temps_;
+  mutable std::set<std::string> read_inputs_;
+  mutable long read_operations_ = 0;
   PrintedKernel out_;
 };
 

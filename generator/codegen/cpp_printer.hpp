@@ -19,10 +19,23 @@ struct Assignment {
   int node = -1;
 };
 
+/// One printed statement, as kernel_splitter needs it to move statements
+/// into functions of their own.
+struct Statement {
+  int temporary = -1;               ///< the temporary it defines (x<k>), or -1 for an assignment
+  std::string target;               ///< an assignment's target, e.g. "udot[3]" or "const double m0_0"
+  std::string expression;           ///< the right-hand side
+  std::vector<int> temporaries;     ///< the temporaries it reads, ascending, without repeats
+  std::vector<std::string> inputs;  ///< the inputs it reads ("q[0]", "p.m1", "t"), without repeats
+  long operations = 0;              ///< of its text (what the compiler has to work on)
+};
+
 struct PrintedKernel {
   std::string body;     ///< statements, one per line, indented
   long operations = 0;  ///< additions, multiplications, divisions and function calls
   int temporaries = 0;
+  std::string temp_prefix;            ///< temporary k is named temp_prefix + k
+  std::vector<Statement> statements;  ///< the statements of `body`, in order
 };
 
 /// `scalar` is the type of the temporaries and literals and picks the

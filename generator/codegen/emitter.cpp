@@ -217,8 +217,9 @@ EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, co
   // The Jacobian kernels (and linearize, which calls them) are written in double.
   if (!scalar.is_double() && options.jacobians) throw std::logic_error("float kernels with Jacobians");
   DynamicsChoice dynamics;
-  const std::vector<KernelCode> kernels = derive_kernels(
-      model, eq, vars, graph, options.jacobians, options.controller, scalar, options.dynamics, &dynamics);
+  const std::vector<KernelCode> kernels =
+      derive_kernels(model, eq, vars, graph, options.jacobians, options.controller, scalar, options.dynamics,
+                     &dynamics, options.split_threshold);
   check_presence(kernels, eq.loops.size() > 0, options.jacobians, options.controller);
   TemplateValues values = model_values(model, eq, model_hash, scalar);
   add_moved_bodies(values, eq);

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "codegen/expression_graph.hpp"
+#include "codegen/kernel_splitter.hpp"
 #include "codegen/kernel_table.hpp"
 #include "codegen/model_kernels.hpp"
 #include "codegen/scalar_type.hpp"
@@ -37,6 +38,9 @@ struct EmitOptions {
   /// forward_dynamics's method; `recursive` needs a rigid tree without loops
   /// or prescribed motions (Equations::recursive_unavailable says why not).
   DynamicsMethod dynamics = DynamicsMethod::automatic;
+  /// Kernels of more statements are split into functions of at most this
+  /// many, so that the compile time grows linearly (kernel_splitter.hpp); 0: never.
+  int split_threshold = kDefaultSplitThreshold;
 };
 
 /// The name of the emitted files and namespace: the model's, "_float" added for float.

@@ -6,6 +6,7 @@
 
 #include "codegen/cpp_printer.hpp"
 #include "codegen/graph_derivative.hpp"
+#include "codegen/kernel_splitter.hpp"
 #include "codegen/unrolled_ldlt.hpp"
 #include "codegen/unrolled_saddle.hpp"
 
@@ -27,6 +28,8 @@ struct Derivation {
   std::vector<int> solved, local;
   /// The given accelerations, piece by piece, as the first statements of the dynamics.
   KernelCode prescribed{Kernel::forward_dynamics, "", 0, ""};
+  /// Kernels of more statements are split into functions (kernel_splitter.hpp); 0: never.
+  int split_threshold = 0;
 
   int n() const { return eq.nu; }
   int ns() const { return static_cast<int>(solved.size()); }
@@ -39,9 +42,13 @@ struct Derivation {
   }
 };
 
-KernelCode printed(Kernel kernel, const Derivation& d, const std::vector<Assignment>& assignments) {
+/// The assignments printed, split into functions past the threshold (the
+/// count note then says so); `arrays`: the kernel's local arrays that they assign.
+KernelCode printed(Kernel kernel, const Derivation& d, const std::vector<Assignment>& assignments,
+                   const std::vector<KernelArgument>& arrays = {}) {
   const PrintedKernel p = print_kernel(d.graph, assignments, d.scalar);
-  return {kernel, p.body, p.operations, ""};
+  const SplitBody split = split_kernel(p, signature(kernel), d.scalar, d.split_threshold, arrays);
+  return {kernel, split.body, p.operations, split.note()};
 }
 
 void split_speeds(Derivation& d) {
@@ -167,12 +174,12 @@ CompositeParts composite_parts(const Derivation& d) {
 /// unrolled for the model's structure, the prescribed speeds given.
 KernelCode composite_dynamics_kernel(const Derivation& d) {
   const CompositeParts parts = composite_parts(d);
-  const PrintedKernel body = print_kernel(d.graph, parts.assignments, d.scalar);
+  const KernelCode body = printed(Kernel::forward_dynamics, d, parts.assignments);
   const UnrolledLdlt solve = unrolled_ldlt(parts.nonzero, d.solved, d.scalar);
   return {Kernel::forward_dynamics,
           d.prescribed.body + body.body + solve.text + given_accelerations(d) + "  return 0;\n",
           body.operations + solve.operations + d.prescribed.operations,
-          " (" + str(solve.operations) + " of them in LDL^T)"};
+          " (" + str(solve.operations) + " of them in LDL^T)" + body.count_note};
 }
 
 /// composite_dynamics_kernel's operation count, without its text.
@@ -197,14 +204,14 @@ std::vector<Assignment> recursive_assignments(const Derivation& d) {
 /// from the graph; a pivot D that is not positive (a joint moving a subtree
 /// without mass or inertia about its axis) returns its speed + 1, leaves first.
 KernelCode recursive_dynamics_kernel(const Derivation& d) {
-  const PrintedKernel body = print_kernel(d.graph, recursive_assignments(d), d.scalar);
+  const KernelCode body = printed(Kernel::forward_dynamics, d, recursive_assignments(d));
   std::string checks;
   for (int s : d.eq.recursive_pivot_order)
     checks += "  if (!(pivot" + str(s) + " > " + d.scalar.literal(0.0) + ")) return " + str(s + 1) + ";\n";
   return {Kernel::forward_dynamics,
           "  // Articulated-body recursion; pivot<k>: the subtree's inertia about joint k's axis.\n" +
               body.body + checks + "  return 0;\n",
-          body.operations, ""};
+          body.operations, body.count_note};
 }
 
 bool has_recursion(const Derivation& d) {
@@ -234,16 +241,18 @@ KernelCode tree_dynamics_kernel(const Derivation& d, DynamicsMethod method, Dyna
   choice = tree_dynamics_choice(d, method);
   if (choice.recursive) {
     KernelCode recursive = recursive_dynamics_kernel(d);
-    recursive.count_note =
-        " (recursive; composite inertias and LDL^T: " + str(choice.composite_operations) + ")";
+    recursive.count_note = " (recursive; composite inertias and LDL^T: " + str(choice.composite_operations) +
+                           ")" + recursive.count_note;
     return recursive;
   }
   KernelCode composite = composite_dynamics_kernel(d);
   if (!has_recursion(d)) return composite;
-  // " (N of them in LDL^T)" becomes " (composite inertias, N of them in LDL^T; recursive: R)".
+  // " (N of them in LDL^T)" becomes " (composite inertias, N of them in LDL^T; recursive: R)",
+  // a split note after it kept.
   const std::string& note = composite.count_note;
-  composite.count_note = " (composite inertias, " + note.substr(2, note.size() - 3) +
-                         "; recursive: " + str(choice.recursive_operations) + ")";
+  const std::size_t close = note.find(')');
+  composite.count_note = " (composite inertias, " + note.substr(2, close - 2) +
+                         "; recursive: " + str(choice.recursive_operations) + note.substr(close);
   return composite;
 }
 
@@ -305,7 +314,9 @@ KernelCode dense_constrained_dynamics_kernel(const Derivation& d, const SaddleNo
   }
   for (int k = 0; k < ns * ns; ++k) saddle.push_back({"Ms[" + str(k) + "]", nodes.m[k]});
   for (int i = 0; i < ns; ++i) saddle.push_back({"b[" + str(i) + "]", nodes.b[i]});
-  const PrintedKernel body = print_kernel(d.graph, saddle, d.scalar);
+  const std::string real = std::string(d.scalar.name()) + "*";
+  const KernelCode body = printed(Kernel::constrained_dynamics, d, saddle,
+                                  {{real, "Ms"}, {real, "b"}, {real, "Cs"}, {real, "g"}});
   std::string unpack;  // the solved accelerations back into udot, the prescribed ones given
   for (int i = 0; i < ns; ++i) unpack += "  udot[" + str(d.solved[i]) + "] = b[" + str(i) + "];\n";
   return {Kernel::constrained_dynamics,
@@ -313,7 +324,7 @@ KernelCode dense_constrained_dynamics_kernel(const Derivation& d, const SaddleNo
               d.prescribed.body + "  " + d.scalar.name() + " Ms[NS * NS], b[NS], Cs[NC * NS], g[NC];\n" +
               body.body + "  const int status = solve_saddle<NS, NC>(Ms, b, Cs, g, lambda);\n" + unpack +
               given_accelerations(d) + "  return status;\n",
-          body.operations + d.prescribed.operations + dense_saddle_operations(ns, nc), ""};
+          body.operations + d.prescribed.operations + dense_saddle_operations(ns, nc), body.count_note};
 }
 
 /// Sparse: the entries of M and C that are not zero by structure as locals,
@@ -336,7 +347,8 @@ KernelCode sparse_constrained_dynamics_kernel(const Derivation& d, const SaddleN
         saddle.push_back({real + "c" + str(r) + "_" + str(i), nodes.c[r * ns + i]});
   for (int i = 0; i < ns; ++i) saddle.push_back({"z[" + str(position[i]) + "]", nodes.b[i]});
   for (int r = 0; r < nc; ++r) saddle.push_back({"z[" + str(position[ns + r]) + "]", nodes.g[r]});
-  const PrintedKernel body = print_kernel(d.graph, saddle, d.scalar);
+  const KernelCode body =
+      printed(Kernel::constrained_dynamics, d, saddle, {{std::string(d.scalar.name()) + "*", "z"}});
   // udot and lambda out of z, the prescribed accelerations given; z holds
   // -lambda (M udot + C^T z = b), lambda as in M udot = f + C^T lambda.
   std::string unpack;
@@ -346,7 +358,7 @@ KernelCode sparse_constrained_dynamics_kernel(const Derivation& d, const SaddleN
           d.prescribed.body + "  " + d.scalar.name() + " z[" + str(ns + nc) +
               "];  // the right-hand side [b; g], then [udot; lambda], in elimination order\n" + body.body +
               solve.text + unpack + given_accelerations(d) + "  return 0;\n",
-          body.operations + d.prescribed.operations + solve.operations, ""};
+          body.operations + d.prescribed.operations + solve.operations, body.count_note};
 }
 
 /// Closed loops: M, C and the right-hand sides over the solved speeds, then
@@ -363,13 +375,13 @@ KernelCode constrained_dynamics_kernel(const Derivation& d) {
   const long dense = dense_saddle_operations(ns, nc);
   if (sparse.operations < dense) {
     KernelCode code = sparse_constrained_dynamics_kernel(d, nodes, structure, order, sparse);
-    code.count_note = " (" + str(sparse.operations) +
-                      " of them in the sparse saddle-point LDL^T; dense: " + str(dense) + ")";
+    code.count_note = " (" + str(sparse.operations) + " of them in the sparse saddle-point LDL^T; dense: " +
+                      str(dense) + ")" + code.count_note;
     return code;
   }
   KernelCode code = dense_constrained_dynamics_kernel(d, nodes);
-  code.count_note =
-      " (" + str(dense) + " of them in the dense saddle-point solve; sparse: " + str(sparse.operations) + ")";
+  code.count_note = " (" + str(dense) + " of them in the dense saddle-point solve; sparse: " +
+                    str(sparse.operations) + ")" + code.count_note;
   return code;
 }
 
@@ -471,8 +483,9 @@ KernelCode forcing_jacobian_kernel(const Derivation& d) {
   const std::vector<Assignment> by_speed =
       jacobian_entries(d.graph, forcing, input_nodes(d.graph, d.vars.u), "dfdu", "NU * NU", fill);
   entries.insert(entries.end(), by_speed.begin(), by_speed.end());
-  const PrintedKernel p = print_kernel(d.graph, entries, d.scalar);
-  return {Kernel::forcing_jacobian, fill + p.body, p.operations, ""};
+  KernelCode code = printed(Kernel::forcing_jacobian, d, entries);
+  code.body = fill + code.body;
+  return code;
 }
 
 /// d(M(q) a)/dq: the rows sum_s M_rs a_s, a the kernel's argument.
@@ -488,8 +501,9 @@ KernelCode mass_matrix_product_jacobian_kernel(const Derivation& d) {
   std::string fill;
   const std::vector<Assignment> entries =
       jacobian_entries(d.graph, products, input_nodes(d.graph, d.vars.q), "dMa_dq", "NU * NQ", fill);
-  const PrintedKernel p = print_kernel(d.graph, entries, d.scalar);
-  return {Kernel::mass_matrix_product_jacobian, fill + p.body, p.operations, ""};
+  KernelCode code = printed(Kernel::mass_matrix_product_jacobian, d, entries);
+  code.body = fill + code.body;
+  return code;
 }
 
 /// d(C(q)^T lambda)/dq: the rows sum_c C_cr lambda_c, lambda the kernel's argument.
@@ -506,8 +520,9 @@ KernelCode constraint_force_jacobian_kernel(const Derivation& d) {
   std::string fill;
   const std::vector<Assignment> entries =
       jacobian_entries(d.graph, forces, input_nodes(d.graph, d.vars.q), "dCl_dq", "NU * NQ", fill);
-  const PrintedKernel p = print_kernel(d.graph, entries, d.scalar);
-  return {Kernel::constraint_force_jacobian, fill + p.body, p.operations, ""};
+  KernelCode code = printed(Kernel::constraint_force_jacobian, d, entries);
+  code.body = fill + code.body;
+  return code;
 }
 
 /// f with the inputs 0: what the model's own forces give.
@@ -535,12 +550,14 @@ KernelCode inverse_dynamics_kernel(const Derivation& d) {
     }
   }
   if (recursive.empty()) {
-    const PrintedKernel from_m = print_kernel(d.graph, formed, d.scalar);
-    return {Kernel::inverse_dynamics, from_m.body, from_m.operations, " (M udot - f: flexible bodies)"};
+    KernelCode from_m = printed(Kernel::inverse_dynamics, d, formed);
+    from_m.count_note = " (M udot - f: flexible bodies)" + from_m.count_note;
+    return from_m;
   }
-  const PrintedKernel p = print_kernel(d.graph, recursive, d.scalar);
-  return {Kernel::inverse_dynamics, p.body, p.operations,
-          " (recursive; M udot - f from M and f: " + str(count_operations(d.graph, formed)) + ")"};
+  KernelCode code = printed(Kernel::inverse_dynamics, d, recursive);
+  code.count_note =
+      " (recursive; M udot - f from M and f: " + str(count_operations(d.graph, formed)) + ")" + code.count_note;
+  return code;
 }
 
 /// g = dV_gravity/dq: the recursion's on a rigid tree, else the gradient of
@@ -594,8 +611,9 @@ KernelCode coriolis_matrix_kernel(const Derivation& d) {
       if (!is_zero(graph, c)) entries.push_back({"C[" + str(i * n + j) + "]", c});
     }
   if (static_cast<int>(entries.size()) < n * n) fill = "  for (int k = 0; k < NU * NU; ++k) C[k] = 0.0;\n";
-  const PrintedKernel p = print_kernel(graph, entries, d.scalar);
-  return {Kernel::coriolis_matrix, fill + p.body, p.operations, ""};
+  KernelCode code = printed(Kernel::coriolis_matrix, d, entries);
+  code.body = fill + code.body;
+  return code;
 }
 
 /// The outputs of position (independent of u) as nodes; 0 for the others.
@@ -628,8 +646,9 @@ KernelCode output_jacobian_kernel(const Derivation& d) {
     if (!is_zero(d.graph, entry[k])) out.push_back({"J[" + str(static_cast<long>(k)) + "]", entry[k]});
   const std::string fill =
       out.size() < entry.size() ? "  for (int k = 0; k < NY * NU; ++k) J[k] = 0.0;\n" : std::string();
-  const PrintedKernel p = print_kernel(d.graph, out, d.scalar);
-  return {Kernel::output_jacobian, fill + p.body, p.operations, ""};
+  KernelCode code = printed(Kernel::output_jacobian, d, out);
+  code.body = fill + code.body;
+  return code;
 }
 
 /// Jdot_u = d(J u)/dq u + d(J u)/dt with u held: the directional derivative
@@ -662,8 +681,7 @@ KernelCode output_jacobian_rate_kernel(const Derivation& d) {
     if (!is_zero(graph, dt)) terms[i].push_back(dt);
     out.push_back({"Jdot_u[" + str(static_cast<long>(i)) + "]", graph.sum(std::move(terms[i]))});
   }
-  const PrintedKernel p = print_kernel(graph, out, d.scalar);
-  return {Kernel::output_jacobian_rate, p.body, p.operations, ""};
+  return printed(Kernel::output_jacobian_rate, d, out);
 }
 
 /// x = (q, u), xdot = (u, udot): A = [0 I; dudot/dq dudot/du], B = [0; dudot/dtau]
@@ -734,8 +752,8 @@ KernelCode linearize_kernel(const Derivation& d) {
 std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Equations& eq,
                                        const symbolic::Variables& vars, ExpressionGraph& graph,
                                        bool jacobians, bool controller, const ScalarType& scalar,
-                                       DynamicsMethod dynamics, DynamicsChoice* choice) {
-  Derivation d{model, eq, vars, graph, scalar, {}, {}, {}};
+                                       DynamicsMethod dynamics, DynamicsChoice* choice, int split_threshold) {
+  Derivation d{model, eq, vars, graph, scalar, {}, {}, {}, split_threshold};
   split_speeds(d);
   print_prescribed_accelerations(d);
   std::vector<KernelCode> kernels{set_parameter_kernel(d), get_parameter_kernel(d), initial_state_kernel(d),

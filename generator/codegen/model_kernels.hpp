@@ -31,13 +31,14 @@ struct DynamicsChoice {
 /// quadratic controller kernels only with `controller` (which needs
 /// `jacobians`); the bodies in the floating-point type `scalar`; `dynamics`:
 /// forward_dynamics's method (recursive needs Equations::recursive_accelerations,
-/// else std::logic_error), reported in `choice`.
+/// else std::logic_error), reported in `choice`; `split_threshold`: kernels of
+/// more statements are split into functions (kernel_splitter.hpp; 0: never).
 std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Equations& equations,
                                        const symbolic::Variables& vars, ExpressionGraph& graph,
                                        bool jacobians = false, bool controller = false,
                                        const ScalarType& scalar = ScalarType(),
                                        DynamicsMethod dynamics = DynamicsMethod::automatic,
-                                       DynamicsChoice* choice = nullptr);
+                                       DynamicsChoice* choice = nullptr, int split_threshold = 0);
 
 /// DynamicsChoice::composite_operations as derive_kernels reports it, from
 /// counts alone (the dynamics is not printed): to compare two derivations

@@ -118,7 +118,7 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
   const symbolic::Variables vars(model, elastic_counts);
   const codegen::EmitOptions emit_options{generate_options.jacobians || generate_options.controller,
                                           generate_options.controller, generate_options.precision,
-                                          generate_options.dynamics};
+                                          generate_options.dynamics, generate_options.split_threshold};
   const codegen::ScalarType scalar(generate_options.precision);
   long fewest = 0;
   std::unique_ptr<symbolic::Program> chosen_program;

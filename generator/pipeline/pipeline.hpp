@@ -6,6 +6,7 @@
 #include <map>
 #include <string>
 
+#include "codegen/kernel_splitter.hpp"
 #include "codegen/kernel_table.hpp"
 #include "codegen/model_kernels.hpp"
 #include "codegen/scalar_type.hpp"
@@ -45,6 +46,9 @@ struct GenerateOptions {
   /// articulated-body recursion or composite inertias + LDL^T as asked. The
   /// recursion is for rigid trees without loops or prescribed motions.
   codegen::DynamicsMethod dynamics = codegen::DynamicsMethod::automatic;
+  /// `--split-threshold`: kernels of more statements are emitted as functions
+  /// of at most this many (compile time linear in the model); 0: never.
+  int split_threshold = codegen::kDefaultSplitThreshold;
 };
 
 /// Runs every stage on the model file. Throws model::ModelError for a bad

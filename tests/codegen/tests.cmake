@@ -12,10 +12,24 @@ add_executable(test_codegen ${CMAKE_CURRENT_LIST_DIR}/test_solve_saddle.cpp
                             ${CMAKE_CURRENT_LIST_DIR}/test_graph_derivative.cpp
                             ${CMAKE_CURRENT_LIST_DIR}/test_recursive_dynamics.cpp
                             ${CMAKE_CURRENT_LIST_DIR}/test_unrolled_saddle.cpp
-                            ${CMAKE_CURRENT_LIST_DIR}/test_dynamics_choice.cpp)
+                            ${CMAKE_CURRENT_LIST_DIR}/test_dynamics_choice.cpp
+                            ${CMAKE_CURRENT_LIST_DIR}/test_split_kernels.cpp)
 target_include_directories(test_codegen PRIVATE ${PROJECT_SOURCE_DIR}/templates)
 target_compile_definitions(test_codegen PRIVATE KANEGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 target_compile_options(test_codegen PRIVATE ${KANEGEN_WARNINGS})
+# arm7 again, renamed arm7_split and with its kernels split into parts of
+# about 300 operations (in double and float), against the unsplit arm7.
+file(READ ${PROJECT_SOURCE_DIR}/models/arm7.urdf _kg_arm7)
+string(REPLACE "<robot name=\"arm7\">" "<robot name=\"arm7_split\">" _kg_arm7_split "${_kg_arm7}")
+file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/arm7_split.urdf "${_kg_arm7_split}")
+kanegen_add_model(kanegen_model_arm7_split ${CMAKE_CURRENT_BINARY_DIR}/arm7_split.urdf SPLIT_THRESHOLD 300)
+kanegen_add_model(kanegen_model_arm7_split_float ${CMAKE_CURRENT_BINARY_DIR}/arm7_split.urdf SPLIT_THRESHOLD 300
+                  PRECISION float)
+target_compile_options(kanegen_model_arm7_split PRIVATE ${KANEGEN_WARNINGS} -Werror)
+target_compile_options(kanegen_model_arm7_split_float PRIVATE ${KANEGEN_WARNINGS} -Werror)
+target_compile_definitions(test_codegen PRIVATE
+                           ARM7_SPLIT_HEADER="${CMAKE_CURRENT_BINARY_DIR}/kanegen_generated/kanegen_model_arm7_split/arm7_split.hpp")
 target_link_libraries(test_codegen PRIVATE kanegen_generator kanegen_model_arm7 kanegen_model_flexible_arm2
-                                           kanegen_model_four_bar Eigen3::Eigen kanegen_catch_main)
+                                           kanegen_model_four_bar kanegen_model_arm7_split
+                                           kanegen_model_arm7_split_float Eigen3::Eigen kanegen_catch_main)
 catch_discover_tests(test_codegen TEST_PREFIX "codegen: ")

@@ -27,8 +27,11 @@ add_test(NAME embedded_float_accuracy COMMAND test_float_accuracy)
 
 # Freestanding: shipped double models (an open tree; one with parameters;
 # one with loops and loop-force outputs), the float arm7 and slider_crank
-# (loops, loop-force outputs and a prescribed motion), and rk4.hpp.
+# (loops, loop-force outputs and a prescribed motion), arm7 with its kernels
+# split into functions (tests/codegen: arm7_split, double and float), and rk4.hpp.
 set(KANEGEN_ARM7_FLOAT_DIR ${CMAKE_CURRENT_BINARY_DIR}/kanegen_generated/kanegen_model_arm7_float)
+set(KANEGEN_ARM7_SPLIT_DIR ${CMAKE_CURRENT_BINARY_DIR}/kanegen_generated/kanegen_model_arm7_split)
+set(KANEGEN_ARM7_SPLIT_FLOAT_DIR ${CMAKE_CURRENT_BINARY_DIR}/kanegen_generated/kanegen_model_arm7_split_float)
 set(KANEGEN_SLIDER_CRANK_FLOAT_DIR ${CMAKE_CURRENT_BINARY_DIR}/kanegen_generated/kanegen_model_slider_crank_float)
 find_program(KANEGEN_GXX g++)
 find_program(KANEGEN_CLANGXX clang++)
@@ -37,12 +40,12 @@ foreach(cxx ${KANEGEN_GXX} ${KANEGEN_CLANGXX})
   get_filename_component(cxx_name ${cxx} NAME)
   add_test(NAME embedded_freestanding_${cxx_name}
            COMMAND ${CMAKE_COMMAND} -DCXX=${cxx} -DNM=${KANEGEN_NM}
-                   "-DSOURCES=${PROJECT_SOURCE_DIR}/generated/arm7/arm7.cpp|${PROJECT_SOURCE_DIR}/generated/double_pendulum/double_pendulum.cpp|${PROJECT_SOURCE_DIR}/generated/slider_crank/slider_crank.cpp|${KANEGEN_ARM7_FLOAT_DIR}/arm7_float.cpp|${KANEGEN_SLIDER_CRANK_FLOAT_DIR}/slider_crank_float.cpp|${KANEGEN_EMBEDDED_DIR}/freestanding_rk4.cpp"
-                   "-DINCLUDES=${PROJECT_SOURCE_DIR}/generated/arm7|${PROJECT_SOURCE_DIR}/generated/double_pendulum|${PROJECT_SOURCE_DIR}/generated/slider_crank|${KANEGEN_ARM7_FLOAT_DIR}|${KANEGEN_SLIDER_CRANK_FLOAT_DIR}|${PROJECT_SOURCE_DIR}/runtime/include"
+                   "-DSOURCES=${PROJECT_SOURCE_DIR}/generated/arm7/arm7.cpp|${PROJECT_SOURCE_DIR}/generated/double_pendulum/double_pendulum.cpp|${PROJECT_SOURCE_DIR}/generated/slider_crank/slider_crank.cpp|${KANEGEN_ARM7_FLOAT_DIR}/arm7_float.cpp|${KANEGEN_SLIDER_CRANK_FLOAT_DIR}/slider_crank_float.cpp|${KANEGEN_ARM7_SPLIT_DIR}/arm7_split.cpp|${KANEGEN_ARM7_SPLIT_FLOAT_DIR}/arm7_split_float.cpp|${KANEGEN_EMBEDDED_DIR}/freestanding_rk4.cpp"
+                   "-DINCLUDES=${PROJECT_SOURCE_DIR}/generated/arm7|${PROJECT_SOURCE_DIR}/generated/double_pendulum|${PROJECT_SOURCE_DIR}/generated/slider_crank|${KANEGEN_ARM7_FLOAT_DIR}|${KANEGEN_SLIDER_CRANK_FLOAT_DIR}|${KANEGEN_ARM7_SPLIT_DIR}|${KANEGEN_ARM7_SPLIT_FLOAT_DIR}|${PROJECT_SOURCE_DIR}/runtime/include"
                    -DSCRATCH=${CMAKE_CURRENT_BINARY_DIR}/freestanding/${cxx_name}
                    -P ${KANEGEN_EMBEDDED_DIR}/freestanding.cmake)
   set_tests_properties(embedded_freestanding_${cxx_name} PROPERTIES DEPENDS
-                       "kanegen_model_arm7_float;kanegen_model_slider_crank_float")
+                       "kanegen_model_arm7_float;kanegen_model_slider_crank_float;kanegen_model_arm7_split;kanegen_model_arm7_split_float")
 endforeach()
 
 # The example on the host (built always) ...
