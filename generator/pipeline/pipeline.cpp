@@ -48,16 +48,10 @@ void refuse_controller_kernels(const model::Model& model) {
                               "generate without --controller; " + why);
 }
 
-/// The articulated-body recursion solves rigid trees whose every speed is
+/// The articulated-body recursion solves open trees whose every speed is
 /// free: `--dynamics recursive` on anything else is refused, naming why.
 void refuse_recursive_dynamics(const model::Model& model) {
   const std::string fix = "use --dynamics composite, or auto (the default), which picks composite here";
-  for (const model::Body& body : model.bodies)
-    if (body.flexible)
-      throw model::ModelError(model.source_file, body.where,
-                              "--dynamics recursive is for rigid trees, and body '" + body.name +
-                                  "' is flexible (its elastic coordinates are not in the recursion)",
-                              fix);
   if (!model.loops.empty())
     throw model::ModelError(model.source_file, model.loops.front().where,
                             "--dynamics recursive is for open trees, and this model closes " +
