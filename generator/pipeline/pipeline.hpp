@@ -43,7 +43,7 @@ struct GenerateOptions {
   codegen::Precision precision = codegen::Precision::double_precision;
   /// How forward_dynamics solves (`--dynamics`): by operation count, or the
   /// articulated-body recursion or composite inertias + LDL^T as asked. The
-  /// recursion is for rigid trees without loops or prescribed motions.
+  /// recursion is for trees (rigid or flexible) without loops or prescribed motions.
   codegen::DynamicsMethod dynamics = codegen::DynamicsMethod::automatic;
 };
 
