@@ -6,7 +6,7 @@
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 0
 //   forcing: 733
-//   forward_dynamics: 1293 (560 of them in LDL^T)
+//   forward_dynamics: 979 (recursive; composite inertias and LDL^T: 1293)
 //   kinetic_energy: 279
 //   potential_energy: 599
 //   nonconservative_power: 1

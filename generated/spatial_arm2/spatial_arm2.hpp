@@ -6,7 +6,7 @@
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 2021
 //   forcing: 2610
-//   forward_dynamics: 18135 (13996 of them in LDL^T)
+//   forward_dynamics: 6020 (recursive; composite inertias and LDL^T: 18135) [split in 7 functions, 2,992 bytes of stack between them]
 //   kinetic_energy: 1137
 //   potential_energy: 726
 //   nonconservative_power: 3

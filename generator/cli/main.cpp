@@ -55,7 +55,7 @@ struct RunOptions {
 };
 
 constexpr const char* kDynamicsHelp =
-    "how forward_dynamics solves M u_dot = f: recursive (articulated-body recursion, O(n) operations; rigid "
+    "how forward_dynamics solves M u_dot = f: recursive (articulated-body recursion, O(n) operations; "
     "trees without loops or prescribed motions), composite (composite inertias and an unrolled LDL^T, "
     "O(n^3)), or auto (default: the one with fewer operations; composite where the recursion does not "
     "apply)";

@@ -16,6 +16,21 @@ using GiNaC::ex;
 struct Articulated {
   Mat3 a, b, c;
   Vec3 bias_moment = zero_vec(), bias_force = zero_vec();
+  /// A flexible body's elastic rows and columns (empty for a rigid one):
+  /// per elastic speed k, the wrench (moment, force) that eta_ddot_k = 1
+  /// needs; the m x m elastic block (row-major, symmetric); the elastic bias.
+  std::vector<Vec3> elastic_moment, elastic_force;
+  std::vector<ex> elastic_block, elastic_bias;
+};
+
+/// A flexible body's local speeds (elastic first, then its joint's if any)
+/// after the LDL^T of D = L diag(d) L^T: V = L^-1 U^T (rows of 6, top part
+/// of U), W_j = V_j / d_j, g_j = (L^-1 (Q - S^T p))_j / d_j.
+struct BlockTerms {
+  std::vector<int> speeds;
+  std::vector<ex> lower;  ///< L, n x n row-major, unit diagonal
+  std::vector<Vec3> w_moment, w_force;
+  std::vector<ex> residual_over_pivot;
 };
 
 /// The joint's terms of the recursion: U = I^A S, W = U / D, g = (Q - S^T p) / D.
@@ -83,6 +98,10 @@ Articulated own_terms(const TreeBody& body) {
   s.c = Mat3{body.mass, 0, 0, 0, body.mass, 0, 0, 0, body.mass};
   s.bias_moment = zero_vec() - body.wrench_moment;
   s.bias_force = zero_vec() - body.wrench_force;
+  s.elastic_moment = body.elastic_angular;
+  s.elastic_force = body.elastic_linear;
+  s.elastic_block = body.elastic_mass;
+  for (const ex& f : body.elastic_forcing) s.elastic_bias.push_back(-f);
   return s;
 }
 
@@ -113,6 +132,33 @@ void drop_joint_direction(Articulated& passed, JointTerms& terms, const kinemati
   (joint.prismatic ? terms.w_force : terms.w_moment)[k] = joint.axis[k];
 }
 
+/// A child's articulated inertia `moved` (about the parent's origin, parent
+/// axes) on a node of the flexible parent: its motion there is the parent's
+/// plus Phi eta_ddot, Phi's columns the node's twists (w_k, v_k), so it adds
+/// I Phi to the parent's elastic columns, Phi^T I Phi to its elastic block
+/// and Phi^T p to its elastic bias.
+void add_on_node(Program& program, Articulated& parent, const Articulated& moved,
+                 const kinematics::BodyState& child) {
+  const std::size_t n = child.node_partial_angular.size();
+  const std::size_t m = parent.elastic_bias.size();
+  std::vector<Vec3> moment(n), force(n);
+  for (std::size_t l = 0; l < n; ++l) {
+    const Vec3& w = child.node_partial_angular[l];
+    const Vec3& v = child.node_partial_linear[l];
+    moment[l] = named(program, mul(moved.a, w) + mul(moved.b, v));
+    force[l] = named(program, mul_transposed(moved.b, w) + mul(moved.c, v));
+  }
+  for (std::size_t k = 0; k < n; ++k) {
+    const Vec3& w = child.node_partial_angular[k];
+    const Vec3& v = child.node_partial_linear[k];
+    for (std::size_t l = 0; l < n; ++l)
+      parent.elastic_block[k * m + l] += dot(w, moment[l]) + dot(v, force[l]);
+    parent.elastic_bias[k] += dot(w, moved.bias_moment) + dot(v, moved.bias_force);
+    parent.elastic_moment[k] = parent.elastic_moment[k] + moment[k];
+    parent.elastic_force[k] = parent.elastic_force[k] + force[k];
+  }
+}
+
 void add(Articulated& sum, const Articulated& x) {
   for (int k = 0; k < 9; ++k) {
     sum.a[k] += x.a[k];
@@ -124,8 +170,126 @@ void add(Articulated& sum, const Articulated& x) {
 }
 
 Articulated named(Program& program, const Articulated& x) {
-  return {named_symmetric(program, x.a), named(program, x.b), named_symmetric(program, x.c),
-          named(program, x.bias_moment), named(program, x.bias_force)};
+  Articulated r;
+  r.a = named_symmetric(program, x.a);
+  r.b = named(program, x.b);
+  r.c = named_symmetric(program, x.c);
+  r.bias_moment = named(program, x.bias_moment);
+  r.bias_force = named(program, x.bias_force);
+  const std::size_t m = x.elastic_bias.size();
+  r.elastic_block.assign(m * m, 0);
+  for (std::size_t k = 0; k < m; ++k) {
+    r.elastic_moment.push_back(named(program, x.elastic_moment[k]));
+    r.elastic_force.push_back(named(program, x.elastic_force[k]));
+    r.elastic_bias.push_back(program.define(x.elastic_bias[k]));
+    for (std::size_t l = k; l < m; ++l)
+      r.elastic_block[k * m + l] = r.elastic_block[l * m + k] = program.define(x.elastic_block[k * m + l]);
+  }
+  return r;
+}
+
+/// Solves for a flexible body's local speeds (elastic, then its joint's):
+/// factors D, forms V, W, g, and leaves in `passed` the top 6 x 6 of
+/// I^A - U D^-1 U^T and p^A + U D^-1 (Q - S^T p^A), elastic parts cleared.
+/// Returns the first speed whose pivot is 0 in every state, or -1.
+int eliminate_block(Program& program, Articulated& passed, const kinematics::JointFrame& joint,
+                    int elastic_first, const std::vector<ex>& joint_forces, BlockTerms& t,
+                    RecursiveDynamics& out) {
+  const int m = static_cast<int>(passed.elastic_bias.size());
+  const int n = m + (joint.speed >= 0 ? 1 : 0);
+  // U's columns: top part (moment, force) and D's column, Q - S^T p.
+  std::vector<Vec3> top_moment(n), top_force(n);
+  std::vector<ex> d(n * n), residual(n);
+  for (int k = 0; k < m; ++k) {
+    t.speeds.push_back(elastic_first + k);
+    top_moment[k] = passed.elastic_moment[k];
+    top_force[k] = passed.elastic_force[k];
+    for (int l = 0; l < m; ++l) d[k * n + l] = passed.elastic_block[k * m + l];
+    residual[k] = joint_forces[elastic_first + k] - passed.elastic_bias[k];
+  }
+  if (joint.speed >= 0) {
+    const Vec3& axis = joint.axis;
+    t.speeds.push_back(joint.speed);
+    if (joint.prismatic) {
+      top_moment[m] = named(program, mul(passed.b, axis));
+      top_force[m] = named(program, mul(passed.c, axis));
+    } else {
+      top_moment[m] = named(program, mul(passed.a, axis));
+      top_force[m] = named(program, mul_transposed(passed.b, axis));
+    }
+    for (int k = 0; k < m; ++k)
+      d[k * n + m] = d[m * n + k] =
+          program.define(dot(axis, joint.prismatic ? passed.elastic_force[k] : passed.elastic_moment[k]));
+    d[m * n + m] = program.define(dot(axis, joint.prismatic ? top_force[m] : top_moment[m]));
+    residual[m] =
+        joint_forces[joint.speed] - dot(axis, joint.prismatic ? passed.bias_force : passed.bias_moment);
+  }
+  // LDL^T, and V = L^-1 U^T, z = L^-1 residual, column by column.
+  t.lower.assign(n * n, 0);
+  std::vector<ex> pivot(n), zs(n);
+  std::vector<Vec3> v_moment(n), v_force(n);
+  for (int j = 0; j < n; ++j) {
+    ex dj = d[j * n + j];
+    Vec3 vm = top_moment[j], vf = top_force[j];
+    ex z = residual[j];
+    for (int p = 0; p < j; ++p) {
+      const ex& l = t.lower[j * n + p];
+      dj -= l * l * pivot[p];
+      vm = vm - l * v_moment[p];
+      vf = vf - l * v_force[p];
+      z -= l * zs[p];
+    }
+    pivot[j] = program.define(dj);
+    if (pivot[j].is_zero()) return t.speeds[j];
+    const ex inverse = program.define(1 / pivot[j]);
+    v_moment[j] = named(program, vm);
+    v_force[j] = named(program, vf);
+    zs[j] = program.define(z);
+    t.w_moment.push_back(named(program, inverse * v_moment[j]));
+    t.w_force.push_back(named(program, inverse * v_force[j]));
+    t.residual_over_pivot.push_back(program.define(inverse * zs[j]));
+    t.lower[j * n + j] = 1;
+    for (int i = j + 1; i < n; ++i) {
+      ex dij = d[i * n + j];
+      for (int p = 0; p < j; ++p) dij -= t.lower[i * n + p] * t.lower[j * n + p] * pivot[p];
+      t.lower[i * n + j] = program.define(inverse * dij);
+    }
+    out.pivots[t.speeds[j]] = pivot[j];
+    out.pivot_order.push_back(t.speeds[j]);
+  }
+  // I^A - sum_j V_j W_j^T (symmetric) and p^A + sum_j g_j V_j.
+  for (int j = 0; j < n; ++j) {
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) {
+        passed.b[3 * r + c] -= v_moment[j][r] * t.w_force[j][c];
+        if (c < r) continue;
+        passed.a[3 * r + c] -= v_moment[j][r] * t.w_moment[j][c];
+        passed.c[3 * r + c] -= v_force[j][r] * t.w_force[j][c];
+        passed.a[3 * c + r] = passed.a[3 * r + c];
+        passed.c[3 * c + r] = passed.c[3 * r + c];
+      }
+    passed.bias_moment = passed.bias_moment + t.residual_over_pivot[j] * v_moment[j];
+    passed.bias_force = passed.bias_force + t.residual_over_pivot[j] * v_force[j];
+  }
+  passed.elastic_moment.clear();
+  passed.elastic_force.clear();
+  passed.elastic_block.clear();
+  passed.elastic_bias.clear();
+  return -1;
+}
+
+/// The local accelerations of a flexible body moving with (angular, linear):
+/// y_j = g_j - W_j . a, then x = L^-T y; by local speed.
+std::vector<ex> block_accelerations(Program& program, const BlockTerms& t, const Vec3& angular,
+                                    const Vec3& linear) {
+  const int n = static_cast<int>(t.speeds.size());
+  std::vector<ex> x(n);
+  for (int j = n; j-- > 0;) {
+    ex value = t.residual_over_pivot[j] - dot(t.w_moment[j], angular) - dot(t.w_force[j], linear);
+    for (int i = j + 1; i < n; ++i) value -= t.lower[i * n + j] * x[i];
+    x[j] = program.define(value);
+  }
+  return x;
 }
 
 }  // namespace
@@ -145,11 +309,16 @@ RecursiveDynamics articulated_body_dynamics(const kinematics::TreeKinematics& tr
   std::vector<Articulated> sums(count);
   for (std::size_t i = 0; i < count; ++i) sums[i] = own_terms(bodies[i]);
   std::vector<JointTerms> terms(count);
+  std::vector<BlockTerms> blocks(count);
   for (std::size_t i = count; i-- > 0;) {
     const kinematics::BodyState& state = states[i];
     const kinematics::JointFrame& joint = tree.joints()[state.joint];
     Articulated passed = named(program, sums[i]);
-    if (joint.speed >= 0) {
+    if (!passed.elastic_bias.empty()) {
+      const int zero =
+          eliminate_block(program, passed, joint, bodies[i].elastic_first, joint_forces, blocks[i], out);
+      if (zero >= 0) return {{}, {}, {}, zero};
+    } else if (joint.speed >= 0) {
       const int s = joint.speed;
       const Vec3& axis = joint.axis;
       JointTerms& t = terms[i];
@@ -186,7 +355,9 @@ RecursiveDynamics articulated_body_dynamics(const kinematics::TreeKinematics& tr
       drop_joint_direction(passed, t, joint);
     }
     if (state.parent_state < 0) continue;
-    add(sums[state.parent_state], to_parent(program, named(program, passed), state.to_child, state.offset));
+    const Articulated moved = to_parent(program, named(program, passed), state.to_child, state.offset);
+    add(sums[state.parent_state], moved);
+    if (state.node_first >= 0) add_on_node(program, sums[state.parent_state], moved, state);
   }
 
   // Outward: the accelerations that u_dot gives, the ground's zero.
@@ -196,12 +367,27 @@ RecursiveDynamics articulated_body_dynamics(const kinematics::TreeKinematics& tr
     const kinematics::JointFrame& joint = tree.joints()[state.joint];
     Vec3 angular = zero_vec(), linear = zero_vec();
     if (state.parent_state >= 0) {
-      const Vec3& parent_alpha = alpha[state.parent_state];
+      Vec3 parent_alpha = alpha[state.parent_state], parent_accel = accel[state.parent_state];
+      // On a node: the parent's motion there, plus Phi eta_ddot.
+      for (std::size_t k = 0; k < state.node_partial_angular.size(); ++k) {
+        const ex& eta_ddot = out.accelerations[state.node_first + static_cast<int>(k)];
+        parent_alpha = parent_alpha + eta_ddot * state.node_partial_angular[k];
+        parent_accel = parent_accel + eta_ddot * state.node_partial_linear[k];
+      }
       angular = named(program, mul(state.to_child, parent_alpha));
-      linear =
-          named(program, mul(state.to_child, accel[state.parent_state] + cross(parent_alpha, state.offset)));
+      linear = named(program, mul(state.to_child, parent_accel + cross(parent_alpha, state.offset)));
     }
-    if (joint.speed >= 0) {
+    if (!blocks[i].speeds.empty()) {
+      const std::vector<ex> x = block_accelerations(program, blocks[i], angular, linear);
+      for (std::size_t j = 0; j < x.size(); ++j) out.accelerations[blocks[i].speeds[j]] = x[j];
+      if (joint.speed >= 0) {
+        const ex& udot = x.back();
+        if (joint.prismatic)
+          linear = named(program, linear + udot * joint.axis);
+        else
+          angular = named(program, angular + udot * joint.axis);
+      }
+    } else if (joint.speed >= 0) {
       const JointTerms& t = terms[i];
       const ex udot =
           program.define(t.residual_over_pivot - dot(t.w_moment, angular) - dot(t.w_force, linear));

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-// Forward dynamics of a rigid tree in O(n): Kane's M u_dot = f solved by the
+// Forward dynamics of a tree in O(n): Kane's M u_dot = f solved by the
 // articulated-body recursion (Featherstone's ABA) over the tree's own
-// inertias and applied-plus-inertia wrenches, without forming M.
+// inertias and applied-plus-inertia wrenches, without forming M. A flexible
+// body's elastic speeds are a block of the recursion beside its joint's.
 #pragma once
 
 #include <ginac/ginac.h>
@@ -23,12 +24,21 @@ struct TreeBody {
   symbolic::Vec3 moment;
   symbolic::Mat3 second;
   symbolic::Vec3 wrench_moment, wrench_force;
+  /// A flexible body's m elastic speeds, from speed `elastic_first` on
+  /// (m = 0, -1 for a rigid body), with its own floating-frame terms: per
+  /// speed k, the momentum (angular about the origin, linear) of the body
+  /// moving with eta_dot_k = 1 alone; the m x m elastic mass (row-major); the
+  /// elastic forcing (stiffness, damping, rest-acceleration inertia, loads).
+  int elastic_first = -1;
+  std::vector<symbolic::Vec3> elastic_angular, elastic_linear;
+  std::vector<GiNaC::ex> elastic_mass, elastic_forcing;
 };
 
 struct RecursiveDynamics {
   std::vector<GiNaC::ex> accelerations;  ///< u_dot, by speed
   /// By speed: the articulated inertia D of the joint's subtree about (along)
-  /// its axis; u_dot is divided by it, so it must be positive.
+  /// its axis (a pivot of the body's LDL^T for a flexible body); u_dot is
+  /// divided by it, so it must be positive.
   std::vector<GiNaC::ex> pivots;
   /// The speeds in the order their pivots are formed (leaves first).
   std::vector<int> pivot_order;
@@ -46,7 +56,13 @@ struct RecursiveDynamics {
 ///            p^A_i = -w_i + sum_c X_c^T (p^A_c + U_c (Q_c - S_c^T p^A_c) / D_c),
 ///            U = I^A S, D = S^T U;
 ///   outward: a_i = X_i a_p, u_dot = (Q - S^T p^A - U^T a_i) / D, a_i += S u_dot.
-/// Every intermediate is named in `program`.
+/// A flexible body's inertia is (6+m) x (6+m) over [frame motion; eta_ddot]
+/// and S = blockdiag(S_joint, 1_m): D is (1+m) x (1+m), factored by an
+/// unrolled LDL^T with the elastic speeds first (their block is constant
+/// unless something hangs on a node), and the top 6 x 6 of I^A - U D^-1 U^T
+/// passes to the parent. A child on a node moves with X_c a_p + Phi eta_ddot
+/// (Phi: BodyState::node_partial_*), so its share reaches the parent's
+/// elastic rows through Phi. Every intermediate is named in `program`.
 RecursiveDynamics articulated_body_dynamics(const kinematics::TreeKinematics& tree,
                                             const std::vector<TreeBody>& bodies,
                                             const std::vector<GiNaC::ex>& joint_forces,

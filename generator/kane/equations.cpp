@@ -479,10 +479,8 @@ void newton_euler(Derivation& d, const BodySums& own) {
 }
 
 /// Why the articulated-body recursion does not apply, or "" if it does:
-/// it covers rigid trees whose every speed is solved for.
+/// it covers open trees, rigid or flexible, whose every speed is solved for.
 std::string recursive_unavailable(const Derivation& d) {
-  if (!d.flexible.empty())
-    return "it has flexible bodies (their elastic coordinates are not in the recursion)";
   if (d.eq.loops.size() > 0)
     return "it has closed loops (their constraint forces need the saddle-point solve)";
   if (!d.eq.prescribed.empty())
@@ -497,13 +495,27 @@ void recursive_dynamics(Derivation& d, const BodySums& own, const std::vector<ex
   d.eq.recursive_unavailable = recursive_unavailable(d);
   if (!d.eq.recursive_unavailable.empty()) return;
   std::vector<TreeBody> bodies;
-  for (std::size_t i = 0; i < own.inertia.size(); ++i)
-    bodies.push_back({own.inertia[i].mass, own.inertia[i].moment, own.inertia[i].second, own.wrench[i].moment,
-                      own.wrench[i].force});
+  for (std::size_t i = 0; i < own.inertia.size(); ++i) {
+    TreeBody& b = bodies.emplace_back();
+    b.mass = own.inertia[i].mass;
+    b.moment = own.inertia[i].moment;
+    b.second = own.inertia[i].second;
+    b.wrench_moment = own.wrench[i].moment;
+    b.wrench_force = own.wrench[i].force;
+    const auto elastic = own.elastic.find(i);
+    if (elastic == own.elastic.end()) continue;
+    b.elastic_first = d.vars.elastic_first[d.tree.bodies()[i].body];
+    b.elastic_angular = elastic->second.angular_momentum;
+    b.elastic_linear = elastic->second.linear_momentum;
+    b.elastic_mass = elastic->second.elastic_mass;
+    b.elastic_forcing = elastic->second.elastic_forcing;
+  }
   std::vector<ex> joint_forces(d.eq.nu);
   for (int r = 0; r < d.eq.nu; ++r) joint_forces[r] = d.eq.forcing[r] - body_forcing[r];
   RecursiveDynamics r = articulated_body_dynamics(d.tree, bodies, joint_forces, d.program);
   if (r.zero_pivot >= 0) {
+    d.eq.recursive_unavailable = "elastic coordinate '" + d.eq.coordinate_names[r.zero_pivot] +
+                                 "' moves no inertia in any state (the recursion divides by it)";
     for (std::size_t k = 0; k < d.model.joints.size(); ++k)
       if (d.tree.joints()[k].speed == r.zero_pivot) {
         d.eq.recursive_unavailable = "joint '" + d.model.joints[k].name +

@@ -65,7 +65,7 @@ struct Equations {
   /// dV_gravity/dq, both by the recursion of Newton and Euler over the tree
   /// (accelerations outward, subtree wrenches inward): O(n), M never formed.
   std::vector<GiNaC::ex> inverse_dynamics, gravity_forces;
-  /// Rigid trees without loops or prescribed motions: u_dot by the
+  /// Trees (rigid or flexible) without loops or prescribed motions: u_dot by the
   /// articulated-body recursion (kane/articulated_body.hpp), O(n), M never
   /// formed; by speed, with the pivots D it divides by and their order.
   /// Empty otherwise, and `recursive_unavailable` says why.

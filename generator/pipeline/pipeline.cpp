@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "pipeline/pipeline.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
@@ -49,16 +50,10 @@ void refuse_controller_kernels(const model::Model& model) {
                               "generate without --controller; " + why);
 }
 
-/// The articulated-body recursion solves rigid trees whose every speed is
+/// The articulated-body recursion solves open trees whose every speed is
 /// free: `--dynamics recursive` on anything else is refused, naming why.
 void refuse_recursive_dynamics(const model::Model& model) {
   const std::string fix = "use --dynamics composite, or auto (the default), which picks composite here";
-  for (const model::Body& body : model.bodies)
-    if (body.flexible)
-      throw model::ModelError(model.source_file, body.where,
-                              "--dynamics recursive is for rigid trees, and body '" + body.name +
-                                  "' is flexible (its elastic coordinates are not in the recursion)",
-                              fix);
   if (!model.loops.empty())
     throw model::ModelError(model.source_file, model.loops.front().where,
                             "--dynamics recursive is for open trees, and this model closes " +
@@ -126,6 +121,12 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
   kane::Equations chosen;
   for (kane::MassMatrixMethod method :
        {kane::MassMatrixMethod::body_frames, kane::MassMatrixMethod::world_projection}) {
+    // A joint on a beam node makes derive_equations sum in body frames
+    // anyway: the second derivation would be the first again.
+    if (method == kane::MassMatrixMethod::world_projection &&
+        std::any_of(model.joints.begin(), model.joints.end(),
+                    [](const model::Joint& joint) { return joint.parent_node >= 0; }))
+      continue;
     start = std::chrono::steady_clock::now();
     auto program = std::make_unique<symbolic::Program>();
     kane::Equations equations = kane::derive_equations(model, vars, *program, method, flexible);

@@ -44,7 +44,7 @@ struct GenerateOptions {
   codegen::Precision precision = codegen::Precision::double_precision;
   /// How forward_dynamics solves (`--dynamics`): by operation count, or the
   /// articulated-body recursion or composite inertias + LDL^T as asked. The
-  /// recursion is for rigid trees without loops or prescribed motions.
+  /// recursion is for trees (rigid or flexible) without loops or prescribed motions.
   codegen::DynamicsMethod dynamics = codegen::DynamicsMethod::automatic;
   /// `--split-threshold`: kernels of more statements are emitted as functions
   /// of at most this many (compile time linear in the model); 0: never.

@@ -6,6 +6,9 @@
 // rotated joint frames, fixed joints, gravity in any direction, joint
 // springs, dampers, inputs and efforts, body-fixed and world-fixed forces and a spring between two bodies.
 // Both are evaluated from the expression graph the kernels are printed from.
+// Flexible models too: the shipped ones (bodies on beam nodes, geometric
+// stiffening, modal and nodal coordinates) and a random flexible tree with
+// rigid and flexible children on a node, elastic speeds in the recursion.
 #include <unistd.h>
 
 #include <Eigen/Dense>
@@ -20,9 +23,11 @@
 #include <vector>
 
 #include "codegen/expression_graph.hpp"
+#include "fem/model_beam.hpp"
 #include "kane/equations.hpp"
 #include "model/load.hpp"
 #include "symbolic/program.hpp"
+#include "symbolic/shape_function.hpp"
 #include "symbolic/variables.hpp"
 
 namespace {
@@ -152,11 +157,24 @@ struct Comparison {
   int nu = 0;
 };
 
-Comparison compare(const std::string& path, std::mt19937& rng) {
+/// q and u drawn in [-2, 2] (`joints` of them, the joints'), elastic ones in
+/// [-scale, scale]; the model parameters at their defaults.
+Comparison compare(const std::string& path, std::mt19937& rng, double elastic_scale = 0.0) {
   const kanegen::model::Model model = kanegen::model::load_model(path);
-  const kanegen::symbolic::Variables vars(model);
+  kanegen::kane::FlexibleBodies flexible;
+  std::vector<int> elastic_counts(model.bodies.size(), 0);
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    if (!model.bodies[b].flexible) continue;
+    kanegen::fem::ModelBeam beam =
+        kanegen::fem::build_model_beam(model.bodies[b], path, kanegen::symbolic::sample_shape);
+    elastic_counts[b] = static_cast<int>(beam.reduced.names.size());
+    flexible.emplace(static_cast<int>(b), std::move(beam));
+  }
+  const kanegen::symbolic::Variables vars(model, elastic_counts);
   kanegen::symbolic::Program program;
-  const kanegen::kane::Equations eq = kanegen::kane::derive_equations(model, vars, program);
+  const kanegen::kane::Equations eq = kanegen::kane::derive_equations(
+      model, vars, program, kanegen::kane::MassMatrixMethod::body_frames, flexible);
+  INFO(eq.recursive_unavailable);
   REQUIRE(eq.recursive_unavailable.empty());
   const int n = eq.nu;
   REQUIRE(static_cast<int>(eq.recursive_accelerations.size()) == n);
@@ -172,13 +190,16 @@ Comparison compare(const std::string& path, std::mt19937& rng) {
   for (int state = 0; state < 5; ++state) {
     std::vector<double> q(n), u(n), tau(n);
     for (int i = 0; i < n; ++i) {
-      q[i] = 2 * unit(rng);
-      u[i] = 2 * unit(rng);
+      const double scale = i < vars.joint_coordinates ? 2.0 : elastic_scale;
+      q[i] = scale * unit(rng);
+      u[i] = scale * unit(rng);
       tau[i] = unit(rng);
     }
     const double t = 1 + unit(rng);
     const auto input = [&](const std::string& name) {
       if (name == "t") return t;
+      for (const kanegen::model::Parameter& p : model.parameters)
+        if (name == "p." + p.name) return p.value;
       const std::size_t open = name.find('[');
       const std::string array = name.substr(0, open);
       const int i = std::stoi(name.substr(open + 1));
@@ -224,4 +245,80 @@ TEST_CASE("recursive forward dynamics equals the composite solve on random trees
   }
   std::filesystem::remove(path);
   std::printf("recursive vs composite on 12 random trees: max rel. difference of u_dot %.2e\n", worst);
+}
+
+TEST_CASE("recursive forward dynamics equals the composite solve on the flexible models",
+          "[codegen][recursive][flexible]") {
+  std::mt19937 rng(1718);
+  // Elastic coordinates of the size of the models' deflections (nodal ones in m and rad).
+  for (const char* name : {"flexible_arm2", "spatial_arm2", "beam_tip_mass", "cantilever", "l_frame"}) {
+    INFO(name);
+    const Comparison c = compare(KANEGEN_SOURCE_DIR "/models/" + std::string(name) + ".json", rng, 0.02);
+    CHECK(c.worst < 1e-9);
+    std::printf("recursive vs composite on %s (%d speeds): max rel. difference of u_dot %.2e\n", name, c.nu,
+                c.worst);
+  }
+}
+
+TEST_CASE("recursive forward dynamics equals the composite solve on a random flexible tree",
+          "[codegen][recursive][flexible]") {
+  // Two flexible links (modal, nodal), a rigid and a flexible child on a
+  // node of the first, a prismatic joint on a node of the second's frame
+  // child, a fixed flexible body, oblique axes and rotated frames.
+  std::mt19937 rng(1719);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const auto any = [&] { return vec(unit(rng), unit(rng), unit(rng)); };
+  const std::string beam =
+      "\"section\": {\"A\": 2e-4, \"Iy\": 2e-9, \"Iz\": 6e-9, \"J\": 5e-9}, "
+      "\"material\": {\"E\": 7e10, \"poisson\": 0.33, \"density\": 2700}";
+  std::ostringstream m;
+  m.precision(17);
+  m << "{\"format\": \"kanegen-model\", \"version\": 1, \"name\": \"random_flexible_tree\",\n"
+    << "\"gravity\": " << vec(unit(rng), unit(rng), -9.81) << ",\n\"bodies\": [\n"
+    << "{\"name\": \"f1\", \"mass\": 0.3, \"com\": " << vec(0.02, 0.01, 0)
+    << ", \"inertia\": {\"ixx\": 2e-4, \"iyy\": 3e-4, \"izz\": 2.5e-4}, \"flexible\": {\"formulation\": "
+       "\"spatial\", \"length\": 0.7, \"elements\": 3, \"modes\": 4, "
+    << beam << "}},\n"
+    << "{\"name\": \"r1\", \"mass\": 0.6, \"com\": " << vec(0.05, 0.02, -0.01)
+    << ", \"inertia\": {\"ixx\": 3e-4, \"iyy\": 4e-4, \"izz\": 5e-4, \"ixy\": 2e-5}},\n"
+    << "{\"name\": \"f2\", \"mass\": 0.2, \"inertia\": {\"ixx\": 1e-4, \"iyy\": 1e-4, \"izz\": 1e-4}, "
+       "\"flexible\": {\"formulation\": \"spatial\", \"length\": 0.5, \"elements\": 2, "
+    << beam << ", \"damping\": {\"rayleigh\": [0.1, 1e-4]}}},\n"
+    << "{\"name\": \"r2\", \"mass\": 0.4, \"com\": " << vec(0.01, 0, 0.02)
+    << ", \"inertia\": {\"ixx\": 2e-4, \"iyy\": 2e-4, \"izz\": 3e-4}},\n"
+    << "{\"name\": \"f3\", \"mass\": 0.1, \"inertia\": {\"ixx\": 1e-4, \"iyy\": 1e-4, \"izz\": 1e-4}, "
+       "\"flexible\": {\"formulation\": \"planar\", \"length\": 0.4, \"elements\": 2, \"modes\": 2, "
+    << beam << "}}\n],\n\"joints\": [\n"
+    << "{\"name\": \"j1\", \"type\": \"revolute\", \"parent\": \"ground\", \"child\": \"f1\", \"axis\": "
+    << any() << ", \"origin\": {\"rpy\": " << any() << "}},\n"
+    << "{\"name\": \"j2\", \"type\": \"revolute\", \"parent\": \"f1\", \"child\": \"r1\", \"parent_node\": "
+       "\"tip\", \"axis\": "
+    << any() << ", \"origin\": {\"xyz\": " << vec(0.02, 0, 0.01) << ", \"rpy\": " << any() << "}},\n"
+    << "{\"name\": \"j3\", \"type\": \"revolute\", \"parent\": \"f1\", \"child\": \"f2\", \"parent_node\": "
+       "2, "
+       "\"axis\": [0, 0, 1], \"origin\": {\"rpy\": "
+    << any() << "}, \"spring\": {\"stiffness\": 2}, \"damping\": 0.1},\n"
+    << "{\"name\": \"j4\", \"type\": \"prismatic\", \"parent\": \"r1\", \"child\": \"r2\", \"axis\": "
+    << any() << ", \"origin\": {\"xyz\": " << any() << "}},\n"
+    << "{\"name\": \"j5\", \"type\": \"fixed\", \"parent\": \"r2\", \"child\": \"f3\", \"origin\": {\"rpy\": "
+    << any() << "}}\n],\n\"forces\": [\n"
+    << "{\"name\": \"push\", \"body\": \"f2\", \"node\": \"tip\", \"force\": " << any()
+    << ", \"frame\": \"body\"},\n"
+    << "{\"name\": \"motor\", \"type\": \"joint_effort\", \"joint\": \"j2\", \"value\": "
+       "\"0.3*sin(2*t)\"}]}\n";
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("kanegen_random_flexible_tree_" + std::to_string(::getpid()) + ".json"))
+                               .string();
+  {
+    std::ofstream out(path);
+    out << m.str();
+  }
+  INFO("model file:\n" << m.str());
+  const Comparison c = compare(path, rng, 0.02);
+  std::filesystem::remove(path);
+  CHECK(c.nu == 4 + 4 + 2 * 6 + 2);
+  CHECK(c.worst < 1e-9);
+  std::printf(
+      "recursive vs composite on a random flexible tree (%d speeds): max rel. difference of u_dot %.2e\n",
+      c.nu, c.worst);
 }
