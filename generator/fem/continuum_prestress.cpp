@@ -43,7 +43,8 @@ Eigen::VectorXd static_displacement(const Body& body, const Constraint& held, co
   const Eigen::MatrixXd k = held.reduce(body.stiffness());
   const Eigen::LLT<Eigen::MatrixXd> llt(k);
   // LLT succeeds on a singular K through round-off; a rigid motion shows as a pivot near zero.
-  const double smallest = llt.info() == Eigen::Success ? llt.matrixL().toDenseMatrix().diagonal().minCoeff() : 0.0;
+  const double smallest =
+      llt.info() == Eigen::Success ? llt.matrixL().toDenseMatrix().diagonal().minCoeff() : 0.0;
   if (!(smallest > 1e-6 * std::sqrt(k.diagonal().maxCoeff())))
     throw std::invalid_argument(
         "static_displacement: the held dofs leave the body free to move rigidly; hold a face or enough "
@@ -79,11 +80,11 @@ std::function<Prestress(int element)> displacement_prestress(const Body& body, c
   check_size(body, u, "displacement_prestress");
   auto fields = std::make_shared<std::vector<Prestress>>();
   for (int e = 0; e < body.num_elements(); ++e) {
-    // The element is kept alive by the shared pointer the body placed it with.
-    std::shared_ptr<const Element> owner = body.element(e).element;
-    const ContinuumElement* element = &continuum(body, e);
+    continuum(body, e);  // refuses other elements here, not when K_sigma is formed
+    // Shares the element, so the field outlives neither it nor the body.
+    auto element = std::static_pointer_cast<const ContinuumElement>(body.element(e).element);
     Prestress p;
-    p.stress = [owner, element, u_e = element_displacement(body, e, u)](const Eigen::Vector3d& xi) {
+    p.stress = [element, u_e = element_displacement(body, e, u)](const Eigen::Vector3d& xi) {
       return element->stress(u_e, xi);
     };
     fields->push_back(std::move(p));

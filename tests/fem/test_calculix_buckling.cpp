@@ -24,9 +24,9 @@ using namespace kanegen::fem;
 namespace {
 
 struct BuckleReference {
-  std::map<std::string, double> params;  // "# key value" lines
+  std::map<std::string, double> params;       // "# key value" lines
   std::vector<std::pair<int, double>> loads;  // mesh node id, x force (N)
-  std::vector<double> factors;  // CalculiX's buckling factors, mode order
+  std::vector<double> factors;                // CalculiX's buckling factors, mode order
 };
 
 BuckleReference read_buckle_reference(const std::string& name) {
@@ -62,7 +62,7 @@ struct BuckleResult {
   double euler;                 // pi^2 E I / (4 L^2) over P, the weak axis
 };
 
-/// The load factors lambda of (K + lambda K_sigma) x = 0, K_sigma of the reference's end load, clamped at ROOT.
+/// The load factors lambda of (K + lambda K_sigma) x = 0: K_sigma of the reference's end load, ROOT clamped.
 BuckleResult buckle(const std::string& name, int modes) {
   const BuckleReference ref = read_buckle_reference(name);
   const InpMesh mesh = read_inp_mesh_file(std::string(KANEGEN_FEM_DATA_DIR) + "/" + name + ".inp");
@@ -80,8 +80,8 @@ BuckleResult buckle(const std::string& name, int modes) {
   for (int i = 0; i < modes; ++i) out.factors.push_back(-1.0 / solver.eigenvalues()[i]);
   // Weak axis: z of the solid (depth < height), y of the strip (height in the plane, t across it).
   const double L = ref.params.at("length"), h = ref.params.at("height");
-  const double I = plane ? ref.params.at("thickness") * h * h * h / 12.0
-                         : h * std::pow(ref.params.at("depth"), 3) / 12.0;
+  const double I =
+      plane ? ref.params.at("thickness") * h * h * h / 12.0 : h * std::pow(ref.params.at("depth"), 3) / 12.0;
   out.euler = M_PI * M_PI * material.E * I / (4.0 * L * L) / ref.params.at("load");
   for (int i = 0; i < modes; ++i) {
     INFO(name << " mode " << i + 1 << ": kanegen " << out.factors[i] << ", CalculiX " << ref.factors.at(i)
@@ -159,10 +159,10 @@ TEST_CASE("rotating strip: CPS8 in-plane bending stiffens with spin as the rotat
   const double scale = std::sqrt(steel.E * H * H / 12.0 / steel.rho) / (L * L);  // sqrt(E I / (rho A L^4))
   for (const Row& row : table) {
     const Eigen::Vector3d spin(0.0, 0.0, row.lambda * scale);
-    const auto stiffened = fem_test::frequencies_of(mb.body, root, M, spinning_stiffness(mb.body, root, spin, false),
-                                                    {DofKind::kUy});
-    const auto softened = fem_test::frequencies_of(mb.body, root, M, spinning_stiffness(mb.body, root, spin, true),
-                                                   {DofKind::kUy});
+    const auto stiffened = fem_test::frequencies_of(
+        mb.body, root, M, spinning_stiffness(mb.body, root, spin, false), {DofKind::kUy});
+    const auto softened = fem_test::frequencies_of(
+        mb.body, root, M, spinning_stiffness(mb.body, root, spin, true), {DofKind::kUy});
     for (int n = 0; n < 3; ++n) {
       const double in_plane = std::sqrt(row.omega[n] * row.omega[n] - row.lambda * row.lambda);
       INFO("lambda " << row.lambda << " mode " << n + 1 << ": stiffened " << stiffened.at(n) / scale

@@ -70,7 +70,8 @@ TEST_CASE("geometric: uniform stress, u^T K_sigma u = V tr(G S G^T) for linear f
     if (d == 2) A.row(2).setZero(), A.col(2).setZero();
     const Eigen::Matrix3Xd nodes = affine_nodes(family, A, Eigen::Vector3d::Zero());
     const ContinuumElement element(family, nodes, kSteel, t);
-    const double volume = std::abs(A.topLeftCorner(d, d).determinant()) * std::pow(2.0, d) * (d == 2 ? t : 1.0);
+    const double volume =
+        std::abs(A.topLeftCorner(d, d).determinant()) * std::pow(2.0, d) * (d == 2 ? t : 1.0);
     const Eigen::Matrix3d S = uniform_stress(d);
     const Eigen::MatrixXd kg = element.geometric_stiffness(constant(S));
     CHECK((kg - kg.transpose()).norm() == 0.0);
@@ -82,7 +83,8 @@ TEST_CASE("geometric: uniform stress, u^T K_sigma u = V tr(G S G^T) for linear f
     // sigma_xx alone: a small rotation theta about z (u = -theta y, v = theta x) and a stretch
     // u = eps x both give V sigma_xx (theta^2 or eps^2): int sigma_xx (du_i/dx)^2 dV.
     const double sxx = 5.0e6, theta = 1e-3, eps = 2e-3;
-    const Eigen::MatrixXd kxx = element.geometric_stiffness(constant(Eigen::Vector3d(sxx, 0, 0).asDiagonal()));
+    const Eigen::MatrixXd kxx =
+        element.geometric_stiffness(constant(Eigen::Vector3d(sxx, 0, 0).asDiagonal()));
     Eigen::Matrix3d rotation = Eigen::Matrix3d::Zero();
     rotation(0, 1) = -theta, rotation(1, 0) = theta;
     const Eigen::VectorXd r = linear_field(nodes, d, rotation);
@@ -117,10 +119,9 @@ TEST_CASE("geometric: on a distorted element the quadratic form is the quadratur
 }
 
 TEST_CASE("geometric: K_sigma needs a stress field", "[geometric]") {
-  const ContinuumElement element(ContinuumFamily::kHex8,
-                                 affine_nodes(ContinuumFamily::kHex8, Eigen::Matrix3d::Identity(),
-                                              Eigen::Vector3d::Zero()),
-                                 kSteel);
+  const ContinuumElement element(
+      ContinuumFamily::kHex8,
+      affine_nodes(ContinuumFamily::kHex8, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero()), kSteel);
   Prestress axial_only;
   axial_only.axial_force = [](double) { return 1.0; };
   CHECK_THROWS_WITH(element.geometric_stiffness(axial_only), Catch::Contains("no stress field"));
