@@ -211,4 +211,12 @@ TEST_CASE("geometric: the centrifugal load's resultant is m Omega^2 r_c", "[geom
   // A spin about the strip's own x axis pulls nothing along x.
   const Eigen::VectorXd fx_spin = centrifugal_load(mb.body, Eigen::Vector3d(omega, 0.0, 0.0));
   for (int node = 0; node < mb.body.num_nodes(); ++node) CHECK(fx_spin[2 * node] == 0.0);
+  // The stress, hence K_sigma, is linear in the load: Omega^2 times that of a unit spin.
+  const Constraint root = mb.clamped(mesh, "ROOT");
+  const auto kg = [&](const Eigen::Vector3d& spin) {
+    return load_geometric_stiffness(mb.body, root, centrifugal_load(mb.body, spin));
+  };
+  const Eigen::MatrixXd unit = kg(Eigen::Vector3d::UnitZ()), spun = kg(Eigen::Vector3d(0.0, 0.0, omega));
+  CHECK((spun - omega * omega * unit).norm() < 1e-9 * spun.norm());
+  CHECK(spun.norm() > 0.0);
 }
