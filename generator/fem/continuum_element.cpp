@@ -258,9 +258,51 @@ Eigen::MatrixXd ContinuumElement::stiffness() const {
   return 0.5 * (k + k.transpose());  // exactly symmetric
 }
 
-Eigen::MatrixXd ContinuumElement::geometric_stiffness(const Prestress&) const {
-  throw std::logic_error(std::string("the geometric stiffness of ") + ccx_type_name(family_) +
-                         " elements is not implemented yet (issue 18)");
+Eigen::MatrixXd ContinuumElement::geometric_stiffness(const Prestress& prestress) const {
+  if (!prestress.stress)
+    throw std::invalid_argument(std::string(ccx_type_name(family_)) +
+                                " element: the prestress has no stress field (Prestress::stress)");
+  const int d = dimension(), n = num_nodes();
+  // The same scalar block int dN_i^T S dN_j dV couples component a of node i with
+  // component a of node j, for every a: assemble it once, then spread it.
+  Eigen::MatrixXd block = Eigen::MatrixXd::Zero(n, n);
+  for (const GaussSample& g : gauss_) {
+    const Eigen::MatrixXd s = prestress.stress(g.xi).topLeftCorner(d, d);
+    block.noalias() += g.weight * g.dNdx * s * g.dNdx.transpose();
+  }
+  block = (0.5 * (block + block.transpose())).eval();  // eval: no aliasing
+  Eigen::MatrixXd k = Eigen::MatrixXd::Zero(num_dofs(), num_dofs());
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int a = 0; a < d; ++a) k(d * i + a, d * j + a) = block(i, j);
+  return k;
+}
+
+Eigen::Matrix3d ContinuumElement::stress(const Eigen::VectorXd& u_e, const Eigen::Vector3d& xi) const {
+  if (u_e.size() != num_dofs())
+    throw std::invalid_argument("ContinuumElement::stress: expected " + std::to_string(num_dofs()) +
+                                " element dofs, got " + std::to_string(u_e.size()));
+  double det_j = 0.0;
+  const Eigen::MatrixXd dNdx = physical_gradient(natural_shape(family_, xi), xi, det_j);
+  const Eigen::VectorXd v = elasticity(dimension(), material_.E, material_.nu) * (strain_matrix(dNdx) * u_e);
+  Eigen::Matrix3d sigma = Eigen::Matrix3d::Zero();
+  if (dimension() == 2) {
+    sigma(0, 0) = v[0], sigma(1, 1) = v[1];
+    sigma(0, 1) = sigma(1, 0) = v[2];
+    return sigma;
+  }
+  // Voigt order of strain_matrix: xx, yy, zz, xy, yz, zx.
+  sigma.diagonal() = v.head<3>();
+  sigma(0, 1) = sigma(1, 0) = v[3];
+  sigma(1, 2) = sigma(2, 1) = v[4];
+  sigma(2, 0) = sigma(0, 2) = v[5];
+  return sigma;
+}
+
+std::vector<Eigen::Vector3d> ContinuumElement::gauss_points() const {
+  std::vector<Eigen::Vector3d> points;
+  for (const GaussSample& g : gauss_) points.push_back(g.xi);
+  return points;
 }
 
 double ContinuumElement::volume() const {

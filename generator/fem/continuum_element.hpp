@@ -78,8 +78,19 @@ class ContinuumElement final : public Element {
   std::vector<MassPoint> mass_points() const override;
   /// K_e = int B^T D B dV (plane stress D times t for the quadrilaterals).
   Eigen::MatrixXd stiffness() const override;
-  /// Not yet available for continuum elements (issue 18, a later step): throws std::logic_error.
+  /// K_sigma = int G^T S G dV, the Green-Lagrange strain's nonlinear part under
+  /// the prestress's stress field S = sigma(xi), G the shape-function gradients
+  /// of each displacement component (S block-diagonal over the components), by
+  /// the quadrature of K_e. Plane elements: the in-plane block of sigma, times t;
+  /// their out-of-plane displacement is no dof, so K_sigma stiffens or softens
+  /// in-plane motion only (no out-of-plane buckling of a plate). Throws
+  /// std::invalid_argument if the prestress has no stress field.
   Eigen::MatrixXd geometric_stiffness(const Prestress& prestress) const override;
+  /// sigma = D B u_e at xi (Pa, 3 x 3, symmetric): the linear elastic stress of
+  /// the element displacement u_e; plane stress leaves the z row and column zero.
+  Eigen::Matrix3d stress(const Eigen::VectorXd& u_e, const Eigen::Vector3d& xi) const;
+  /// The natural coordinates of the Gauss points that K_e and K_sigma use.
+  std::vector<Eigen::Vector3d> gauss_points() const;
 
   ContinuumFamily family() const { return family_; }
   /// Volume (plane elements: area times thickness), by the element's quadrature.

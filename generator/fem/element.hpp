@@ -9,6 +9,7 @@
 
 #include <Eigen/Dense>
 #include <functional>
+#include <utility>
 #include <vector>
 
 namespace kanegen::fem {
@@ -50,10 +51,17 @@ struct MassPoint {
 };
 
 /// The initial stress state that a geometric stiffness is formed for. Line
-/// elements read the axial force N(xi) in newtons (tension positive); other
-/// element families would add their stress field here.
+/// elements read the axial force N(xi) in newtons (tension positive).
+/// Continuum elements read the stress tensor sigma(xi) in pascals (tension
+/// positive, element-frame components; plane-stress elements read its x-y
+/// block). For the small strains of a linear prestress the Cauchy and second
+/// Piola-Kirchhoff stresses agree, so either may be given.
 struct Prestress {
+  Prestress() = default;
+  /// A line element's axial force (implicit, so Prestress{force} still reads as a beam's prestress).
+  Prestress(std::function<double(double xi)> force) : axial_force(std::move(force)) {}  // NOLINT
   std::function<double(double xi)> axial_force;
+  std::function<Eigen::Matrix3d(const Eigen::Vector3d& xi)> stress;
 };
 
 class Element {
