@@ -5,13 +5,13 @@
 //
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 521
-//   forcing: 1102
-//   forward_dynamics: 1851 (composite inertias, 252 of them in LDL^T; recursive: 2095)
-//   kinetic_energy: 473
+//   forcing: 1080
+//   forward_dynamics: 1829 (composite inertias, 252 of them in LDL^T; recursive: 2073)
+//   kinetic_energy: 464
 //   potential_energy: 137
 //   nonconservative_power: 13
 //   outputs: 0
-//   inverse_dynamics: 1527 (recursive; M udot - f from M and f: 1690)
+//   inverse_dynamics: 1505 (recursive; M udot - f from M and f: 1668)
 //   gravity: 294
 //
 // Arrays are plain C arrays with their sizes in the comments; no function

@@ -375,7 +375,9 @@ RecursiveDynamics articulated_body_dynamics(const kinematics::TreeKinematics& tr
         parent_accel = parent_accel + eta_ddot * state.node_partial_linear[k];
       }
       angular = named(program, mul(state.to_child, parent_alpha));
-      linear = named(program, mul(state.to_child, parent_accel + cross(parent_alpha, state.offset)));
+      const Vec3 accel_in_parent = kinematics::named_before_turn(
+          program, state.to_child, parent_accel + cross(parent_alpha, state.offset));
+      linear = named(program, mul(state.to_child, accel_in_parent));
     }
     if (!blocks[i].speeds.empty()) {
       const std::vector<ex> x = block_accelerations(program, blocks[i], angular, linear);

@@ -28,6 +28,13 @@ Mat3 snapped(const Mat3& m) {
 
 }  // namespace
 
+Vec3 named_before_turn(Program& program, const Mat3& turn, const Vec3& v) {
+  for (const ex& e : turn)
+    if (GiNaC::is_a<GiNaC::numeric>(e) && !e.is_zero() && !e.is_equal(1) && !e.is_equal(-1))
+      return named(program, v);
+  return v;
+}
+
 Mat3 rotation_rpy(const ex& roll, const ex& pitch, const ex& yaw) {
   const ex cr = GiNaC::cos(roll), sr = GiNaC::sin(roll);
   const ex cp = GiNaC::cos(pitch), sp = GiNaC::sin(pitch);
@@ -212,11 +219,14 @@ void child_motion(BodyState& b, const BodyState& p, const JointFrame& frame, boo
     b.alpha_rest = named(program, mul(b.to_child, frame_alpha));
   }
   const Vec3 coriolis = 2 * cross(parent_omega, relative_velocity);
-  b.velocity = named(program, mul(b.to_child, p.velocity + cross(p.omega, r) + m.rate) + relative_velocity);
-  b.accel_rest = named(
-      program, mul(b.to_child, p.accel_rest + cross(p.alpha_rest, r) + cross(p.omega, cross(p.omega, r)) +
-                                   2 * cross(p.omega, m.rate) + m.accel) +
-                   coriolis);
+  const Mat3& e = b.to_child;
+  const Vec3 spin_r = named_before_turn(program, e, cross(p.omega, r));  // shared by both
+  const Vec3 velocity_in_parent = named_before_turn(program, e, p.velocity + spin_r + m.rate);
+  b.velocity = named(program, mul(e, velocity_in_parent) + relative_velocity);
+  const Vec3 accel_in_parent = named_before_turn(
+      program, e,
+      p.accel_rest + cross(p.alpha_rest, r) + cross(p.omega, spin_r) + 2 * cross(p.omega, m.rate) + m.accel);
+  b.accel_rest = named(program, mul(e, accel_in_parent) + coriolis);
 }
 
 }  // namespace

@@ -95,6 +95,11 @@ class TreeKinematics {
   std::vector<JointFrame> joints_;
 };
 
+/// v, named if `turn` has a constant entry other than 0 and +-1, for turn v:
+/// GiNaC distributes such a constant over every sum in v, which would repeat
+/// the sum's terms in each row instead of sharing them.
+Vec3 named_before_turn(symbolic::Program& program, const Mat3& turn, const Vec3& v);
+
 /// URDF convention: R = Rz(yaw) Ry(pitch) Rx(roll).
 Mat3 rotation_rpy(const GiNaC::ex& roll, const GiNaC::ex& pitch, const GiNaC::ex& yaw);
 /// Rotation by angle about a unit axis (Rodrigues).
