@@ -65,6 +65,9 @@ struct Equations {
   /// dV_gravity/dq, both by the recursion of Newton and Euler over the tree
   /// (accelerations outward, subtree wrenches inward): O(n), M never formed.
   std::vector<GiNaC::ex> inverse_dynamics, gravity_forces;
+  /// Rigid trees only (empty with flexible bodies): the generalized momentum
+  /// h = M u by the same recursion with velocities for accelerations, O(n).
+  std::vector<GiNaC::ex> generalized_momentum;
   /// Trees (rigid or flexible) without loops or prescribed motions: u_dot by the
   /// articulated-body recursion (kane/articulated_body.hpp), O(n), M never
   /// formed; by speed, with the pivots D it divides by and their order.
