@@ -338,6 +338,11 @@ class MassRows {
       if (frame.speed < 0) continue;
       const Vec3 a = named(d_.program, mul(b.rotation, frame.axis));
       world_axes_[b.joint] = {a, frame.prismatic ? zero_vec() : named(d_.program, cross(b.origin, a))};
+      const WorldAxis& w = world_axes_[b.joint];
+      d_.eq.world_mass.axis.resize(n_);
+      d_.eq.world_mass.axis[frame.speed] =
+          frame.prismatic ? std::array<ex, 6>{0, 0, 0, a[0], a[1], a[2]}
+                          : std::array<ex, 6>{a[0], a[1], a[2], w.moment[0], w.moment[1], w.moment[2]};
     }
   }
 
@@ -347,9 +352,13 @@ class MassRows {
     const kinematics::BodyState& b = d_.tree.bodies()[i];
     const Vec3 p_world = named(d_.program, mul(b.rotation, linear));
     const Vec3 l_world = named(d_.program, mul(b.rotation, angular) + cross(b.origin, p_world));
+    Equations::WorldMass& world = d_.eq.world_mass;
+    world.momentum.resize(n_);
+    world.momentum[s] = {l_world[0], l_world[1], l_world[2], p_world[0], p_world[1], p_world[2]};
     for (int k : b.path) {
       const kinematics::JointFrame& frame = d_.tree.joints()[k];
       const WorldAxis& axis = world_axes_.at(k);
+      world.pairs.emplace_back(frame.speed, s);
       set(frame.speed, s,
           frame.prismatic ? dot(axis.direction, p_world)
                           : dot(axis.direction, l_world) + dot(axis.moment, p_world));
@@ -795,6 +804,8 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
   MassRows rows(d);
   joint_rows(d, sums, rows);
   elastic_rows(d, sums, rows);
+  // The elastic blocks are not pairs of axes and momenta.
+  if (!flexible.empty()) eq.world_mass = {};
 
   const std::vector<ex> body_forcing = eq.forcing;
   joint_coordinates(d);
