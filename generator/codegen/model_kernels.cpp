@@ -143,7 +143,8 @@ KernelCode world_mass_loop_kernel(const Derivation& d, long straight_line) {
   for (int r = 0; r < d.n(); ++r)
     for (int k = 0; k < 6; ++k) values.push_back({"ax[" + str(6 * r + k) + "]", d.graph.add(w.axis[r][k])});
   for (int s = 0; s < d.n(); ++s)
-    for (int k = 0; k < 6; ++k) values.push_back({"hm[" + str(6 * s + k) + "]", d.graph.add(w.momentum[s][k])});
+    for (int k = 0; k < 6; ++k)
+      values.push_back({"hm[" + str(6 * s + k) + "]", d.graph.add(w.momentum[s][k])});
   const std::string real = d.scalar.name();
   const KernelCode body = printed(Kernel::mass_matrix, d, values, {{real + "*", "ax"}, {real + "*", "hm"}});
   const long pairs = static_cast<long>(w.pairs.size());
@@ -152,18 +153,19 @@ KernelCode world_mass_loop_kernel(const Derivation& d, long straight_line) {
     rows += (rows.empty() ? "" : ", ") + str(r);
     columns += (columns.empty() ? "" : ", ") + str(s);
   }
-  const std::string text =
+  std::string text =
       "  // M_rs = M_sr = ax_r . hm_s over the pairs (r, s), r on s's path: ax_r the joint's\n"
-      "  // partial velocities at the world origin, hm_s the world momentum with u_s = 1.\n"
-      "  " + real + " ax[NU * 6], hm[NU * 6];\n" + body.body +
-      "  static const int pair_r[" + str(pairs) + "] = {" + rows + "};\n" +
-      "  static const int pair_s[" + str(pairs) + "] = {" + columns + "};\n" +
-      "  for (int k = 0; k < NU * NU; ++k) M[k] = " + d.scalar.literal(0.0) + ";\n" +
-      "  for (int k = 0; k < " + str(pairs) + "; ++k) {\n" +
-      "    const " + real + "* a = ax + 6 * pair_r[k];\n" +
-      "    const " + real + "* h = hm + 6 * pair_s[k];\n" +
-      "    M[pair_r[k] * NU + pair_s[k]] = M[pair_s[k] * NU + pair_r[k]] =\n" +
-      "        a[0] * h[0] + a[1] * h[1] + a[2] * h[2] + a[3] * h[3] + a[4] * h[4] + a[5] * h[5];\n" +
+      "  // partial velocities at the world origin, hm_s the world momentum with u_s = 1.\n";
+  text += "  " + real + " ax[NU * 6], hm[NU * 6];\n" + body.body;
+  text += "  static const int pair_r[" + str(pairs) + "] = {" + rows + "};\n";
+  text += "  static const int pair_s[" + str(pairs) + "] = {" + columns + "};\n";
+  text += "  for (int k = 0; k < NU * NU; ++k) M[k] = " + d.scalar.literal(0.0) + ";\n";
+  text += "  for (int k = 0; k < " + str(pairs) + "; ++k) {\n";
+  text += "    const " + real + "* a = ax + 6 * pair_r[k];\n";
+  text += "    const " + real + "* h = hm + 6 * pair_s[k];\n";
+  text +=
+      "    M[pair_r[k] * NU + pair_s[k]] = M[pair_s[k] * NU + pair_r[k]] =\n"
+      "        a[0] * h[0] + a[1] * h[1] + a[2] * h[2] + a[3] * h[3] + a[4] * h[4] + a[5] * h[5];\n"
       "  }\n";
   return {Kernel::mass_matrix, text, body.operations + 11 * pairs,
           " (a loop over " + str(pairs) + " pairs of world axes and momenta; entry by entry: " +
@@ -475,8 +477,9 @@ KernelCode generalized_momentum_kernel(const Derivation& d) {
   const bool by_tree = by_recursion < by_m;
   KernelCode code = printed(Kernel::generalized_momentum, d, by_tree ? recursive : from_m);
   // Not among the header's counts: the choice is said in the body.
-  code.body = "  // " + std::string(by_tree ? "Recursive" : "M u") + ": " + str(code.operations) + " operations; " +
-              (by_tree ? "M u" : "recursive") + ": " + str(by_tree ? by_m : by_recursion) + ".\n" + code.body;
+  code.body = "  // " + std::string(by_tree ? "Recursive" : "M u") + ": " + str(code.operations) +
+              " operations; " + (by_tree ? "M u" : "recursive") + ": " + str(by_tree ? by_m : by_recursion) +
+              ".\n" + code.body;
   return code;
 }
 

@@ -36,7 +36,7 @@ void check_momentum_is_dT_du() {
 }  // namespace
 
 TEST_CASE("the generalized momenta are dT/du", "[kernels]") {
-  check_momentum_is_dT_du<kanegen_models::arm7::System>();    // by the recursion
+  check_momentum_is_dT_du<kanegen_models::arm7::System>();     // by the recursion
   check_momentum_is_dT_du<kanegen_models::chain20::System>();  // by the recursion, M as a loop
   check_momentum_is_dT_du<kanegen_models::flexible_arm2::System>();
   check_momentum_is_dT_du<kanegen_models::four_bar::System>();
