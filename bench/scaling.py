@@ -6,7 +6,8 @@ spatial chains of N links from scripts/make_chain_urdf.py, and for each
 - the operation counts of forward_dynamics (both methods where the header
   gives them) and the method kanegen chose;
 - generation time (`kanegen generate`, best of --reps, wall);
-- compile time of the generated source at -O2 (g++, one run, wall);
+- compile time of the generated source at -O2 (g++, one run: CPU time, user
+  plus system, and wall) and the source's size;
 - forward_dynamics against MuJoCo's mj_forward on the same URDF, median time
   per call (bench/scaling_driver.cpp; it checks that both compute the same
   udot before it times anything);
@@ -15,6 +16,7 @@ spatial chains of N links from scripts/make_chain_urdf.py, and for each
 
     bench/scaling.py [--sizes 7,20,50,100] [--sympy 7] [--kanegen build/generator/kanegen]
                      [--out DIR] [--reps 3] [--plot FIG.png] [--dynamics auto]
+                     [--split-threshold N]
 
 Writes DIR/scaling.json and prints a markdown table; --plot draws operation
 counts and the time ratio against N with gnuplot. A benchmark, not a test:
@@ -48,6 +50,16 @@ def wall(command, reps=1):
     return best
 
 
+def cpu(command):
+    """CPU time (user + system) of the command's process and its children, and its wall time."""
+    before = os.times()
+    start = time.perf_counter()
+    run(command)
+    wall_seconds = time.perf_counter() - start
+    after = os.times()
+    return (after.children_user - before.children_user) + (after.children_system - before.children_system), wall_seconds
+
+
 def operation_counts(header):
     """forward_dynamics's operation counts from the generated header's note,
     e.g. "forward_dynamics: 13603 (recursive; composite inertias and LDL^T: 15290)"
@@ -74,13 +86,15 @@ def measure(args, n, work):
     command = [args.kanegen, "generate", urdf, "-o", gen, "--quiet"]
     if args.dynamics:
         command += ["--dynamics", args.dynamics]
+    if args.split_threshold is not None:
+        command += ["--split-threshold", str(args.split_threshold)]
     print("chain%d: generating ..." % n, file=sys.stderr, flush=True)
     generation = wall(command, args.reps)
     name = "chain%d" % n
     counts, method = operation_counts(os.path.join(gen, name + ".hpp"))
     print("chain%d: compiling at -O2 ..." % n, file=sys.stderr, flush=True)
     obj = os.path.join(work, name + ".o")
-    compile_seconds = wall([args.cxx, "-std=c++17", "-O2", "-I", gen, "-I", os.path.join(ROOT, "runtime", "include"),
+    compile_cpu, compile_seconds = cpu([args.cxx, "-std=c++17", "-O2", "-I", gen, "-I", os.path.join(ROOT, "runtime", "include"),
                             "-c", os.path.join(gen, name + ".cpp"), "-o", obj])
     driver = os.path.join(work, "driver%d" % n)
     run([args.cxx, "-std=c++17", "-O2", "-DKANEGEN_SCALING_HEADER=<%s.hpp>" % name,
@@ -89,7 +103,8 @@ def measure(args, n, work):
     print("chain%d: timing forward_dynamics and mj_forward ..." % n, file=sys.stderr, flush=True)
     timing = json.loads(run([driver, urdf]).stdout)
     return {"links": n, "method": method, "operations": counts, "generation_s": generation,
-            "compile_O2_s": compile_seconds, **timing, "ratio_to_mj_forward": timing["kanegen_ns"] / timing["mujoco_ns"]}
+            "source_bytes": os.path.getsize(os.path.join(gen, name + ".cpp")), "compile_O2_s": compile_seconds,
+            "compile_O2_cpu_s": compile_cpu, **timing, "ratio_to_mj_forward": timing["kanegen_ns"] / timing["mujoco_ns"]}
 
 
 def sympy_peer(n, kanegen_row, timeout):
@@ -148,6 +163,8 @@ def main():
     parser.add_argument("--kanegen", default=os.path.join(ROOT, "build", "generator", "kanegen"))
     parser.add_argument("--cxx", default="g++")
     parser.add_argument("--dynamics", default="", help="passed to kanegen generate --dynamics (default: its own)")
+    parser.add_argument("--split-threshold", type=int, default=None,
+                        help="passed to kanegen generate --split-threshold (default: its own)")
     parser.add_argument("--out", default=os.path.join(ROOT, "build", "bench_scaling"))
     parser.add_argument("--reps", type=int, default=3, help="generation runs per size; the fastest counts")
     parser.add_argument("--plot", help="write a PNG of operations and time ratio against N")
@@ -167,14 +184,15 @@ def main():
 
     print("machine: %d cores, load %.1f %.1f %.1f" % ((os.cpu_count(),) + os.getloadavg()))
     print()
-    print("| links | method | operations (chosen; recursive / composite) | generation [s] | compile -O2 [s] |"
-          " forward_dynamics [us] | mj_forward [us] | ratio |")
-    print("|---|---|---|---|---|---|---|---|")
+    print("| links | method | operations (chosen; recursive / composite) | generation [s] | source [MB] |"
+          " compile -O2 CPU [s] | compile -O2 wall [s] | forward_dynamics [us] | mj_forward [us] | ratio |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         c = r["operations"]
         both = " / ".join(str(c[k]) if k in c else "-" for k in ("recursive", "composite"))
-        print("| %d | %s | %d (%s) | %.2f | %.1f | %.2f | %.2f | %.2f |" %
-              (r["links"], r["method"], c.get("chosen", 0), both, r["generation_s"], r["compile_O2_s"],
+        print("| %d | %s | %d (%s) | %.2f | %.2f | %.1f | %.1f | %.2f | %.2f | %.2f |" %
+              (r["links"], r["method"], c.get("chosen", 0), both, r["generation_s"], r["source_bytes"] / 1e6,
+               r["compile_O2_cpu_s"], r["compile_O2_s"],
                r["kanegen_ns"] / 1e3, r["mujoco_ns"] / 1e3, r["ratio_to_mj_forward"]))
     if peers:
         print()

@@ -490,6 +490,7 @@ double nonconservative_power(const Params& p, [[maybe_unused]] double t, [[maybe
 }
 
 void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
+  // M u: 83 operations; recursive: 101.
   const double x0 = p.i2 + p.m2*p.da*p.da;
   const double x1 = p.m2*cos(q[1])*p.da*p.rr;
   const double x2 = x0 - x1;

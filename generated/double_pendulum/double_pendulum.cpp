@@ -162,6 +162,7 @@ double nonconservative_power(const Params& p, [[maybe_unused]] double t, [[maybe
 }
 
 void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
+  // M u: 24 operations; recursive: 33.
   const double x0 = p.l1*p.l1;
   const double x1 = p.m2*p.l1*p.l2*cos(q[1]);
   const double x2 = p.l2*p.l2;

@@ -224,6 +224,7 @@ double nonconservative_power([[maybe_unused]] const Params& p, [[maybe_unused]] 
 }
 
 void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
+  // M u: 28 operations; recursive: 35.
   const double x0 = p.b*p.b;
   const double x1 = 0.3333333333333333*(p.m_b*x0);
   const double x2 = p.b*p.a*p.m_b*cos(q[1]);

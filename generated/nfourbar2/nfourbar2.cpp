@@ -236,6 +236,7 @@ double nonconservative_power([[maybe_unused]] const Params& p, [[maybe_unused]] 
 }
 
 void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
+  // M u: 37 operations; recursive: 62.
   const double x0 = p.m*p.l*p.l*cos(q[3]);
   const double x1 = p.l*p.l;
   const double x2 = p.m*x1;

@@ -7456,6 +7456,7 @@ double nonconservative_power([[maybe_unused]] const Params& p, [[maybe_unused]] 
 }
 
 void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
+  // M u: 607 operations; recursive: 1164.
   const double x0 = p.m*p.l*p.l*cos(q[41]);
   const double x1 = p.l*p.l;
   const double x2 = p.m*x1;

@@ -225,6 +225,7 @@ double nonconservative_power([[maybe_unused]] const Params& p, [[maybe_unused]] 
 }
 
 void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
+  // M u: 18 operations; recursive: 26.
   const double x0 = p.m2*cos(q[1])*p.L1*p.L2;
   const double x1 = p.J2 + 0.5*x0;
   h[0] = u[1]*x1 + u[0]*(p.J1 + p.J2 + x0 + p.m2*p.L1*p.L1);

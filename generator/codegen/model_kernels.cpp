@@ -126,10 +126,62 @@ KernelCode initial_state_kernel(const Derivation& d) {
           0, ""};
 }
 
+bool has_world_mass(const Derivation& d) {
+  const kane::Equations::WorldMass& w = d.eq.world_mass;
+  return static_cast<int>(w.axis.size()) == d.n() && static_cast<int>(w.momentum.size()) == d.n() &&
+         !w.pairs.empty();
+}
+
+/// M as a loop over the pairs (r, s) of Equations::WorldMass: straight-line
+/// code for the n axes and momenta, then per pair a product of six. The
+/// source grows as n (plus a table of the pairs) where the entries one by
+/// one grow as n^2, and so does the compile time; each entry costs 11
+/// operations, structural zeros or not.
+KernelCode world_mass_loop_kernel(const Derivation& d, long straight_line) {
+  const kane::Equations::WorldMass& w = d.eq.world_mass;
+  std::vector<Assignment> values;
+  for (int r = 0; r < d.n(); ++r)
+    for (int k = 0; k < 6; ++k) values.push_back({"ax[" + str(6 * r + k) + "]", d.graph.add(w.axis[r][k])});
+  for (int s = 0; s < d.n(); ++s)
+    for (int k = 0; k < 6; ++k)
+      values.push_back({"hm[" + str(6 * s + k) + "]", d.graph.add(w.momentum[s][k])});
+  const std::string real = d.scalar.name();
+  const KernelCode body = printed(Kernel::mass_matrix, d, values, {{real + "*", "ax"}, {real + "*", "hm"}});
+  const long pairs = static_cast<long>(w.pairs.size());
+  std::string rows, columns;
+  for (const auto& [r, s] : w.pairs) {
+    rows += (rows.empty() ? "" : ", ") + str(r);
+    columns += (columns.empty() ? "" : ", ") + str(s);
+  }
+  std::string text =
+      "  // M_rs = M_sr = ax_r . hm_s over the pairs (r, s), r on s's path: ax_r the joint's\n"
+      "  // partial velocities at the world origin, hm_s the world momentum with u_s = 1.\n";
+  text += "  " + real + " ax[NU * 6], hm[NU * 6];\n" + body.body;
+  text += "  static const int pair_r[" + str(pairs) + "] = {" + rows + "};\n";
+  text += "  static const int pair_s[" + str(pairs) + "] = {" + columns + "};\n";
+  text += "  for (int k = 0; k < NU * NU; ++k) M[k] = " + d.scalar.literal(0.0) + ";\n";
+  text += "  for (int k = 0; k < " + str(pairs) + "; ++k) {\n";
+  text += "    const " + real + "* a = ax + 6 * pair_r[k];\n";
+  text += "    const " + real + "* h = hm + 6 * pair_s[k];\n";
+  text +=
+      "    M[pair_r[k] * NU + pair_s[k]] = M[pair_s[k] * NU + pair_r[k]] =\n"
+      "        a[0] * h[0] + a[1] * h[1] + a[2] * h[2] + a[3] * h[3] + a[4] * h[4] + a[5] * h[5];\n"
+      "  }\n";
+  return {Kernel::mass_matrix, text, body.operations + 11 * pairs,
+          " (a loop over " + str(pairs) + " pairs of world axes and momenta; entry by entry: " +
+              str(straight_line) + ")" + body.count_note};
+}
+
+/// M entry by entry, or, past the split threshold on a rigid tree with the
+/// world projection, as a loop over pairs (world_mass_loop_kernel).
 KernelCode mass_matrix_kernel(const Derivation& d) {
   std::vector<Assignment> mass;
   for (int k = 0; k < d.n() * d.n(); ++k)
     mass.push_back({"M[" + str(k) + "]", d.graph.add(d.eq.mass_matrix[k])});
+  if (d.split_threshold > 0 && has_world_mass(d)) {
+    const long straight_line = count_operations(d.graph, mass);
+    if (straight_line > d.split_threshold) return world_mass_loop_kernel(d, straight_line);
+  }
   return printed(Kernel::mass_matrix, d, mass);
 }
 
@@ -407,14 +459,28 @@ KernelCode energy_kernel(Kernel kernel, const char* variable, const GiNaC::ex& e
   return code;
 }
 
+/// h = M u: on a rigid tree by the recursion (Equations::generalized_momentum,
+/// O(n)) or from M's entries (O(n^2)), whichever counts fewer operations; the
+/// note gives the other's count.
 KernelCode generalized_momentum_kernel(const Derivation& d) {
-  std::vector<Assignment> momentum;
+  std::vector<Assignment> from_m, recursive;
   for (int r = 0; r < d.n(); ++r) {
     GiNaC::ex h = 0;
     for (int s = 0; s < d.n(); ++s) h += d.eq.mass_matrix[r * d.n() + s] * d.vars.u[s];
-    momentum.push_back({"h[" + str(r) + "]", d.graph.add(h)});
+    const std::string target = "h[" + str(r) + "]";
+    from_m.push_back({target, d.graph.add(h)});
+    if (!d.eq.generalized_momentum.empty())
+      recursive.push_back({target, d.graph.add(d.eq.generalized_momentum[r])});
   }
-  return printed(Kernel::generalized_momentum, d, momentum);
+  if (recursive.empty()) return printed(Kernel::generalized_momentum, d, from_m);
+  const long by_m = count_operations(d.graph, from_m), by_recursion = count_operations(d.graph, recursive);
+  const bool by_tree = by_recursion < by_m;
+  KernelCode code = printed(Kernel::generalized_momentum, d, by_tree ? recursive : from_m);
+  // Not among the header's counts: the choice is said in the body.
+  code.body = "  // " + std::string(by_tree ? "Recursive" : "M u") + ": " + str(code.operations) +
+              " operations; " + (by_tree ? "M u" : "recursive") + ": " + str(by_tree ? by_m : by_recursion) +
+              ".\n" + code.body;
+  return code;
 }
 
 /// The loop forces among the outputs: lambda of the dynamics at zero inputs.

@@ -338,6 +338,11 @@ class MassRows {
       if (frame.speed < 0) continue;
       const Vec3 a = named(d_.program, mul(b.rotation, frame.axis));
       world_axes_[b.joint] = {a, frame.prismatic ? zero_vec() : named(d_.program, cross(b.origin, a))};
+      const WorldAxis& w = world_axes_[b.joint];
+      d_.eq.world_mass.axis.resize(n_);
+      d_.eq.world_mass.axis[frame.speed] =
+          frame.prismatic ? std::array<ex, 6>{0, 0, 0, a[0], a[1], a[2]}
+                          : std::array<ex, 6>{a[0], a[1], a[2], w.moment[0], w.moment[1], w.moment[2]};
     }
   }
 
@@ -347,9 +352,13 @@ class MassRows {
     const kinematics::BodyState& b = d_.tree.bodies()[i];
     const Vec3 p_world = named(d_.program, mul(b.rotation, linear));
     const Vec3 l_world = named(d_.program, mul(b.rotation, angular) + cross(b.origin, p_world));
+    Equations::WorldMass& world = d_.eq.world_mass;
+    world.momentum.resize(n_);
+    world.momentum[s] = {l_world[0], l_world[1], l_world[2], p_world[0], p_world[1], p_world[2]};
     for (int k : b.path) {
       const kinematics::JointFrame& frame = d_.tree.joints()[k];
       const WorldAxis& axis = world_axes_.at(k);
+      world.pairs.emplace_back(frame.speed, s);
       set(frame.speed, s,
           frame.prismatic ? dot(axis.direction, p_world)
                           : dot(axis.direction, l_world) + dot(axis.moment, p_world));
@@ -475,6 +484,55 @@ void newton_euler(Derivation& d, const BodySums& own) {
     if (joint.speed < 0) continue;
     d.eq.inverse_dynamics[joint.speed] = project(joint, inertial[i].moment, inertial[i].force);
     d.eq.gravity_forces[joint.speed] = -project(joint, weight[i].moment, weight[i].force);
+  }
+}
+
+/// Rigid trees: the generalized momentum h = M u by newton_euler's recursion
+/// with velocities for accelerations. Outward, each body's angular velocity
+/// and its origin's velocity w_i = E_i w_p + a_k u_k, v_i = E_i (v_p + w_p x r_i)
+/// (+ a_k u_k if prismatic); its momentum about its origin (K w + h x v, m v + w x h);
+/// inward, the subtree sums projected on each joint: O(n), where M u is O(n^2).
+void momentum_recursion(Derivation& d, const BodySums& own) {
+  Program& program = d.program;
+  const auto& states = d.tree.bodies();
+  const std::size_t count = states.size();
+  std::vector<Vec3> omega(count), velocity(count);
+  std::vector<Wrench> momentum(count);  // (angular about the origin, linear)
+  for (std::size_t i = 0; i < count; ++i) {
+    const kinematics::BodyState& b = states[i];
+    const kinematics::JointFrame& joint = d.tree.joints()[b.joint];
+    Vec3 angular = zero_vec(), linear = zero_vec();
+    if (b.parent_state >= 0) {
+      const Vec3& parent_omega = omega[b.parent_state];
+      angular = mul(b.to_child, parent_omega);
+      linear = mul(b.to_child, velocity[b.parent_state] + cross(parent_omega, b.offset));
+    }
+    if (joint.speed >= 0) {
+      const ex u = d.vars.u[joint.speed];
+      if (joint.prismatic)
+        linear = linear + u * joint.axis;
+      else
+        angular = angular + u * joint.axis;
+    }
+    omega[i] = named(program, angular);
+    velocity[i] = named(program, linear);
+    const SpatialInertia& m = own.inertia[i];
+    momentum[i] = {mul(m.second, omega[i]) + cross(m.moment, velocity[i]),
+                   m.mass * velocity[i] + cross(omega[i], m.moment)};
+  }
+  for (std::size_t i = count; i-- > 0;) {
+    momentum[i] = {named(program, momentum[i].moment), named(program, momentum[i].force)};
+    const int parent = states[i].parent_state;
+    if (parent < 0) continue;
+    const Wrench up = to_parent(program, momentum[i], states[i].to_child, states[i].offset);
+    momentum[parent].moment = momentum[parent].moment + up.moment;
+    momentum[parent].force = momentum[parent].force + up.force;
+  }
+  d.eq.generalized_momentum.assign(d.eq.nu, 0);
+  for (std::size_t i = 0; i < count; ++i) {
+    const kinematics::JointFrame& joint = d.tree.joints()[states[i].joint];
+    if (joint.speed >= 0)
+      d.eq.generalized_momentum[joint.speed] = project(joint, momentum[i].moment, momentum[i].force);
   }
 }
 
@@ -746,12 +804,15 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
   MassRows rows(d);
   joint_rows(d, sums, rows);
   elastic_rows(d, sums, rows);
+  // The elastic blocks are not pairs of axes and momenta.
+  if (!flexible.empty()) eq.world_mass = {};
 
   const std::vector<ex> body_forcing = eq.forcing;
   joint_coordinates(d);
   elastic_coordinates(d);
   if (flexible.empty()) {
     newton_euler(d, own);
+    momentum_recursion(d, own);
     // The joints' own forces (springs, dampers, inputs, efforts) join f after the bodies'.
     for (int r = 0; r < eq.nu; ++r) eq.inverse_dynamics[r] -= eq.forcing[r] - body_forcing[r];
   }

@@ -5,6 +5,7 @@
 
 #include <ginac/ginac.h>
 
+#include <array>
 #include <map>
 #include <string>
 #include <vector>
@@ -35,6 +36,16 @@ struct Equations {
   std::vector<double> q0, u0;               ///< the initial state
   std::vector<PrescribedSpeed> prescribed;  ///< speeds whose u_dot is given, not solved for
   std::vector<GiNaC::ex> mass_matrix;       ///< nu*nu, row-major, symmetric
+  /// M by world projection on a rigid tree (MassMatrixMethod::world_projection;
+  /// empty otherwise): M_rs = M_sr = axis[r] . momentum[s] for each pair (r, s),
+  /// r on s's path, the other entries 0. axis: joint r's partial velocities at
+  /// the world origin in world axes, (a, o x a) revolute, (0, a) prismatic;
+  /// momentum: of what moves with u_s = 1, about the world origin (angular,
+  /// linear). What lets M be emitted as a loop over the pairs.
+  struct WorldMass {
+    std::vector<std::array<GiNaC::ex, 6>> axis, momentum;
+    std::vector<std::pair<int, int>> pairs;
+  } world_mass;
   std::vector<GiNaC::ex> forcing;           ///< nu: gravity, velocity terms, springs, dampers, forces, tau
   std::vector<GiNaC::ex> coordinate_rates;  ///< nq: q_dot as a function of u
   GiNaC::ex kinetic_energy, potential_energy;
@@ -65,6 +76,9 @@ struct Equations {
   /// dV_gravity/dq, both by the recursion of Newton and Euler over the tree
   /// (accelerations outward, subtree wrenches inward): O(n), M never formed.
   std::vector<GiNaC::ex> inverse_dynamics, gravity_forces;
+  /// Rigid trees only (empty with flexible bodies): the generalized momentum
+  /// h = M u by the same recursion with velocities for accelerations, O(n).
+  std::vector<GiNaC::ex> generalized_momentum;
   /// Trees (rigid or flexible) without loops or prescribed motions: u_dot by the
   /// articulated-body recursion (kane/articulated_body.hpp), O(n), M never
   /// formed; by speed, with the pivots D it divides by and their order.

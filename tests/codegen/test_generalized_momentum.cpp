@@ -1,12 +1,14 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // generalized_momentum, a kernel added by one kernel-table entry and its
 // derivation, against dT/du by central differences of kinetic_energy (T is
-// derived from the body velocities, independently of M).
+// derived from the body velocities, independently of M). arm7 and chain20 take
+// h from the recursion (the comment at the top of their kernel says which).
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <vector>
 
 #include "arm7.hpp"
+#include "chain20.hpp"
 #include "flexible_arm2.hpp"
 #include "four_bar.hpp"
 
@@ -34,7 +36,8 @@ void check_momentum_is_dT_du() {
 }  // namespace
 
 TEST_CASE("the generalized momenta are dT/du", "[kernels]") {
-  check_momentum_is_dT_du<kanegen_models::arm7::System>();
+  check_momentum_is_dT_du<kanegen_models::arm7::System>();     // by the recursion
+  check_momentum_is_dT_du<kanegen_models::chain20::System>();  // by the recursion, M as a loop
   check_momentum_is_dT_du<kanegen_models::flexible_arm2::System>();
   check_momentum_is_dT_du<kanegen_models::four_bar::System>();
 }

@@ -29,7 +29,7 @@ target_compile_options(kanegen_model_arm7_split PRIVATE ${KANEGEN_WARNINGS} -Wer
 target_compile_options(kanegen_model_arm7_split_float PRIVATE ${KANEGEN_WARNINGS} -Werror)
 target_compile_definitions(test_codegen PRIVATE
                            ARM7_SPLIT_HEADER="${CMAKE_CURRENT_BINARY_DIR}/kanegen_generated/kanegen_model_arm7_split/arm7_split.hpp")
-target_link_libraries(test_codegen PRIVATE kanegen_generator kanegen_model_arm7 kanegen_model_flexible_arm2
+target_link_libraries(test_codegen PRIVATE kanegen_generator kanegen_model_arm7 kanegen_model_chain20 kanegen_model_flexible_arm2
                                            kanegen_model_four_bar kanegen_model_arm7_split
                                            kanegen_model_arm7_split_float Eigen3::Eigen kanegen_catch_main)
 catch_discover_tests(test_codegen TEST_PREFIX "codegen: ")
