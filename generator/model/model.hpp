@@ -71,6 +71,24 @@ struct AssumedMode {
 /// model gives none: the shapes are sampled at its nodes (docs/flexible-bodies.md).
 inline constexpr int kAssumedModeElements = 100;
 
+/// A flexible body meshed with plane or solid elements (a CalculiX/Abaqus
+/// .inp file, e.g. from Gmsh) instead of a beam. The mesh's coordinates are
+/// the body frame's. Read and reduced when code is generated
+/// (fem/model_beam.hpp); the model keeps only what the file says.
+struct MeshSource {
+  std::string file;         ///< as the model file gives it
+  std::string path;         ///< resolved against the model file's directory
+  std::string element_set;  ///< empty: every element of the mesh's highest dimension
+  double thickness = 1.0;   ///< plane elements, m
+  double poisson = 0.0;     ///< nu; E and density are FlexibleBeam's
+  /// The node set held fixed in the body frame (support "clamped"): the
+  /// body's joint acts on it. Empty with support "free".
+  std::string clamped_set;
+  std::string where;  ///< JSON pointer of "mesh"
+
+  bool present() const { return !file.empty(); }
+};
+
 /// The finite-element beam of a flexible body, in its link (body) frame.
 /// Its data are numbers: the element matrices and the modal basis are
 /// computed when the code is generated. Nodes are numbered from 0 at the
@@ -97,6 +115,9 @@ struct FlexibleBeam {
   /// Initial values of elastic coordinates, by their names without the body
   /// prefix (model/elastic_coordinates.hpp: "n3.v", "mode2"); the others start at 0.
   std::map<std::string, double> initial_q, initial_u;
+  /// Present: the body is this mesh, not a beam (no segments, section or
+  /// assumed modes; modal coordinates only).
+  MeshSource mesh;
   std::string where;
 
   int num_elements() const {

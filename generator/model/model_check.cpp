@@ -594,6 +594,9 @@ class Checker {
     if (!b->flexible)
       error(place, what + " names a node of body '" + body_name + "', which is rigid",
             "remove the node, or make '" + body_name + "' flexible");
+    if (b->beam.mesh.present())
+      error(place, what + " names a node of body '" + body_name + "', which is a mesh body",
+            "attach it to the body frame instead (nodes of mesh bodies are not addressable yet)");
     const int last = b->beam.num_nodes() - 1;
     if (node == kTipNode) node = last;
     if (node < 0 || node > last)
@@ -636,6 +639,13 @@ class Checker {
   void check_flexible() {
     for (Body& b : m_.bodies) {
       if (!b.flexible) continue;
+      if (b.beam.mesh.present()) {
+        // The mesh itself is read and checked when code is generated (fem/model_beam.hpp).
+        if (b.beam.modes < 1)
+          error(at(b.beam.where, "modes"), "body '" + b.name + "' keeps no modes", "give \"modes\": 1 or more");
+        check_elastic_initial(b);
+        continue;
+      }
       check_beam(b);
       if (!b.beam.assumed_modes.empty()) check_assumed_modes(m_, b);
       check_elastic_initial(b);

@@ -62,14 +62,14 @@ template <class S>
 Vec<S> node_translation(const FlexibleData& f, const std::vector<S>& dofs, int node) {
   Vec<S> t{S(0.0), S(0.0), S(0.0)};
   for (int a = 0; a < 3; ++a)
-    if (f.dof(node, a) >= 0) t[a] = dofs[f.dof(node, a)];
+    if (const int k = f.dof(node, a); k >= 0) t[a] = dofs[static_cast<std::size_t>(k)];
   return t;
 }
 template <class S>
 Vec<S> node_rotation(const FlexibleData& f, const std::vector<S>& dofs, int node) {
   Vec<S> r{S(0.0), S(0.0), S(0.0)};
   for (int a = 0; a < 3; ++a)
-    if (f.dof(node, 3 + a) >= 0) r[a] = dofs[f.dof(node, 3 + a)];
+    if (const int k = f.dof(node, 3 + a); k >= 0) r[a] = dofs[static_cast<std::size_t>(k)];
   return r;
 }
 

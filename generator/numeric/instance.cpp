@@ -11,7 +11,9 @@
 // stiffness, geometric stiffness and every integral are computed here
 // independently (docs/verify.md).
 #include "fem/model_beam.hpp"
+#include "fem/model_mesh.hpp"
 #include "numeric/shape_function.hpp"
+#include "numeric/solid.hpp"
 
 namespace kanegen::numeric {
 namespace {
@@ -32,6 +34,39 @@ Vec<double> normalized(const Vec<double>& v) {
   return scale(v, 1.0 / length);
 }
 
+/// The mesh of a mesh body: its nodes (in the order of the basis rows) and
+/// elements, read with the finite-element layer's reader (a file format,
+/// not a derivation); the quadrature is this path's own (numeric/solid.hpp).
+void mesh_data(const model::Body& body, const std::string& file, FlexibleData& d) {
+  const fem::InpMesh mesh = fem::read_model_mesh(body, file);
+  const fem::MeshBody layout = fem::build_model_mesh_body(body, mesh, file);
+  for (int id : layout.node_ids) {
+    const Eigen::Vector3d& x = mesh.nodes[mesh.node_index(id)].position;
+    d.nodes.push_back({x.x(), x.y(), x.z()});
+  }
+  std::map<int, const fem::MeshElement*> by_id;
+  for (const fem::MeshElement& e : mesh.elements) by_id[e.id] = &e;
+  for (int id : layout.element_ids) {
+    const fem::MeshElement& me = *by_id.at(id);
+    SolidElementData e;
+    e.family = me.family == fem::ContinuumFamily::kQuad4   ? SolidElementData::kQuad4
+               : me.family == fem::ContinuumFamily::kQuad8 ? SolidElementData::kQuad8
+               : me.family == fem::ContinuumFamily::kHex8  ? SolidElementData::kHex8
+                                                           : SolidElementData::kHex20;
+    std::vector<Vec<double>> x;
+    for (int n : me.nodes) {
+      e.nodes.push_back(layout.node_of.at(n));
+      x.push_back(d.nodes[e.nodes.back()]);
+    }
+    set_up_solid(e, x, body.beam.mesh.thickness);
+    d.solids.push_back(std::move(e));
+  }
+  d.mesh = true;
+  d.planar = false;
+  d.dofs_per_node = d.solids.front().dimension();
+  d.poisson = body.beam.mesh.poisson;
+}
+
 /// The beam of a flexible body: nodes along the segments, element axes
 /// (x along the run, y = z_link x x, z = x x y), numbers, and the basis.
 std::shared_ptr<const FlexibleData> beam_data(const model::Body& body, const std::string& file) {
@@ -40,7 +75,10 @@ std::shared_ptr<const FlexibleData> beam_data(const model::Body& body, const std
   d->body = body.name;
   d->planar = f.formulation == model::BeamFormulation::planar;
   d->dofs_per_node = d->planar ? 3 : 6;
-  d->nodes.push_back({0.0, 0.0, 0.0});
+  if (f.mesh.present())
+    mesh_data(body, file, *d);
+  else
+    d->nodes.push_back({0.0, 0.0, 0.0});
   for (const model::BeamSegment& s : f.segments) {
     const Vec<double> start = d->nodes.back(), end{s.to[0], s.to[1], s.to[2]};
     const Vec<double> step = scale(sub(end, start), 1.0 / s.elements);
