@@ -46,11 +46,10 @@ ModelBeam build_model_mesh(const model::Body& body, const std::string& model_fil
   const model::FlexibleBeam& f = body.beam;
   const InpMesh mesh = read_model_mesh(body, model_file);
   const MeshBody mb = build_model_mesh_body(body, mesh, model_file);
-  const Constraint constraint =
-      f.support == model::BeamSupport::free
-          ? Constraint(mb.body.num_dofs(), {})
-          : at_model_place(model_file, f.mesh.where + "/clamped_set",
-                           [&] { return mb.clamped(mesh, f.mesh.clamped_set); });
+  const Constraint constraint = f.support == model::BeamSupport::free
+                                    ? Constraint(mb.body.num_dofs(), {})
+                                    : at_model_place(model_file, f.mesh.where + "/clamped_set",
+                                                     [&] { return mb.clamped(mesh, f.mesh.clamped_set); });
   if (f.modes > constraint.num_free())
     throw ModelError(model_file, f.where + "/modes",
                      "body '" + body.name + "' has " + std::to_string(constraint.num_free()) +
@@ -62,9 +61,10 @@ ModelBeam build_model_mesh(const model::Body& body, const std::string& model_fil
     // (3 in the plane, 6 in space, omega = 0) would duplicate them.
     const int rigid = out.body.dofs_per_node() == 2 ? 3 : 6;
     if (f.modes + rigid > constraint.num_free())
-      throw ModelError(model_file, f.where + "/modes", "body '" + body.name + "' has too few dofs for " +
-                                                         std::to_string(f.modes) + " elastic modes",
-                       "keep fewer modes, or refine the mesh");
+      throw ModelError(
+          model_file, f.where + "/modes",
+          "body '" + body.name + "' has too few dofs for " + std::to_string(f.modes) + " elastic modes",
+          "keep fewer modes, or refine the mesh");
     const ReducedBody all = reduce_modal(out.body, constraint, f.modes + rigid);
     out.reduced = reduce_assumed(out.body, all.basis.rightCols(f.modes));
     out.reduced.omega = all.omega.tail(f.modes);

@@ -112,7 +112,8 @@ inline void set_up_solid(SolidElementData& e, const std::vector<Vec<double>>& x,
       inv[0][0] = J[1][1] / det, inv[0][1] = -J[0][1] / det;
       inv[1][0] = -J[1][0] / det, inv[1][1] = J[0][0] / det;
     } else {
-      det = J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) - J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
+      det = J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
+            J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
             J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c) {

@@ -1,0 +1,130 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Mesh bodies in model files (issue 18): a slender plane-stress bar of CPS8
+// elements, clamped on its root node set and reduced to its first modes,
+// against the Euler-Bernoulli beam elements of the same section (an
+// independent element family); and the errors of bad mesh references.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <string>
+
+#include "fem/model_beam.hpp"
+#include "model/load.hpp"
+
+namespace {
+
+using namespace kanegen;
+
+const std::string kData = KANEGEN_FEM_DATA_DIR;
+constexpr double kLength = 0.4, kHeight = 0.01, kThickness = 0.002, kE = 2.1e11, kNu = 0.3, kRho = 7800;
+
+/// A one-body model whose flexible body is `flexible` (JSON), written to a temporary file and loaded.
+model::Model load_with(const std::string& flexible) {
+  const std::string path = "test_mesh_body_model.json";
+  std::ofstream(path) << R"({"format": "kanegen-model", "version": 1, "name": "bar", "bodies": [
+    {"name": "bar", "flexible": )"
+                      << flexible << R"(}],
+    "joints": [{"name": "j", "type": "revolute", "parent": "ground", "child": "bar"}]})";
+  model::Model m = model::load_model(path);
+  std::remove(path.c_str());
+  return m;
+}
+
+std::string mesh_json(const std::string& mesh_extra, const std::string& body_extra = "") {
+  return R"({"mesh": {"file": ")" + kData +
+         R"(/slender_cps8.inp", "element_set": "BAR", "thickness": 0.002)" + mesh_extra +
+         R"(}, "material": {"E": 2.1e11, "poisson": 0.3, "density": 7800}, "modes": 3)" + body_extra + "}";
+}
+
+std::string number(double x) {
+  std::ostringstream out;
+  out << std::setprecision(17) << x;
+  return out.str();
+}
+
+const fem::ShapeSampler kNoShapes = [](const std::string&, const std::map<std::string, double>&,
+                                       const std::vector<double>&, std::vector<double>&,
+                                       std::vector<double>&) {};
+
+}  // namespace
+
+TEST_CASE("a clamped CPS8 bar from a model file has the beam's first frequencies within 2 %", "[mesh_body]") {
+  const model::Model mesh_model = load_with(mesh_json(R"(, "clamped_set": "ROOT")"));
+  const fem::ModelBeam mesh = fem::build_model_beam(mesh_model.bodies[0], mesh_model.source_file, kNoShapes);
+
+  const double A = kThickness * kHeight, Iz = kThickness * std::pow(kHeight, 3) / 12;
+  const model::Model beam_model = load_with(R"({"length": 0.4, "elements": 40, "section": {"A": )" +
+                                            number(A) + R"(, "Iz": )" + number(Iz) +
+                                            R"(}, "material": {"E": 2.1e11, "poisson": 0.3, "density": 7800},
+                                              "modes": 3})");
+  const fem::ModelBeam beam = fem::build_model_beam(beam_model.bodies[0], beam_model.source_file, kNoShapes);
+
+  REQUIRE(mesh.reduced.omega.size() == 3);
+  REQUIRE(beam.reduced.omega.size() == 3);
+  // The Euler-Bernoulli first frequency, to see both are the bar's bending.
+  const double first = 1.875104 * 1.875104 * std::sqrt(kE * Iz / (kRho * A)) / (kLength * kLength);
+  CHECK(beam.reduced.omega(0) == Approx(first).epsilon(1e-3));
+  for (int k = 0; k < 3; ++k) {
+    INFO("mode " << k + 1 << ": mesh " << mesh.reduced.omega(k) << " rad/s, beam " << beam.reduced.omega(k));
+    CHECK(mesh.reduced.omega(k) == Approx(beam.reduced.omega(k)).epsilon(0.02));
+  }
+  // Mass normalised: the reduced mass is the identity, the stiffness omega^2.
+  CHECK((mesh.reduced.mass - Eigen::MatrixXd::Identity(3, 3)).norm() < 1e-9);
+  CHECK(mesh.reduced.stiffness(0, 0) == Approx(mesh.reduced.omega(0) * mesh.reduced.omega(0)).epsilon(1e-6));
+  // The bar's whole mass is in the invariants.
+  CHECK(mesh.reduced.invariants.mass == Approx(kRho * A * kLength).epsilon(1e-12));
+}
+
+TEST_CASE("a free-free mesh body keeps its elastic modes, not the rigid motions", "[mesh_body]") {
+  const model::Model m = load_with(mesh_json("", R"(, "support": "free")"));
+  const fem::ModelBeam free = fem::build_model_beam(m.bodies[0], m.source_file, kNoShapes);
+  REQUIRE(free.reduced.omega.size() == 3);
+  // Free-free bending: (4.730041 / 1.875104)^2 = 6.3627 times the clamped first frequency.
+  const double A = kThickness * kHeight, Iz = kThickness * std::pow(kHeight, 3) / 12;
+  const double free_first = 4.730041 * 4.730041 * std::sqrt(kE * Iz / (kRho * A)) / (kLength * kLength);
+  CHECK(free.reduced.omega(0) == Approx(free_first).epsilon(0.02));
+}
+
+TEST_CASE("bad mesh references in a model give errors naming the place and the fix", "[mesh_body]") {
+  SECTION("a clamped node set the mesh does not have") {
+    const model::Model m = load_with(mesh_json(R"(, "clamped_set": "RUT")"));
+    try {
+      fem::build_model_beam(m.bodies[0], m.source_file, kNoShapes);
+      FAIL("no error");
+    } catch (const model::ModelError& e) {
+      const std::string what = e.what();
+      INFO(what);
+      CHECK(what.find("/bodies/0/flexible/mesh/clamped_set") != std::string::npos);
+      CHECK(what.find("RUT") != std::string::npos);
+      CHECK(what.find("ROOT") != std::string::npos);  // the sets it has
+    }
+  }
+  SECTION("a mesh file that does not exist") {
+    const model::Model m = load_with(R"({"mesh": {"file": "no_such.inp", "clamped_set": "ROOT"},
+      "material": {"E": 1e9, "poisson": 0.3, "density": 1000}, "modes": 2})");
+    CHECK_THROWS_WITH(fem::build_model_beam(m.bodies[0], m.source_file, kNoShapes),
+                      Catch::Contains("/bodies/0/flexible/mesh/file") && Catch::Contains("no_such.inp"));
+  }
+  SECTION("an element set the mesh does not have") {
+    const model::Model m = load_with(mesh_json(R"(, "clamped_set": "ROOT")"));
+    model::Body body = m.bodies[0];
+    body.beam.mesh.element_set = "BRA";
+    CHECK_THROWS_WITH(fem::build_model_beam(body, m.source_file, kNoShapes),
+                      Catch::Contains("/bodies/0/flexible/mesh/element_set") && Catch::Contains("BAR"));
+  }
+  SECTION("the model file's own rules") {
+    CHECK_THROWS_WITH(load_with(mesh_json("")), Catch::Contains("clamped_set"));
+    CHECK_THROWS_WITH(load_with(R"({"mesh": {"file": "x.inp", "clamped_set": "ROOT"},
+      "material": {"E": 1e9, "poisson": 0.3, "density": 1000}})"),
+                      Catch::Contains("needs \"modes\""));
+    CHECK_THROWS_WITH(load_with(R"({"mesh": {"file": "x.inp", "clamped_set": "ROOT"}, "length": 1,
+      "material": {"E": 1e9, "poisson": 0.3, "density": 1000}, "modes": 2})"),
+                      Catch::Contains("/bodies/0/flexible/length"));
+    CHECK_THROWS_WITH(load_with(R"({"mesh": {"file": "x.inp", "clamped_set": "ROOT"},
+      "material": {"E": 1e9, "density": 1000}, "modes": 2})"),
+                      Catch::Contains("poisson"));
+  }
+}
