@@ -329,6 +329,11 @@ class JsonReader {
     out.q0 = initial.value("q", 0.0);
     out.u0 = initial.value("u", 0.0);
     if (j.contains("parent_node")) out.parent_node = node(j["parent_node"]);
+    if (j.contains("parent_node_set")) {
+      if (j.contains("parent_node"))
+        error(place + "/parent_node_set", "both 'parent_node' and 'parent_node_set' given", "give one of them");
+      out.parent_node_set = j["parent_node_set"].get<std::string>();
+    }
     if (j.contains("independent")) {
       if (!out.moves())
         error(place + "/independent", "fixed joint '" + out.name + "' has no coordinate to be independent",

@@ -84,7 +84,12 @@ struct MeshSource {
   /// The node set held fixed in the body frame (support "clamped"): the
   /// body's joint acts on it. Empty with support "free".
   std::string clamped_set;
-  std::string where;  ///< JSON pointer of "mesh"
+  /// The node sets that joints attach to ("parent_node_set"), in the order
+  /// check_model first meets them; such a joint's parent_node is the index
+  /// here. Each is an averaging interface (fem/model_mesh.hpp).
+  std::vector<std::string> interfaces;
+  std::vector<std::string> interface_where;  ///< the place of the joint that first named each
+  std::string where;                         ///< JSON pointer of "mesh"
 
   bool present() const { return !file.empty(); }
 };
@@ -178,6 +183,10 @@ struct Joint {
   /// The node of a flexible parent the joint sits on (-1: the parent's
   /// frame). The joint frame then moves and turns with the node.
   int parent_node = -1;
+  /// Or: the node set of a mesh parent it sits on (its averaged motion);
+  /// check_model turns it into parent_node, an index of the parent's
+  /// mesh.interfaces.
+  std::string parent_node_set;
   /// A coordinate given as a function of time: it stays in the state, and
   /// its acceleration is imposed (the second derivative). Empty: a free
   /// coordinate.

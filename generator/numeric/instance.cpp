@@ -64,6 +64,28 @@ void mesh_data(const model::Body& body, const std::string& file, FlexibleData& d
   d.mesh = true;
   d.planar = false;
   d.dofs_per_node = d.solids.front().dimension();
+  for (const std::string& name : body.beam.mesh.interfaces) {
+    FlexibleData::Interface in;
+    for (int id : mesh.node_set(name)) in.nodes.push_back(layout.node_of.at(id));
+    in.centroid = {0, 0, 0};
+    for (int n : in.nodes) in.centroid = add(in.centroid, d.nodes[n]);
+    in.centroid = scale(in.centroid, 1.0 / static_cast<double>(in.nodes.size()));
+    Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+    for (int n : in.nodes) {
+      const Vec<double> r = sub(d.nodes[n], in.centroid);
+      const Eigen::Vector3d v(r[0], r[1], r[2]);
+      A += v.squaredNorm() * Eigen::Matrix3d::Identity() - v * v.transpose();
+    }
+    in.inverse_A = {};
+    if (d.dofs_per_node == 2) {
+      in.inverse_A[8] = 1.0 / A(2, 2);
+    } else {
+      const Eigen::Matrix3d inverse = A.inverse();
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) in.inverse_A[3 * r + c] = inverse(r, c);
+    }
+    d.interfaces.push_back(std::move(in));
+  }
   d.poisson = body.beam.mesh.poisson;
 }
 
@@ -198,8 +220,10 @@ struct Instantiation {
   }
   /// Whether `node` (-1: none) is a node of `body`'s beam.
   bool has_node(int body, int node) const {
-    return node < 0 ||
-           (body >= 0 && m.bodies[body].beam && node < static_cast<int>(m.bodies[body].beam->nodes.size()));
+    if (node < 0) return true;
+    if (body < 0 || !m.bodies[body].beam) return false;
+    const FlexibleData& f = *m.bodies[body].beam;
+    return node < static_cast<int>(f.mesh ? f.interfaces.size() : f.nodes.size());
   }
   int coordinate_of(const std::string& joint) const {
     for (const JointData& j : m.joints)

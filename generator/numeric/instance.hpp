@@ -101,6 +101,15 @@ struct FlexibleData {
   /// u_y per node) or solid (u_x, u_y, u_z) elements of this material.
   bool mesh = false;
   std::vector<SolidElementData> solids;
+  /// A mesh body's interfaces (a joint's "node" k is interface k): the
+  /// least-squares rigid motion of a node set, t = mean u_i and
+  /// theta = A^-1 sum r_i x u_i (r_i from the centroid).
+  struct Interface {
+    std::vector<int> nodes;
+    Vec<double> centroid;
+    Mat<double> inverse_A;  ///< in the plane: only (2, 2), 1 / sum |r_i|^2
+  };
+  std::vector<Interface> interfaces;
   double poisson = 0;
 
   int count() const { return static_cast<int>(basis.size()); }

@@ -22,12 +22,15 @@ const std::string kData = KANEGEN_FEM_DATA_DIR;
 constexpr double kLength = 0.4, kHeight = 0.01, kThickness = 0.002, kE = 2.1e11, kNu = 0.3, kRho = 7800;
 
 /// A one-body model whose flexible body is `flexible` (JSON), written to a temporary file and loaded.
-model::Model load_with(const std::string& flexible) {
+model::Model load_with(const std::string& flexible, const std::string& tip_joint = "") {
   const std::string path = "test_mesh_body_model.json";
+  // A rigid body on the bar: in its frame unless tip_joint (its joint's extra keys) says where.
   std::ofstream(path) << R"({"format": "kanegen-model", "version": 1, "name": "bar", "bodies": [
     {"name": "bar", "flexible": )"
-                      << flexible << R"(}],
-    "joints": [{"name": "j", "type": "revolute", "parent": "ground", "child": "bar"}]})";
+                      << flexible << R"(}, {"name": "tip_body", "mass": 0.1}],
+    "joints": [{"name": "j", "type": "revolute", "parent": "ground", "child": "bar"},
+               {"name": "k", "type": "fixed", "parent": "bar", "child": "tip_body")"
+                      << tip_joint << "}]}";
   model::Model m = model::load_model(path);
   std::remove(path.c_str());
   return m;
@@ -127,4 +130,42 @@ TEST_CASE("bad mesh references in a model give errors naming the place and the f
       "material": {"E": 1e9, "density": 1000}, "modes": 2})"),
                       Catch::Contains("poisson"));
   }
+}
+
+TEST_CASE("a joint on a node set moves with the set's averaged motion, as the beam's tip node",
+          "[mesh_body]") {
+  const model::Model mesh_model =
+      load_with(mesh_json(R"(, "clamped_set": "ROOT")"), R"(, "parent_node_set": "TIP")");
+  REQUIRE(mesh_model.joints[1].parent_node == 0);
+  const fem::ModelBeam mesh = fem::build_model_beam(mesh_model.bodies[0], mesh_model.source_file, kNoShapes);
+  REQUIRE(mesh.interfaces.size() == 1);
+  CHECK((mesh.point_position(0) - Eigen::Vector3d(kLength, 0, 0)).norm() < 1e-12);
+
+  const double A = kThickness * kHeight, Iz = kThickness * std::pow(kHeight, 3) / 12;
+  const model::Model beam_model =
+      load_with(R"({"length": 0.4, "elements": 40, "section": {"A": )" + number(A) + R"(, "Iz": )" +
+                number(Iz) + R"(}, "material": {"E": 2.1e11, "density": 7800}, "modes": 3})");
+  const fem::ModelBeam beam = fem::build_model_beam(beam_model.bodies[0], beam_model.source_file, kNoShapes);
+  const int tip = beam.body.num_nodes() - 1;
+  // The first mode's tip slope over its tip deflection, L phi'(L) / phi(L) = 1.3765 for the cantilever.
+  for (const fem::ModelBeam* b : {&mesh, &beam}) {
+    const int node = b == &mesh ? 0 : tip;
+    const double ratio = kLength * b->point_rotation(node)(2, 0) / b->point_translation(node)(1, 0);
+    INFO((b == &mesh ? "mesh" : "beam") << ": L theta_z / v at the tip = " << ratio);
+    CHECK(ratio == Approx(1.3765).epsilon(0.01));
+  }
+  CHECK(std::abs(mesh.point_translation(0)(1, 0)) ==
+        Approx(std::abs(beam.point_translation(tip)(1, 0))).epsilon(0.02));
+}
+
+TEST_CASE("a joint on a node set the mesh does not have: the joint's place and the sets there are",
+          "[mesh_body]") {
+  const model::Model m = load_with(mesh_json(R"(, "clamped_set": "ROOT")"), R"(, "parent_node_set": "TOP")");
+  CHECK_THROWS_WITH(
+      fem::build_model_beam(m.bodies[0], m.source_file, kNoShapes),
+      Catch::Contains("/joints/1/parent_node_set") && Catch::Contains("TOP") && Catch::Contains("ROOT, TIP"));
+  CHECK_THROWS_WITH(load_with(R"({"length": 0.4, "elements": 4, "section": {"A": 1e-4, "Iz": 1e-9},
+      "material": {"E": 2.1e11, "density": 7800}})",
+                              R"(, "parent_node_set": "TIP")"),
+                    Catch::Contains("/joints/1/parent_node_set") && Catch::Contains("not a mesh body"));
 }
