@@ -3,6 +3,7 @@
 
 #include <fstream>
 
+#include "fem/craig_bampton.hpp"
 #include "fem/reduction.hpp"
 #include "model/model_error.hpp"
 
@@ -111,7 +112,26 @@ ModelBeam build_model_mesh(const model::Body& body, const std::string& model_fil
                          " free dofs, fewer than the " + std::to_string(f.modes) + " modes asked for",
                      "keep fewer modes, or refine the mesh");
   ModelBeam out{mb.body, {}, {}, {}, {}, {}, std::nullopt, {}, true};
-  if (f.support == model::BeamSupport::free) {
+  if (f.mesh.craig_bampton) {
+    std::vector<std::vector<int>> interfaces;
+    for (std::size_t i = 0; i < f.mesh.interfaces.size(); ++i) {
+      std::vector<int> nodes;
+      for (int id : at_model_place(model_file, f.mesh.interface_where[i],
+                                   [&] { return mesh.node_set(f.mesh.interfaces[i]); }))
+        if (mb.node_of.count(id)) nodes.push_back(mb.node_of.at(id));
+      interfaces.push_back(nodes);
+    }
+    try {
+      const CraigBamptonBasis cb = craig_bampton(out.body, constraint, interfaces, f.modes);
+      out.reduced = reduce_assumed(out.body, cb.basis);
+    } catch (const std::invalid_argument& e) {
+      throw ModelError(
+          model_file, f.mesh.where + "/reduction",
+          "Craig-Bampton reduction of body '" + body.name + "' failed: " + e.what(),
+          "keep the interface node sets apart from the clamped set, with two or more nodes each, "
+          "and keep fewer modes");
+    }
+  } else if (f.support == model::BeamSupport::free) {
     // The joint carries the rigid motions: the free-free body's first modes
     // (3 in the plane, 6 in space, omega = 0) would duplicate them.
     const int rigid = out.body.dofs_per_node() == 2 ? 3 : 6;

@@ -241,6 +241,10 @@ class JsonReader {
       error(f.mesh.where + "/clamped_set", "'clamped_set' does not apply with \"support\": \"free\"",
             "remove it, or set \"support\": \"clamped\"");
     f.mesh.clamped_set = m.value("clamped_set", "");
+    f.mesh.craig_bampton = m.value("reduction", "modal") == "craig-bampton";
+    if (f.mesh.craig_bampton && f.support == BeamSupport::free)
+      error(f.mesh.where + "/reduction", "Craig-Bampton reduction needs a clamped mesh body",
+            "give \"support\": \"clamped\" and a \"clamped_set\", or \"reduction\": \"modal\"");
     if (!j.contains("modes"))
       error(place, "a mesh body needs \"modes\"",
             "add \"modes\": k, the number of modes kept (its nodal coordinates would be far too many)");
@@ -250,6 +254,9 @@ class JsonReader {
       error(place + "/geometric_stiffening", "geometric stiffening of mesh bodies is not available yet",
             "set \"geometric_stiffening\": false (or leave it out)");
     f.geometric_stiffening = false;
+    if (f.mesh.craig_bampton && f.modal_damping > 0)
+      error(place + "/damping", "modal damping does not apply to Craig-Bampton coordinates (they are not modes)",
+            "give {\"rayleigh\": [alpha, beta]}");
     return f;
   }
 

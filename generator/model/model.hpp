@@ -89,6 +89,9 @@ struct MeshSource {
   /// here. Each is an averaging interface (fem/model_mesh.hpp).
   std::vector<std::string> interfaces;
   std::vector<std::string> interface_where;  ///< the place of the joint that first named each
+  /// Craig-Bampton: the coordinates are the static shapes of the interfaces'
+  /// rigid motions, then the first `modes` fixed-interface modes.
+  bool craig_bampton = false;
   std::string where;                         ///< JSON pointer of "mesh"
 
   bool present() const { return !file.empty(); }

@@ -674,6 +674,11 @@ class Checker {
     }
     for (Joint& j : m_.joints)
       if (!j.parent_node_set.empty()) attach_to_node_set(j);
+    for (const Body& b : m_.bodies)
+      if (b.flexible && b.beam.mesh.craig_bampton && b.beam.mesh.interfaces.empty())
+        error(at(b.beam.mesh.where, "reduction"),
+              "Craig-Bampton reduction of body '" + b.name + "' needs an interface, and no joint sits on its node sets",
+              "attach a joint with \"parent_node_set\", or use \"reduction\": \"modal\"");
     for (Joint& j : m_.joints)
       if (j.parent_node != -1 && j.parent_node_set.empty()) {
         if (j.parent == m_.ground)

@@ -169,3 +169,38 @@ TEST_CASE("a joint on a node set the mesh does not have: the joint's place and t
                               R"(, "parent_node_set": "TIP")"),
                     Catch::Contains("/joints/1/parent_node_set") && Catch::Contains("not a mesh body"));
 }
+
+TEST_CASE(
+    "Craig-Bampton: the tip interface's statics are the cantilever's, the first frequency the clamped one",
+    "[mesh_body]") {
+  const model::Model m = load_with(mesh_json(R"(, "clamped_set": "ROOT", "reduction": "craig-bampton")"),
+                                   R"(, "parent_node_set": "TIP")");
+  const fem::ModelBeam cb = fem::build_model_beam(m.bodies[0], m.source_file, kNoShapes);
+  REQUIRE(cb.reduced.names.size() == 6);  // u_x, u_y, theta_z of TIP, then 3 fixed-interface modes
+  // The constraint modes move the interface point by exactly their unit rigid motion.
+  const Eigen::MatrixXd t = cb.point_translation(0), r = cb.point_rotation(0);
+  CHECK(std::abs(t(0, 0) - 1) < 1e-9);
+  CHECK(std::abs(t(1, 1) - 1) < 1e-9);
+  CHECK(std::abs(r(2, 2) - 1) < 1e-9);
+  CHECK(t.rightCols(3).norm() < 1e-9);  // fixed-interface modes hold the interface
+  // Statics: the flexibility at the tip, the inverse of the constraint-mode stiffness (exact Schur
+  // complement).
+  const Eigen::Matrix3d flexibility = cb.reduced.stiffness.topLeftCorner(3, 3).inverse();
+  const double Iz = kThickness * std::pow(kHeight, 3) / 12, A = kThickness * kHeight;
+  CHECK(flexibility(1, 1) == Approx(std::pow(kLength, 3) / (3 * kE * Iz)).epsilon(0.02));
+  CHECK(flexibility(2, 2) == Approx(kLength / (kE * Iz)).epsilon(0.02));
+  CHECK(flexibility(0, 0) == Approx(kLength / (kE * A)).epsilon(0.02));
+
+  const model::Model modal_model = load_with(mesh_json(R"(, "clamped_set": "ROOT")"));
+  const fem::ModelBeam modal =
+      fem::build_model_beam(modal_model.bodies[0], modal_model.source_file, kNoShapes);
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(cb.reduced.stiffness, cb.reduced.mass);
+  CHECK(std::sqrt(eig.eigenvalues()(0)) == Approx(modal.reduced.omega(0)).epsilon(1e-3));
+  CHECK(std::sqrt(eig.eigenvalues()(1)) == Approx(modal.reduced.omega(1)).epsilon(1e-2));
+}
+
+TEST_CASE("Craig-Bampton without an interface is refused where it is asked for", "[mesh_body]") {
+  CHECK_THROWS_WITH(
+      load_with(mesh_json(R"(, "clamped_set": "ROOT", "reduction": "craig-bampton")")),
+      Catch::Contains("/bodies/0/flexible/mesh/reduction") && Catch::Contains("parent_node_set"));
+}
