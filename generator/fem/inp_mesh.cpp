@@ -295,8 +295,9 @@ class Reader {
       std::sort(ids.begin(), ids.end());
       ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
       // Line elements are not kept: nor are they in the sets.
-      ids.erase(std::remove_if(ids.begin(), ids.end(), [&](int id) { return line_element_ids_.count(id) > 0; }),
-                ids.end());
+      ids.erase(
+          std::remove_if(ids.begin(), ids.end(), [&](int id) { return line_element_ids_.count(id) > 0; }),
+          ids.end());
       for (int id : ids)
         if (!element_ids_.count(id))
           fail(set_lines_.count(&ids) ? set_lines_[&ids] : line_,

@@ -24,8 +24,8 @@ namespace kanegen::fem {
 /// least-squares rigid motion of the set's nodes (RBE3-like averaging), so
 /// that it adds no stiffness; for a set that moves rigidly it is that motion.
 struct InterfacePoint {
-  std::string name;           ///< the node set
-  Eigen::Vector3d position;   ///< the set's centroid, link frame
+  std::string name;             ///< the node set
+  Eigen::Vector3d position;     ///< the set's centroid, link frame
   Eigen::MatrixXd translation;  ///< 3 x n: displacement in the link frame = translation eta
   Eigen::MatrixXd rotation;     ///< 3 x n: small rotation
 };

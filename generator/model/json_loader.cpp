@@ -204,7 +204,8 @@ class JsonReader {
 
   /// A body meshed with plane or solid elements (FlexibleBeam::mesh).
   FlexibleBeam mesh_body(const json& j, const std::string& place) const {
-    for (const char* key : {"length", "elements", "segments", "section", "assumed_modes", "tip", "formulation"})
+    for (const char* key :
+         {"length", "elements", "segments", "section", "assumed_modes", "tip", "formulation"})
       if (j.contains(key))
         error(place + "/" + key, std::string("'") + key + "' does not apply to a body given by a mesh",
               "remove it: the mesh gives the shape, and \"mesh\" the element set and thickness");
@@ -215,8 +216,9 @@ class JsonReader {
     f.mesh.file = m["file"].get<std::string>();
     // Relative to the model file, so that a model and its mesh move together.
     const std::filesystem::path given(f.mesh.file);
-    f.mesh.path = given.is_absolute() ? given.string()
-                                      : (std::filesystem::path(file_).parent_path() / given).lexically_normal().string();
+    f.mesh.path = given.is_absolute()
+                      ? given.string()
+                      : (std::filesystem::path(file_).parent_path() / given).lexically_normal().string();
     f.mesh.element_set = m.value("element_set", "");
     f.mesh.thickness = m.value("thickness", 1.0);
     const json& material = j["material"];
@@ -255,7 +257,8 @@ class JsonReader {
             "set \"geometric_stiffening\": false (or leave it out)");
     f.geometric_stiffening = false;
     if (f.mesh.craig_bampton && f.modal_damping > 0)
-      error(place + "/damping", "modal damping does not apply to Craig-Bampton coordinates (they are not modes)",
+      error(place + "/damping",
+            "modal damping does not apply to Craig-Bampton coordinates (they are not modes)",
             "give {\"rayleigh\": [alpha, beta]}");
     return f;
   }
@@ -338,7 +341,8 @@ class JsonReader {
     if (j.contains("parent_node")) out.parent_node = node(j["parent_node"]);
     if (j.contains("parent_node_set")) {
       if (j.contains("parent_node"))
-        error(place + "/parent_node_set", "both 'parent_node' and 'parent_node_set' given", "give one of them");
+        error(place + "/parent_node_set", "both 'parent_node' and 'parent_node_set' given",
+              "give one of them");
       out.parent_node_set = j["parent_node_set"].get<std::string>();
     }
     if (j.contains("independent")) {

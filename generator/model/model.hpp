@@ -92,7 +92,7 @@ struct MeshSource {
   /// Craig-Bampton: the coordinates are the static shapes of the interfaces'
   /// rigid motions, then the first `modes` fixed-interface modes.
   bool craig_bampton = false;
-  std::string where;                         ///< JSON pointer of "mesh"
+  std::string where;  ///< JSON pointer of "mesh"
 
   bool present() const { return !file.empty(); }
 };

@@ -648,7 +648,8 @@ class Checker {
             "remove \"parent_node_set\" (beams take \"parent_node\")");
     if (j.type == JointType::prismatic)
       error(place, "only revolute, continuous and fixed joints on node sets are supported",
-            "attach prismatic joint '" + j.name + "' to the body frame, or put a fixed joint and a body on the set");
+            "attach prismatic joint '" + j.name +
+                "' to the body frame, or put a fixed joint and a body on the set");
     std::vector<std::string>& sets = parent->beam.mesh.interfaces;
     const auto found = std::find(sets.begin(), sets.end(), j.parent_node_set);
     j.parent_node = static_cast<int>(found - sets.begin());
@@ -664,7 +665,8 @@ class Checker {
       if (b.beam.mesh.present()) {
         // The mesh itself is read and checked when code is generated (fem/model_beam.hpp).
         if (b.beam.modes < 1)
-          error(at(b.beam.where, "modes"), "body '" + b.name + "' keeps no modes", "give \"modes\": 1 or more");
+          error(at(b.beam.where, "modes"), "body '" + b.name + "' keeps no modes",
+                "give \"modes\": 1 or more");
         check_elastic_initial(b);
         continue;
       }
@@ -677,7 +679,8 @@ class Checker {
     for (const Body& b : m_.bodies)
       if (b.flexible && b.beam.mesh.craig_bampton && b.beam.mesh.interfaces.empty())
         error(at(b.beam.mesh.where, "reduction"),
-              "Craig-Bampton reduction of body '" + b.name + "' needs an interface, and no joint sits on its node sets",
+              "Craig-Bampton reduction of body '" + b.name +
+                  "' needs an interface, and no joint sits on its node sets",
               "attach a joint with \"parent_node_set\", or use \"reduction\": \"modal\"");
     for (Joint& j : m_.joints)
       if (j.parent_node != -1 && j.parent_node_set.empty()) {

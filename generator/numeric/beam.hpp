@@ -233,7 +233,9 @@ std::vector<Vec<S>> node_shortening(const FlexibleData& f, const std::vector<S>&
 /// A node's displaced position, link frame: undeformed + translation + foreshortening.
 template <class S>
 Vec<S> displaced_node(const FlexibleData& f, const std::vector<S>& dofs, int node) {
-  if (f.mesh) return add(f.interfaces.at(static_cast<std::size_t>(node)).centroid, interface_translation(f, dofs, node));
+  if (f.mesh)
+    return add(f.interfaces.at(static_cast<std::size_t>(node)).centroid,
+               interface_translation(f, dofs, node));
   const Vec<S> moved = add(f.nodes[node], node_translation(f, dofs, node));
   return f.shortens() ? add(moved, node_shortening(f, dofs)[node]) : moved;
 }

@@ -9,10 +9,10 @@
 #include <stdexcept>
 
 #include "numeric/beam.hpp"
-#include "numeric/solid.hpp"
 #include "numeric/dual.hpp"
 #include "numeric/loops.hpp"
 #include "numeric/poses.hpp"
+#include "numeric/solid.hpp"
 
 namespace kanegen::numeric {
 namespace {
@@ -153,7 +153,8 @@ void visit_masses(const Instance& m, const std::vector<Pose<S>>& poses,
         index += static_cast<int>(e.points.size());
         continue;
       }
-      for (const SolidElementData::Point& p : e.points) visit(index++, bi, to_world(pose, solid_point(f, e, p, own)), zero);
+      for (const SolidElementData::Point& p : e.points)
+        visit(index++, bi, to_world(pose, solid_point(f, e, p, own)), zero);
     }
     if (f.tip_mass > 0) {
       const int last = static_cast<int>(f.nodes.size()) - 1;
