@@ -137,10 +137,17 @@ std::vector<double> elastic_scales(const numeric::Instance& instance) {
     const numeric::FlexibleData& f = *b.beam;
     double length = 0;
     for (const numeric::BeamElementData& e : f.elements) length += e.length;
+    // A mesh body: the diagonal of its box.
+    if (f.mesh) {
+      numeric::Vec<double> low = f.nodes.front(), high = f.nodes.front();
+      for (const numeric::Vec<double>& x : f.nodes)
+        for (int a = 0; a < 3; ++a) low[a] = std::min(low[a], x[a]), high[a] = std::max(high[a], x[a]);
+      length = std::sqrt(numeric::dot(numeric::sub(high, low), numeric::sub(high, low)));
+    }
     for (int k = 0; k < f.count(); ++k) {
       double translation = 0, rotation = 0;
       for (const auto& [dof, value] : f.basis[k]) {
-        const bool turns = f.planar ? dof % 3 == 2 : dof % 6 >= 3;
+        const bool turns = !f.mesh && (f.planar ? dof % 3 == 2 : dof % 6 >= 3);
         (turns ? rotation : translation) = std::max(turns ? rotation : translation, std::abs(value));
       }
       scale[b.elastic_first + k] = translation > 0 ? 1e-3 * length / translation : 1e-3 / rotation;

@@ -46,6 +46,9 @@ std::vector<std::string> fields(const std::string& line) {
 const char* kSupported = "CPS4, CPS8, C3D8, C3D20";
 constexpr long kMaxGenerated = 10000000;
 
+/// Two- and three-node truss elements: Gmsh's elements of a physical curve.
+bool is_gmsh_line_type(const std::string& type) { return type == "T3D2" || type == "T3D3"; }
+
 bool family_of(const std::string& type, ContinuumFamily& family) {
   static const std::map<std::string, ContinuumFamily> types = {{"CPS4", ContinuumFamily::kQuad4},
                                                                {"CPS8", ContinuumFamily::kQuad8},
@@ -79,7 +82,7 @@ class Reader {
   }
 
  private:
-  enum class Block { kNone, kNode, kElement, kNset, kElset, kSkip };
+  enum class Block { kNone, kNode, kElement, kLineElements, kNset, kElset, kSkip };
 
   [[noreturn]] void fail(int line, const std::string& problem, const std::string& fix) const {
     throw ModelError(mesh_.file, "line " + std::to_string(line), problem, fix);
@@ -136,6 +139,12 @@ class Reader {
       const auto type = params.find("TYPE");
       if (type == params.end())
         fail(line_, "*ELEMENT without TYPE=", std::string("give the element type, one of ") + kSupported);
+      if (is_gmsh_line_type(upper(type->second))) {
+        // The line elements Gmsh writes for a physical curve (a 2D mesh's
+        // boundary node set): only their node set matters.
+        block_ = Block::kLineElements;
+        return;
+      }
       if (!family_of(upper(type->second), family_))
         fail(line_, "unknown element type '" + type->second + "'",
              std::string("kanegen reads ") + kSupported +
@@ -161,6 +170,9 @@ class Reader {
     switch (block_) {
       case Block::kNone:
         fail(line_, "data line before any keyword", "start the file with *NODE");
+      case Block::kLineElements:
+        if (!f.empty()) line_element_ids_.insert(std::atoi(f[0].c_str()));
+        return;
       case Block::kSkip:
         return;
       case Block::kNode:
@@ -282,6 +294,10 @@ class Reader {
     for (auto& [name, ids] : mesh_.element_sets) {
       std::sort(ids.begin(), ids.end());
       ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+      // Line elements are not kept: nor are they in the sets.
+      ids.erase(
+          std::remove_if(ids.begin(), ids.end(), [&](int id) { return line_element_ids_.count(id) > 0; }),
+          ids.end());
       for (int id : ids)
         if (!element_ids_.count(id))
           fail(set_lines_.count(&ids) ? set_lines_[&ids] : line_,
@@ -298,6 +314,7 @@ class Reader {
   std::string set_;
   bool generate_ = false;
   bool pending_ = false;
+  std::set<int> line_element_ids_;
   MeshElement current_;
   std::map<int, int> element_ids_;                    ///< id -> line
   std::map<const std::vector<int>*, int> set_lines_;  ///< a set's last data line

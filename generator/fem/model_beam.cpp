@@ -4,11 +4,13 @@
 #include "fem/assumed_modes.hpp"
 #include "fem/beam_body.hpp"
 #include "fem/boundary.hpp"
+#include "fem/model_mesh.hpp"
 #include "model/model_error.hpp"
 
 namespace kanegen::fem {
 
 ModelBeam build_model_beam(const model::Body& body, const std::string& file, const ShapeSampler& shapes) {
+  if (body.beam.mesh.present()) return build_model_mesh(body, file);
   const model::FlexibleBeam& f = body.beam;
   const bool planar = f.formulation == model::BeamFormulation::planar;
   BeamProperties properties;
@@ -25,7 +27,9 @@ ModelBeam build_model_beam(const model::Body& body, const std::string& file, con
                 properties.section,
                 properties.material,
                 {},
-                std::nullopt};
+                std::nullopt,
+                {},
+                false};
   int last = out.body.add_node(Eigen::Vector3d::Zero());
   for (const model::BeamSegment& s : f.segments)
     last = add_beam_run(out.body, last, Eigen::Vector3d(s.to[0], s.to[1], s.to[2]), s.elements, properties);

@@ -20,6 +20,16 @@
 
 namespace kanegen::fem {
 
+/// A point that moves with a node set of a mesh body (an interface): the
+/// least-squares rigid motion of the set's nodes (RBE3-like averaging), so
+/// that it adds no stiffness; for a set that moves rigidly it is that motion.
+struct InterfacePoint {
+  std::string name;             ///< the node set
+  Eigen::Vector3d position;     ///< the set's centroid, link frame
+  Eigen::MatrixXd translation;  ///< 3 x n: displacement in the link frame = translation eta
+  Eigen::MatrixXd rotation;     ///< 3 x n: small rotation
+};
+
 struct ModelBeam {
   Body body;                ///< all nodal dofs, link frame
   ReducedBody reduced;      ///< the elastic coordinates eta: u = basis eta
@@ -34,6 +44,22 @@ struct ModelBeam {
   /// carries the axial force instead. Both are conservative.
   std::vector<AxialStrainElement> axial_strain;
   std::optional<Foreshortening> foreshortening;
+  /// Mesh bodies: their points that joints attach to, by the index
+  /// model::MeshSource::interfaces gives (a mesh body's "node" k is its interface k).
+  std::vector<InterfacePoint> interfaces;
+  bool is_mesh = false;
+
+  /// A node of a beam, or an interface of a mesh body: undeformed position
+  /// (link frame) and its displacement and small rotation in eta (3 x n).
+  Eigen::Vector3d point_position(int node) const {
+    return is_mesh ? interfaces.at(node).position : body.node_position(node);
+  }
+  Eigen::MatrixXd point_translation(int node) const {
+    return is_mesh ? interfaces.at(node).translation : reduced.node_translation(body, node);
+  }
+  Eigen::MatrixXd point_rotation(int node) const {
+    return is_mesh ? interfaces.at(node).rotation : reduced.node_rotation(body, node);
+  }
 };
 
 /// Builds the body; throws model::ModelError (naming the body's place) when

@@ -140,9 +140,9 @@ std::map<int, kinematics::NodeAttachment> node_attachments(const model::Model& m
                                   "and a body on the node and the slide on that body");
     const fem::ModelBeam& beam = flexible.at(parent);
     kinematics::NodeAttachment a;
-    a.position = beam.body.node_position(j.parent_node);
-    a.translation = beam.reduced.node_translation(beam.body, j.parent_node);
-    a.rotation = beam.reduced.node_rotation(beam.body, j.parent_node);
+    a.position = beam.point_position(j.parent_node);
+    a.translation = beam.point_translation(j.parent_node);
+    a.rotation = beam.point_rotation(j.parent_node);
     a.first = vars.elastic_first[parent];
     if (beam.foreshortening) {
       const auto& h = beam.foreshortening->node[j.parent_node];

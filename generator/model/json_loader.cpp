@@ -2,6 +2,7 @@
 #include "model/json_loader.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <vector>
 
 #include "model/json_document.hpp"
@@ -114,6 +115,10 @@ class JsonReader {
   }
 
   FlexibleBeam beam(const json& j, const std::string& place) const {
+    if (j.contains("mesh")) return mesh_body(j, place);
+    if (!j.contains("section"))
+      error(place, "missing required key 'section'",
+            "add \"section\": {\"A\": ..., \"Iz\": ...} for a beam, or give a \"mesh\"");
     FlexibleBeam f;
     f.where = place;
     f.formulation = j.value("formulation", "planar") == "spatial" ? BeamFormulation::spatial : BeamFormulation::planar;
@@ -168,6 +173,12 @@ class JsonReader {
       const char* keys[6] = {"ixx", "iyy", "izz", "ixy", "ixz", "iyz"};
       for (int k = 0; k < 6; ++k) f.tip_inertia[k] = inertia.value(keys[k], 0.0);
     }
+    read_damping_and_initial(j, place, f);
+    return f;
+  }
+
+  /// What beams and mesh bodies share: damping, geometric stiffening, initial values.
+  void read_damping_and_initial(const json& j, const std::string& place, FlexibleBeam& f) const {
     if (j.contains("damping")) {
       const json& d = j["damping"];
       if (d.contains("rayleigh") == d.contains("modal_ratio"))
@@ -189,6 +200,66 @@ class JsonReader {
       if (initial.contains("u"))
         for (const auto& [name, value] : initial["u"].items()) f.initial_u[name] = value.get<double>();
     }
+  }
+
+  /// A body meshed with plane or solid elements (FlexibleBeam::mesh).
+  FlexibleBeam mesh_body(const json& j, const std::string& place) const {
+    for (const char* key :
+         {"length", "elements", "segments", "section", "assumed_modes", "tip", "formulation"})
+      if (j.contains(key))
+        error(place + "/" + key, std::string("'") + key + "' does not apply to a body given by a mesh",
+              "remove it: the mesh gives the shape, and \"mesh\" the element set and thickness");
+    FlexibleBeam f;
+    f.where = place;
+    const json& m = j["mesh"];
+    f.mesh.where = place + "/mesh";
+    f.mesh.file = m["file"].get<std::string>();
+    // Relative to the model file, so that a model and its mesh move together.
+    const std::filesystem::path given(f.mesh.file);
+    f.mesh.path = given.is_absolute()
+                      ? given.string()
+                      : (std::filesystem::path(file_).parent_path() / given).lexically_normal().string();
+    f.mesh.element_set = m.value("element_set", "");
+    f.mesh.thickness = m.value("thickness", 1.0);
+    const json& material = j["material"];
+    f.E = material["E"].get<double>();
+    f.density = material["density"].get<double>();
+    if (!material.contains("poisson"))
+      error(place + "/material", "a mesh body needs Poisson's ratio", "add \"poisson\": nu (0.3 for steel)");
+    if (material.contains("G"))
+      error(place + "/material/G", "'G' does not apply to a mesh body", "give \"poisson\" only");
+    f.mesh.poisson = material["poisson"].get<double>();
+    f.G = f.E / (2.0 * (1.0 + f.mesh.poisson));
+    const std::string support = j.value("support", "clamped");
+    if (support == "pinned-pinned")
+      error(place + "/support", "a mesh body is \"clamped\" (on a node set) or \"free\"",
+            "use \"support\": \"clamped\" with \"mesh\": {\"clamped_set\": ...}, or \"free\"");
+    f.support = support == "free" ? BeamSupport::free : BeamSupport::clamped;
+    if (f.support == BeamSupport::clamped && !m.contains("clamped_set"))
+      error(f.mesh.where, "a clamped mesh body needs the node set its joint holds",
+            "add \"clamped_set\": the name of a node set (*NSET, or a Gmsh physical group) of the mesh, "
+            "or give \"support\": \"free\"");
+    if (f.support == BeamSupport::free && m.contains("clamped_set"))
+      error(f.mesh.where + "/clamped_set", "'clamped_set' does not apply with \"support\": \"free\"",
+            "remove it, or set \"support\": \"clamped\"");
+    f.mesh.clamped_set = m.value("clamped_set", "");
+    f.mesh.craig_bampton = m.value("reduction", "modal") == "craig-bampton";
+    if (f.mesh.craig_bampton && f.support == BeamSupport::free)
+      error(f.mesh.where + "/reduction", "Craig-Bampton reduction needs a clamped mesh body",
+            "give \"support\": \"clamped\" and a \"clamped_set\", or \"reduction\": \"modal\"");
+    if (!j.contains("modes"))
+      error(place, "a mesh body needs \"modes\"",
+            "add \"modes\": k, the number of modes kept (its nodal coordinates would be far too many)");
+    f.modes = j["modes"].get<int>();
+    read_damping_and_initial(j, place, f);
+    if (j.value("geometric_stiffening", false))
+      error(place + "/geometric_stiffening", "geometric stiffening of mesh bodies is not available yet",
+            "set \"geometric_stiffening\": false (or leave it out)");
+    f.geometric_stiffening = false;
+    if (f.mesh.craig_bampton && f.modal_damping > 0)
+      error(place + "/damping",
+            "modal damping does not apply to Craig-Bampton coordinates (they are not modes)",
+            "give {\"rayleigh\": [alpha, beta]}");
     return f;
   }
 
@@ -268,6 +339,12 @@ class JsonReader {
     out.q0 = initial.value("q", 0.0);
     out.u0 = initial.value("u", 0.0);
     if (j.contains("parent_node")) out.parent_node = node(j["parent_node"]);
+    if (j.contains("parent_node_set")) {
+      if (j.contains("parent_node"))
+        error(place + "/parent_node_set", "both 'parent_node' and 'parent_node_set' given",
+              "give one of them");
+      out.parent_node_set = j["parent_node_set"].get<std::string>();
+    }
     if (j.contains("independent")) {
       if (!out.moves())
         error(place + "/independent", "fixed joint '" + out.name + "' has no coordinate to be independent",

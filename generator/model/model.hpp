@@ -71,6 +71,32 @@ struct AssumedMode {
 /// model gives none: the shapes are sampled at its nodes (docs/flexible-bodies.md).
 inline constexpr int kAssumedModeElements = 100;
 
+/// A flexible body meshed with plane or solid elements (a CalculiX/Abaqus
+/// .inp file, e.g. from Gmsh) instead of a beam. The mesh's coordinates are
+/// the body frame's. Read and reduced when code is generated
+/// (fem/model_beam.hpp); the model keeps only what the file says.
+struct MeshSource {
+  std::string file;         ///< as the model file gives it
+  std::string path;         ///< resolved against the model file's directory
+  std::string element_set;  ///< empty: every element of the mesh's highest dimension
+  double thickness = 1.0;   ///< plane elements, m
+  double poisson = 0.0;     ///< nu; E and density are FlexibleBeam's
+  /// The node set held fixed in the body frame (support "clamped"): the
+  /// body's joint acts on it. Empty with support "free".
+  std::string clamped_set;
+  /// The node sets that joints attach to ("parent_node_set"), in the order
+  /// check_model first meets them; such a joint's parent_node is the index
+  /// here. Each is an averaging interface (fem/model_mesh.hpp).
+  std::vector<std::string> interfaces;
+  std::vector<std::string> interface_where;  ///< the place of the joint that first named each
+  /// Craig-Bampton: the coordinates are the static shapes of the interfaces'
+  /// rigid motions, then the first `modes` fixed-interface modes.
+  bool craig_bampton = false;
+  std::string where;  ///< JSON pointer of "mesh"
+
+  bool present() const { return !file.empty(); }
+};
+
 /// The finite-element beam of a flexible body, in its link (body) frame.
 /// Its data are numbers: the element matrices and the modal basis are
 /// computed when the code is generated. Nodes are numbered from 0 at the
@@ -97,6 +123,9 @@ struct FlexibleBeam {
   /// Initial values of elastic coordinates, by their names without the body
   /// prefix (model/elastic_coordinates.hpp: "n3.v", "mode2"); the others start at 0.
   std::map<std::string, double> initial_q, initial_u;
+  /// Present: the body is this mesh, not a beam (no segments, section or
+  /// assumed modes; modal coordinates only).
+  MeshSource mesh;
   std::string where;
 
   int num_elements() const {
@@ -157,6 +186,10 @@ struct Joint {
   /// The node of a flexible parent the joint sits on (-1: the parent's
   /// frame). The joint frame then moves and turns with the node.
   int parent_node = -1;
+  /// Or: the node set of a mesh parent it sits on (its averaged motion);
+  /// check_model turns it into parent_node, an index of the parent's
+  /// mesh.interfaces.
+  std::string parent_node_set;
   /// A coordinate given as a function of time: it stays in the state, and
   /// its acceleration is imposed (the second derivative). Empty: a free
   /// coordinate.

@@ -594,6 +594,9 @@ class Checker {
     if (!b->flexible)
       error(place, what + " names a node of body '" + body_name + "', which is rigid",
             "remove the node, or make '" + body_name + "' flexible");
+    if (b->beam.mesh.present())
+      error(place, what + " names a node of body '" + body_name + "', which is a mesh body",
+            "attach it to the body frame instead (nodes of mesh bodies are not addressable yet)");
     const int last = b->beam.num_nodes() - 1;
     if (node == kTipNode) node = last;
     if (node < 0 || node > last)
@@ -633,15 +636,54 @@ class Checker {
            " for each dof the support leaves free)";
   }
 
+  /// A joint on a node set of a mesh parent: the set becomes one of the
+  /// parent's interfaces (whether the mesh has it is checked when the mesh
+  /// is read, fem/model_mesh.hpp).
+  void attach_to_node_set(Joint& j) {
+    const std::string place = at(j.where, "parent_node_set");
+    const auto parent =
+        std::find_if(m_.bodies.begin(), m_.bodies.end(), [&](const Body& b) { return b.name == j.parent; });
+    if (parent == m_.bodies.end() || !parent->flexible || !parent->beam.mesh.present())
+      error(place, "joint '" + j.name + "' names a node set of '" + j.parent + "', which is not a mesh body",
+            "remove \"parent_node_set\" (beams take \"parent_node\")");
+    if (j.type == JointType::prismatic)
+      error(place, "only revolute, continuous and fixed joints on node sets are supported",
+            "attach prismatic joint '" + j.name +
+                "' to the body frame, or put a fixed joint and a body on the set");
+    std::vector<std::string>& sets = parent->beam.mesh.interfaces;
+    const auto found = std::find(sets.begin(), sets.end(), j.parent_node_set);
+    j.parent_node = static_cast<int>(found - sets.begin());
+    if (found == sets.end()) {
+      sets.push_back(j.parent_node_set);
+      parent->beam.mesh.interface_where.push_back(place);
+    }
+  }
+
   void check_flexible() {
     for (Body& b : m_.bodies) {
       if (!b.flexible) continue;
+      if (b.beam.mesh.present()) {
+        // The mesh itself is read and checked when code is generated (fem/model_beam.hpp).
+        if (b.beam.modes < 1)
+          error(at(b.beam.where, "modes"), "body '" + b.name + "' keeps no modes",
+                "give \"modes\": 1 or more");
+        check_elastic_initial(b);
+        continue;
+      }
       check_beam(b);
       if (!b.beam.assumed_modes.empty()) check_assumed_modes(m_, b);
       check_elastic_initial(b);
     }
     for (Joint& j : m_.joints)
-      if (j.parent_node != -1) {
+      if (!j.parent_node_set.empty()) attach_to_node_set(j);
+    for (const Body& b : m_.bodies)
+      if (b.flexible && b.beam.mesh.craig_bampton && b.beam.mesh.interfaces.empty())
+        error(at(b.beam.mesh.where, "reduction"),
+              "Craig-Bampton reduction of body '" + b.name +
+                  "' needs an interface, and no joint sits on its node sets",
+              "attach a joint with \"parent_node_set\", or use \"reduction\": \"modal\"");
+    for (Joint& j : m_.joints)
+      if (j.parent_node != -1 && j.parent_node_set.empty()) {
         if (j.parent == m_.ground)
           error(at(j.where, "parent_node"), "the ground has no nodes", "remove \"parent_node\"");
         const Body* parent =

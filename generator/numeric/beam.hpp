@@ -62,14 +62,34 @@ template <class S>
 Vec<S> node_translation(const FlexibleData& f, const std::vector<S>& dofs, int node) {
   Vec<S> t{S(0.0), S(0.0), S(0.0)};
   for (int a = 0; a < 3; ++a)
-    if (f.dof(node, a) >= 0) t[a] = dofs[f.dof(node, a)];
+    if (const int k = f.dof(node, a); k >= 0) t[a] = dofs[static_cast<std::size_t>(k)];
   return t;
 }
+/// A mesh body's interface: its mean displacement and its least-squares rotation.
+template <class S>
+Vec<S> interface_translation(const FlexibleData& f, const std::vector<S>& dofs, int k) {
+  const FlexibleData::Interface& in = f.interfaces.at(static_cast<std::size_t>(k));
+  Vec<S> t{S(0.0), S(0.0), S(0.0)};
+  for (int n : in.nodes) t = add(t, node_translation(f, dofs, n));
+  return scale(t, 1.0 / static_cast<double>(in.nodes.size()));
+}
+template <class S>
+Vec<S> interface_rotation(const FlexibleData& f, const std::vector<S>& dofs, int k) {
+  const FlexibleData::Interface& in = f.interfaces.at(static_cast<std::size_t>(k));
+  Vec<S> moment{S(0.0), S(0.0), S(0.0)};
+  for (int n : in.nodes) {
+    const Vec<double> r = sub(f.nodes[n], in.centroid);
+    moment = add(moment, cross(cast<S>(r), node_translation(f, dofs, n)));
+  }
+  return mul(in.inverse_A, moment);
+}
+
 template <class S>
 Vec<S> node_rotation(const FlexibleData& f, const std::vector<S>& dofs, int node) {
+  if (f.mesh) return interface_rotation(f, dofs, node);
   Vec<S> r{S(0.0), S(0.0), S(0.0)};
   for (int a = 0; a < 3; ++a)
-    if (f.dof(node, 3 + a) >= 0) r[a] = dofs[f.dof(node, 3 + a)];
+    if (const int k = f.dof(node, 3 + a); k >= 0) r[a] = dofs[static_cast<std::size_t>(k)];
   return r;
 }
 
@@ -213,6 +233,9 @@ std::vector<Vec<S>> node_shortening(const FlexibleData& f, const std::vector<S>&
 /// A node's displaced position, link frame: undeformed + translation + foreshortening.
 template <class S>
 Vec<S> displaced_node(const FlexibleData& f, const std::vector<S>& dofs, int node) {
+  if (f.mesh)
+    return add(f.interfaces.at(static_cast<std::size_t>(node)).centroid,
+               interface_translation(f, dofs, node));
   const Vec<S> moved = add(f.nodes[node], node_translation(f, dofs, node));
   return f.shortens() ? add(moved, node_shortening(f, dofs)[node]) : moved;
 }

@@ -12,6 +12,7 @@
 #include "numeric/dual.hpp"
 #include "numeric/loops.hpp"
 #include "numeric/poses.hpp"
+#include "numeric/solid.hpp"
 
 namespace kanegen::numeric {
 namespace {
@@ -68,6 +69,10 @@ std::vector<MassElement> mass_elements(const Instance& m) {
         out.push_back({static_cast<int>(b), rho * f.A * dx,
                        diagonal_in(e.axes, rho * (f.Iy + f.Iz) * dx, rho * f.Iy * dx, rho * f.Iz * dx)});
       }
+    // A mesh body's Gauss points are point masses (no rotary inertia).
+    for (const SolidElementData& e : f.solids)
+      for (const SolidElementData::Point& p : e.points)
+        out.push_back({static_cast<int>(b), f.density * p.weight, Mat<double>{}});
     if (f.tip_mass > 0) out.push_back({static_cast<int>(b), f.tip_mass, f.tip_inertia});
   }
   return out;
@@ -140,6 +145,16 @@ void visit_masses(const Instance& m, const std::vector<Pose<S>>& poses,
         visit(index++, bi,
               to_world(pose, add(beam_point(e, l, xi), shortening_at(f, e, l, xi, shortening[e.node]))),
               section_rotation(e, l, xi));
+    }
+    for (const SolidElementData& e : f.solids) {
+      bool moves = !touched || touched->pose[b];
+      for (int n : e.nodes) moves = moves || touched->node[b][n];
+      if (!moves) {
+        index += static_cast<int>(e.points.size());
+        continue;
+      }
+      for (const SolidElementData::Point& p : e.points)
+        visit(index++, bi, to_world(pose, solid_point(f, e, p, own)), zero);
     }
     if (f.tip_mass > 0) {
       const int last = static_cast<int>(f.nodes.size()) - 1;
@@ -266,9 +281,11 @@ double output_value(const Instance& m, const model::OutputColumn& column, const 
 
 /// The beam's strain energy; with `nonlinear` false, its linear part 1/2 u^T K u.
 double strain_energy(const FlexibleData& f, const std::vector<double>& dofs, bool nonlinear = true) {
-  return sum_elements(f, dofs, nullptr, [&](const BeamElementData& e, const LocalDofs<double>& l) {
+  double energy = sum_elements(f, dofs, nullptr, [&](const BeamElementData& e, const LocalDofs<double>& l) {
     return strain_energy(f, e, l, nonlinear);
   });
+  for (const SolidElementData& e : f.solids) energy += solid_strain_energy(f, e, dofs);
+  return energy;
 }
 
 /// The beam's kinetic energy at elastic rates `rate` with its link at rest:
@@ -289,6 +306,11 @@ double elastic_kinetic_energy(const FlexibleData& f, const std::vector<double>& 
       energy += 0.5 * (rho * f.A * dx * dot(v, v) + dot(w, mul(J, w)));
     }
   }
+  for (const SolidElementData& e : f.solids)
+    for (const SolidElementData::Point& p : e.points) {
+      const Vec<double> v = derivative(solid_point(f, e, p, dofs));
+      energy += 0.5 * f.density * p.weight * dot(v, v);
+    }
   if (f.tip_mass > 0) {
     const int last = static_cast<int>(f.nodes.size()) - 1;
     const Vec<double> v = derivative(node_translation(f, dofs, last)),
@@ -387,6 +409,21 @@ std::pair<double, double> element_gradient(const FlexibleData& f, const std::vec
   for (const BeamElementData& e : f.elements) {
     if (touched && !(*touched)[e.node] && !(*touched)[e.node + 1]) continue;
     const double d = term(e, local_dofs(f, e, dofs)).d;
+    sum += d;
+    magnitude += std::abs(d);
+  }
+  return {sum, magnitude};
+}
+
+/// The same for the strain energy of a mesh body's elements.
+std::pair<double, double> solid_gradient(const FlexibleData& f, const std::vector<D1>& dofs,
+                                         const std::vector<char>* touched) {
+  double sum = 0, magnitude = 0;
+  for (const SolidElementData& e : f.solids) {
+    bool moves = !touched;
+    for (int n : e.nodes) moves = moves || (*touched)[n];
+    if (!moves) continue;
+    const double d = solid_strain_energy(f, e, dofs).d;
     sum += d;
     magnitude += std::abs(d);
   }
@@ -651,8 +688,9 @@ void add_elastic_gradients(const Instance& m, const State& s, int r, int b, cons
   const auto strain = element_gradient(
       f, pass.dofs[b], nodes,
       [&](const BeamElementData& el, const LocalDofs<D1>& l) { return strain_energy(f, el, l); });
-  e.forcing[r] -= strain.first;
-  e.forcing_magnitude[r] += strain.second;
+  const auto solid = solid_gradient(f, pass.dofs[b], nodes);
+  e.forcing[r] -= strain.first + solid.first;
+  e.forcing_magnitude[r] += strain.second + solid.second;
   if (f.rayleigh_beta == 0) return;
   std::vector<D1> rate(f.count());
   const int first = m.bodies[b].elastic_first;
@@ -660,8 +698,9 @@ void add_elastic_gradients(const Instance& m, const State& s, int r, int b, cons
   const auto k_rate = element_gradient(
       f, beam_dofs(f, rate.data()), nodes,
       [&](const BeamElementData& el, const LocalDofs<D1>& l) { return strain_energy(f, el, l, false); });
-  nonconservative[r] -= f.rayleigh_beta * k_rate.first;
-  e.forcing_magnitude[r] += f.rayleigh_beta * k_rate.second;
+  const auto solid_rate = solid_gradient(f, beam_dofs(f, rate.data()), nodes);
+  nonconservative[r] -= f.rayleigh_beta * (k_rate.first + solid_rate.first);
+  e.forcing_magnitude[r] += f.rayleigh_beta * (k_rate.second + solid_rate.second);
 }
 
 /// One pass per coordinate seeded with e_r: the forces' and springs'

@@ -11,7 +11,9 @@
 // stiffness, geometric stiffness and every integral are computed here
 // independently (docs/verify.md).
 #include "fem/model_beam.hpp"
+#include "fem/model_mesh.hpp"
 #include "numeric/shape_function.hpp"
+#include "numeric/solid.hpp"
 
 namespace kanegen::numeric {
 namespace {
@@ -32,6 +34,61 @@ Vec<double> normalized(const Vec<double>& v) {
   return scale(v, 1.0 / length);
 }
 
+/// The mesh of a mesh body: its nodes (in the order of the basis rows) and
+/// elements, read with the finite-element layer's reader (a file format,
+/// not a derivation); the quadrature is this path's own (numeric/solid.hpp).
+void mesh_data(const model::Body& body, const std::string& file, FlexibleData& d) {
+  const fem::InpMesh mesh = fem::read_model_mesh(body, file);
+  const fem::MeshBody layout = fem::build_model_mesh_body(body, mesh, file);
+  for (int id : layout.node_ids) {
+    const Eigen::Vector3d& x = mesh.nodes[mesh.node_index(id)].position;
+    d.nodes.push_back({x.x(), x.y(), x.z()});
+  }
+  std::map<int, const fem::MeshElement*> by_id;
+  for (const fem::MeshElement& e : mesh.elements) by_id[e.id] = &e;
+  for (int id : layout.element_ids) {
+    const fem::MeshElement& me = *by_id.at(id);
+    SolidElementData e;
+    e.family = me.family == fem::ContinuumFamily::kQuad4   ? SolidElementData::kQuad4
+               : me.family == fem::ContinuumFamily::kQuad8 ? SolidElementData::kQuad8
+               : me.family == fem::ContinuumFamily::kHex8  ? SolidElementData::kHex8
+                                                           : SolidElementData::kHex20;
+    std::vector<Vec<double>> x;
+    for (int n : me.nodes) {
+      e.nodes.push_back(layout.node_of.at(n));
+      x.push_back(d.nodes[e.nodes.back()]);
+    }
+    set_up_solid(e, x, body.beam.mesh.thickness);
+    d.solids.push_back(std::move(e));
+  }
+  d.mesh = true;
+  d.planar = false;
+  d.dofs_per_node = d.solids.front().dimension();
+  for (const std::string& name : body.beam.mesh.interfaces) {
+    FlexibleData::Interface in;
+    for (int id : mesh.node_set(name)) in.nodes.push_back(layout.node_of.at(id));
+    in.centroid = {0, 0, 0};
+    for (int n : in.nodes) in.centroid = add(in.centroid, d.nodes[n]);
+    in.centroid = scale(in.centroid, 1.0 / static_cast<double>(in.nodes.size()));
+    Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+    for (int n : in.nodes) {
+      const Vec<double> r = sub(d.nodes[n], in.centroid);
+      const Eigen::Vector3d v(r[0], r[1], r[2]);
+      A += v.squaredNorm() * Eigen::Matrix3d::Identity() - v * v.transpose();
+    }
+    in.inverse_A = {};
+    if (d.dofs_per_node == 2) {
+      in.inverse_A[8] = 1.0 / A(2, 2);
+    } else {
+      const Eigen::Matrix3d inverse = A.inverse();
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) in.inverse_A[3 * r + c] = inverse(r, c);
+    }
+    d.interfaces.push_back(std::move(in));
+  }
+  d.poisson = body.beam.mesh.poisson;
+}
+
 /// The beam of a flexible body: nodes along the segments, element axes
 /// (x along the run, y = z_link x x, z = x x y), numbers, and the basis.
 std::shared_ptr<const FlexibleData> beam_data(const model::Body& body, const std::string& file) {
@@ -40,7 +97,10 @@ std::shared_ptr<const FlexibleData> beam_data(const model::Body& body, const std
   d->body = body.name;
   d->planar = f.formulation == model::BeamFormulation::planar;
   d->dofs_per_node = d->planar ? 3 : 6;
-  d->nodes.push_back({0.0, 0.0, 0.0});
+  if (f.mesh.present())
+    mesh_data(body, file, *d);
+  else
+    d->nodes.push_back({0.0, 0.0, 0.0});
   for (const model::BeamSegment& s : f.segments) {
     const Vec<double> start = d->nodes.back(), end{s.to[0], s.to[1], s.to[2]};
     const Vec<double> step = scale(sub(end, start), 1.0 / s.elements);
@@ -160,8 +220,10 @@ struct Instantiation {
   }
   /// Whether `node` (-1: none) is a node of `body`'s beam.
   bool has_node(int body, int node) const {
-    return node < 0 ||
-           (body >= 0 && m.bodies[body].beam && node < static_cast<int>(m.bodies[body].beam->nodes.size()));
+    if (node < 0) return true;
+    if (body < 0 || !m.bodies[body].beam) return false;
+    const FlexibleData& f = *m.bodies[body].beam;
+    return node < static_cast<int>(f.mesh ? f.interfaces.size() : f.nodes.size());
   }
   int coordinate_of(const std::string& joint) const {
     for (const JointData& j : m.joints)

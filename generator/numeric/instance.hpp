@@ -51,6 +51,24 @@ struct BeamElementData {
   Vec<double> origin;  ///< its first node, link frame
 };
 
+/// One plane or solid element of a mesh body (numeric/solid.hpp), with its
+/// quadrature precomputed in the undeformed link frame.
+struct SolidElementData {
+  enum Family { kQuad4, kQuad8, kHex8, kHex20 };
+  Family family = kQuad4;
+  std::vector<int> nodes;  ///< FlexibleData nodes, CalculiX order
+  /// Full Gauss-Legendre points: shape values, physical gradients dN/dX
+  /// (nodes x dimension, row-major), undeformed position and the weight
+  /// det J w (times the thickness in the plane).
+  struct Point {
+    std::vector<double> N, dN;
+    Vec<double> X;
+    double weight = 0;
+  };
+  std::vector<Point> points;
+  int dimension() const { return family == kQuad4 || family == kQuad8 ? 2 : 3; }
+};
+
 /// A finite-element beam as the numeric path sees it: geometry, section and
 /// material numbers from the model, and the elastic coordinates. The body's
 /// dofs are link-frame nodal components, node by node (planar: u_x, u_y,
@@ -79,11 +97,26 @@ struct FlexibleData {
   /// B by columns: (dof, value) pairs of the nonzero entries of column k.
   std::vector<std::vector<std::pair<int, double>>> basis;
   std::vector<std::string> names;  ///< per elastic coordinate: "n3.v", "mode2", ...
+  /// A mesh body (model::MeshSource): no beam elements, but plane (u_x,
+  /// u_y per node) or solid (u_x, u_y, u_z) elements of this material.
+  bool mesh = false;
+  std::vector<SolidElementData> solids;
+  /// A mesh body's interfaces (a joint's "node" k is interface k): the
+  /// least-squares rigid motion of a node set, t = mean u_i and
+  /// theta = A^-1 sum r_i x u_i (r_i from the centroid).
+  struct Interface {
+    std::vector<int> nodes;
+    Vec<double> centroid;
+    Mat<double> inverse_A;  ///< in the plane: only (2, 2), 1 / sum |r_i|^2
+  };
+  std::vector<Interface> interfaces;
+  double poisson = 0;
 
   int count() const { return static_cast<int>(basis.size()); }
   int num_dofs() const { return static_cast<int>(nodes.size()) * dofs_per_node; }
   /// Index of a node's translation (axis 0..2) or rotation (3..5) dof; -1 if the layout has none.
   int dof(int node, int kind) const {
+    if (mesh) return kind < dofs_per_node ? node * dofs_per_node + kind : -1;
     if (dofs_per_node == 6) return node * 6 + kind;
     static const int planar_index[6] = {0, 1, -1, -1, -1, 2};
     return planar_index[kind] < 0 ? -1 : node * 3 + planar_index[kind];

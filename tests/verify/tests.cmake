@@ -42,7 +42,8 @@ file(GLOB KANEGEN_VERIFY_MODELS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/models/*
 foreach(name forced_cart_pendulum flex_hub_planar flex_hub_modal flex_spatial_hub flex_prescribed_hub flex_tip_body
              force_elements flex_spring assumed_hub assumed_spatial_hub rsur_spherical rsur_revolute ring_slider
              quick_return free_strip free_strip_modal l_beam_stiffened euler_column_modal
-             rsur_revolute_flexible ring_slider_flexible)
+             rsur_revolute_flexible ring_slider_flexible plate_tip_pendulum
+             plate_tip_cb)
   list(APPEND KANEGEN_VERIFY_MODELS ${PROJECT_SOURCE_DIR}/tests/data/models/${name}.json)
 endforeach()
 foreach(model ${KANEGEN_VERIFY_MODELS})

@@ -1,0 +1,82 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "fem/craig_bampton.hpp"
+
+#include <set>
+#include <stdexcept>
+
+#include "fem/modal.hpp"
+
+namespace kanegen::fem {
+
+namespace {
+
+/// num_dofs x r: the rigid motions of one interface about its centroid
+/// (translations, then small rotations; the plane has u_x, u_y, theta_z).
+Eigen::MatrixXd rigid_motions(const Body& body, const std::vector<int>& nodes) {
+  const int d = body.dofs_per_node();
+  const int r = d == 2 ? 3 : 6;
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (int n : nodes) c += body.node_position(n);
+  c /= static_cast<double>(nodes.size());
+  Eigen::MatrixXd t = Eigen::MatrixXd::Zero(body.num_dofs(), r);
+  for (int n : nodes) {
+    const Eigen::Vector3d x = body.node_position(n) - c;
+    for (int a = 0; a < d; ++a) t(body.dof(n, a), a) = 1.0;
+    // theta x x, one rotation axis at a time.
+    const int first_axis = d == 2 ? 2 : 0;
+    for (int axis = first_axis; axis < 3; ++axis) {
+      const Eigen::Vector3d motion = Eigen::Vector3d::Unit(axis).cross(x);
+      for (int a = 0; a < d; ++a) t(body.dof(n, a), d + axis - first_axis) = motion(a);
+    }
+  }
+  return t;
+}
+
+}  // namespace
+
+CraigBamptonBasis craig_bampton(const Body& body, const Constraint& held,
+                                const std::vector<std::vector<int>>& interfaces, int k) {
+  const int n = body.num_dofs();
+  std::vector<int> boundary = held.fixed();
+  std::set<int> held_set(held.fixed().begin(), held.fixed().end());
+  for (const std::vector<int>& nodes : interfaces) {
+    if (nodes.size() < 2) throw std::invalid_argument("an interface needs two or more nodes");
+    for (int node : nodes)
+      for (int a = 0; a < body.dofs_per_node(); ++a) {
+        if (held_set.count(body.dof(node, a))) throw std::invalid_argument("an interface shares held dofs");
+        boundary.push_back(body.dof(node, a));
+      }
+  }
+  const Constraint fixed_interface(n, boundary);  // every interface dof and the held ones
+  if (k < 1 || k > fixed_interface.num_free())
+    throw std::invalid_argument("craig_bampton: bad fixed-interface mode count");
+  const Eigen::MatrixXd K = body.stiffness();
+
+  // Constraint modes: u_B given, u_I = -K_II^-1 K_IB u_B.
+  std::vector<Eigen::MatrixXd> psi;
+  const Eigen::MatrixXd P_I = fixed_interface.selection();
+  const Eigen::LDLT<Eigen::MatrixXd> K_II(P_I.transpose() * K * P_I);
+  if (K_II.info() != Eigen::Success)
+    throw std::invalid_argument("craig_bampton: singular interior stiffness");
+  int columns = 0;
+  for (const std::vector<int>& nodes : interfaces) {
+    const Eigen::MatrixXd u_B = rigid_motions(body, nodes);
+    psi.push_back(u_B - P_I * K_II.solve(P_I.transpose() * K * u_B));
+    columns += static_cast<int>(u_B.cols());
+  }
+
+  const ModalBasis modes = modal_analysis(fixed_interface.reduce(body.mass()), fixed_interface.reduce(K), k);
+  CraigBamptonBasis out;
+  out.constraint_modes = columns;
+  out.omega = modes.omega;
+  out.basis.resize(n, columns + k);
+  int at = 0;
+  for (const Eigen::MatrixXd& p : psi) {
+    out.basis.middleCols(at, p.cols()) = p;
+    at += static_cast<int>(p.cols());
+  }
+  out.basis.rightCols(k) = fixed_interface.expand(modes.shapes);
+  return out;
+}
+
+}  // namespace kanegen::fem

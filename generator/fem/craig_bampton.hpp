@@ -1,0 +1,30 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Craig-Bampton reduction of a body held on some dofs, with interfaces that
+// move rigidly (RBE2-like): the constraint modes are the static shapes of
+// each rigid motion of one interface (the others and the held dofs at
+// zero), then the first k fixed-interface normal modes (every interface dof
+// held). Statics at the interfaces are exact in this basis.
+#pragma once
+
+#include <Eigen/Dense>
+#include <vector>
+
+#include "fem/body.hpp"
+#include "fem/boundary.hpp"
+
+namespace kanegen::fem {
+
+struct CraigBamptonBasis {
+  Eigen::MatrixXd basis;     ///< num_dofs x (constraint modes + k): [Psi, Phi]
+  int constraint_modes = 0;  ///< 3 per interface in the plane, 6 in space
+  Eigen::VectorXd omega;     ///< k: the fixed-interface frequencies (rad/s)
+};
+
+/// held: the body's dofs held at zero (a clamped face); interfaces: body
+/// nodes of each interface; k fixed-interface modes. Throws
+/// std::invalid_argument for an interface that shares held dofs or has too
+/// few nodes to move rigidly, or for k above the dofs left.
+CraigBamptonBasis craig_bampton(const Body& body, const Constraint& held,
+                                const std::vector<std::vector<int>>& interfaces, int k);
+
+}  // namespace kanegen::fem

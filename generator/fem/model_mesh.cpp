@@ -1,0 +1,164 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "fem/model_mesh.hpp"
+
+#include <fstream>
+
+#include "fem/craig_bampton.hpp"
+#include "fem/reduction.hpp"
+#include "model/model_error.hpp"
+
+namespace kanegen::fem {
+
+namespace {
+
+using model::ModelError;
+
+/// Reruns `f`, turning a mesh-layer error (it names the mesh file) into one
+/// that names the model's place as well.
+template <class F>
+auto at_model_place(const std::string& model_file, const std::string& place, F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const ModelError& e) {
+    throw ModelError(model_file, place, e.what(), "");
+  }
+}
+
+}  // namespace
+
+InpMesh read_model_mesh(const model::Body& body, const std::string& model_file) {
+  const model::MeshSource& m = body.beam.mesh;
+  if (!std::ifstream(m.path))
+    throw ModelError(model_file, m.where + "/file",
+                     "cannot open the mesh file '" + m.path + "' of body '" + body.name + "'",
+                     "give the .inp file's path relative to the model file");
+  return read_inp_mesh_file(m.path);
+}
+
+MeshBody build_model_mesh_body(const model::Body& body, const InpMesh& mesh, const std::string& model_file) {
+  const model::FlexibleBeam& f = body.beam;
+  const ContinuumMaterial material{f.E, f.mesh.poisson, f.density};
+  return at_model_place(model_file, f.mesh.where + "/element_set", [&] {
+    return build_mesh_body(mesh, material, f.mesh.thickness, f.mesh.element_set);
+  });
+}
+
+InterfacePoint interface_point(const MeshBody& mb, const InpMesh& mesh, const std::string& name,
+                               const Eigen::MatrixXd& basis, const std::string& model_file,
+                               const std::string& place) {
+  const std::vector<int> ids = at_model_place(model_file, place, [&] { return mesh.node_set(name); });
+  std::vector<int> nodes;
+  for (int id : ids) {
+    const auto it = mb.node_of.find(id);
+    if (it == mb.node_of.end())
+      throw ModelError(model_file, place,
+                       mesh.file + ": node " + std::to_string(id) + " of node set " + name +
+                           " is on none of the body's elements",
+                       "put only nodes of the body's elements in the set");
+    nodes.push_back(it->second);
+  }
+  const Body& b = mb.body;
+  const bool plane = b.dofs_per_node() == 2;
+  InterfacePoint p;
+  p.name = name;
+  p.position.setZero();
+  for (int n : nodes) p.position += b.node_position(n);
+  p.position /= static_cast<double>(nodes.size());
+  // Least squares: u_i ~ t + theta x r_i, r_i from the centroid: t is the
+  // mean displacement, A theta = sum r_i x u_i with A = sum |r_i|^2 I - r_i r_i^T.
+  Eigen::MatrixXd t = Eigen::MatrixXd::Zero(3, b.num_dofs()), moment = t;
+  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+  for (int n : nodes) {
+    const Eigen::Vector3d r = b.node_position(n) - p.position;
+    const Eigen::MatrixXd u = b.node_translation(n);
+    t += u / static_cast<double>(nodes.size());
+    Eigen::Matrix3d cross;
+    cross << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
+    moment += cross * u;
+    A += r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose();
+  }
+  Eigen::MatrixXd theta = Eigen::MatrixXd::Zero(3, b.num_dofs());
+  if (plane) {
+    // In the plane only the rotation about z exists.
+    if (!(A(2, 2) > 0))
+      throw ModelError(model_file, place, "node set " + name + " of " + mesh.file + " is a single node",
+                       "give a set of two or more nodes, so that it has a rotation");
+    theta.row(2) = moment.row(2) / A(2, 2);
+  } else {
+    const Eigen::LDLT<Eigen::Matrix3d> ldlt(A);
+    if (ldlt.rcond() < 1e-9 || ldlt.info() != Eigen::Success)
+      throw ModelError(model_file, place,
+                       "the nodes of node set " + name + " of " + mesh.file +
+                           " lie on a line, so the rotation about it is undetermined",
+                       "give a set of nodes on a face (not all on one line)");
+    theta = ldlt.solve(moment);
+  }
+  p.translation = t * basis;
+  p.rotation = theta * basis;
+  return p;
+}
+
+ModelBeam build_model_mesh(const model::Body& body, const std::string& model_file) {
+  const model::FlexibleBeam& f = body.beam;
+  const InpMesh mesh = read_model_mesh(body, model_file);
+  const MeshBody mb = build_model_mesh_body(body, mesh, model_file);
+  const Constraint constraint = f.support == model::BeamSupport::free
+                                    ? Constraint(mb.body.num_dofs(), {})
+                                    : at_model_place(model_file, f.mesh.where + "/clamped_set",
+                                                     [&] { return mb.clamped(mesh, f.mesh.clamped_set); });
+  if (f.modes > constraint.num_free())
+    throw ModelError(model_file, f.where + "/modes",
+                     "body '" + body.name + "' has " + std::to_string(constraint.num_free()) +
+                         " free dofs, fewer than the " + std::to_string(f.modes) + " modes asked for",
+                     "keep fewer modes, or refine the mesh");
+  ModelBeam out{mb.body, {}, {}, {}, {}, {}, std::nullopt, {}, true};
+  if (f.mesh.craig_bampton) {
+    std::vector<std::vector<int>> interfaces;
+    for (std::size_t i = 0; i < f.mesh.interfaces.size(); ++i) {
+      std::vector<int> nodes;
+      for (int id : at_model_place(model_file, f.mesh.interface_where[i],
+                                   [&] { return mesh.node_set(f.mesh.interfaces[i]); }))
+        if (mb.node_of.count(id)) nodes.push_back(mb.node_of.at(id));
+      interfaces.push_back(nodes);
+    }
+    try {
+      const CraigBamptonBasis cb = craig_bampton(out.body, constraint, interfaces, f.modes);
+      out.reduced = reduce_assumed(out.body, cb.basis);
+    } catch (const std::invalid_argument& e) {
+      throw ModelError(
+          model_file, f.mesh.where + "/reduction",
+          "Craig-Bampton reduction of body '" + body.name + "' failed: " + e.what(),
+          "keep the interface node sets apart from the clamped set, with two or more nodes each, "
+          "and keep fewer modes");
+    }
+  } else if (f.support == model::BeamSupport::free) {
+    // The joint carries the rigid motions: the free-free body's first modes
+    // (3 in the plane, 6 in space, omega = 0) would duplicate them.
+    const int rigid = out.body.dofs_per_node() == 2 ? 3 : 6;
+    if (f.modes + rigid > constraint.num_free())
+      throw ModelError(
+          model_file, f.where + "/modes",
+          "body '" + body.name + "' has too few dofs for " + std::to_string(f.modes) + " elastic modes",
+          "keep fewer modes, or refine the mesh");
+    const ReducedBody all = reduce_modal(out.body, constraint, f.modes + rigid);
+    out.reduced = reduce_assumed(out.body, all.basis.rightCols(f.modes));
+    out.reduced.omega = all.omega.tail(f.modes);
+  } else {
+    out.reduced = reduce_modal(out.body, constraint, f.modes);
+  }
+  out.is_mesh = true;
+  for (std::size_t i = 0; i < f.mesh.interfaces.size(); ++i)
+    out.interfaces.push_back(interface_point(mb, mesh, f.mesh.interfaces[i], out.reduced.basis, model_file,
+                                             f.mesh.interface_where[i]));
+  const int n = static_cast<int>(out.reduced.names.size());
+  if (f.modal_damping > 0) {
+    out.damping = Eigen::MatrixXd::Zero(n, n);
+    for (int k = 0; k < n; ++k)
+      out.damping(k, k) = 2.0 * f.modal_damping * out.reduced.omega(k) * out.reduced.mass(k, k);
+  } else {
+    out.damping = f.rayleigh_alpha * out.reduced.mass + f.rayleigh_beta * out.reduced.stiffness;
+  }
+  return out;
+}
+
+}  // namespace kanegen::fem

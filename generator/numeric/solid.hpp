@@ -1,0 +1,183 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// The plane-stress and solid elements of a mesh body, written for the
+// numeric path over any scalar type: serendipity shape functions from the
+// nodes' natural coordinates, full Gauss-Legendre quadrature (gauss_rule of
+// beam.hpp), the material points and the small-strain energy
+// 1/2 int eps^T D eps. Nothing is shared with generator/fem but the basis B
+// of the coordinates (FlexibleData::basis).
+#pragma once
+
+#include <array>
+#include <stdexcept>
+#include <vector>
+
+#include "numeric/beam.hpp"
+#include "numeric/instance.hpp"
+
+namespace kanegen::numeric {
+
+/// The natural coordinates (-1, 0, 1) of the element's nodes, CalculiX order:
+/// corners counter-clockwise (the bottom face, then the top), then the
+/// mid-edge nodes of the edges 1-2, 2-3, ... (then the vertical edges).
+inline std::vector<std::array<int, 3>> natural_nodes(SolidElementData::Family family) {
+  const std::vector<std::array<int, 3>> quad{{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+  std::vector<std::array<int, 3>> hex;
+  for (int z : {-1, 1})
+    for (const auto& c : quad) hex.push_back({c[0], c[1], z});
+  const auto middle = [](const std::array<int, 3>& a, const std::array<int, 3>& b) {
+    return std::array<int, 3>{(a[0] + b[0]) / 2, (a[1] + b[1]) / 2, (a[2] + b[2]) / 2};
+  };
+  switch (family) {
+    case SolidElementData::kQuad4:
+      return quad;
+    case SolidElementData::kHex8:
+      return hex;
+    case SolidElementData::kQuad8: {
+      std::vector<std::array<int, 3>> out = quad;
+      for (int i = 0; i < 4; ++i) out.push_back(middle(quad[i], quad[(i + 1) % 4]));
+      return out;
+    }
+    case SolidElementData::kHex20: {
+      std::vector<std::array<int, 3>> out = hex;
+      for (int face : {0, 4})
+        for (int i = 0; i < 4; ++i) out.push_back(middle(hex[face + i], hex[face + (i + 1) % 4]));
+      for (int i = 0; i < 4; ++i) out.push_back(middle(hex[i], hex[i + 4]));
+      return out;
+    }
+  }
+  return {};
+}
+
+/// Shape function of the node at natural coordinates a, at xi, over a scalar
+/// type (a dual number gives its derivative). d: the dimension.
+template <class T>
+T shape_value(const std::array<int, 3>& a, const std::array<T, 3>& xi, int d, bool quadratic) {
+  T product(1.0);
+  int zero_axis = -1;
+  for (int k = 0; k < d; ++k) {
+    if (a[k] == 0) {
+      zero_axis = k;
+      product = product * (T(1.0) - xi[k] * xi[k]);
+    } else {
+      product = product * (T(1.0) + xi[k] * static_cast<double>(a[k])) * 0.5;
+    }
+  }
+  if (!quadratic || zero_axis >= 0) return product;
+  // A corner of a serendipity element.
+  T sum(-(d - 1.0));
+  for (int k = 0; k < d; ++k) sum = sum + xi[k] * static_cast<double>(a[k]);
+  return product * sum;
+}
+
+/// The element's quadrature, from the undeformed node positions `x` (link
+/// frame); thickness for plane elements. Throws on a non-positive det J.
+inline void set_up_solid(SolidElementData& e, const std::vector<Vec<double>>& x, double thickness) {
+  const std::vector<std::array<int, 3>> natural = natural_nodes(e.family);
+  const int d = e.dimension(), n = static_cast<int>(natural.size());
+  const bool quadratic = e.family == SolidElementData::kQuad8 || e.family == SolidElementData::kHex20;
+  const GaussRule rule = gauss_rule(quadratic ? 3 : 2);  // on [0, 1]
+  const int per_axis = static_cast<int>(rule.points.size());
+  int total = 1;
+  for (int k = 0; k < d; ++k) total *= per_axis;
+  for (int p = 0; p < total; ++p) {
+    std::array<double, 3> xi{0, 0, 0};
+    double w = 1;
+    for (int k = 0, rest = p; k < d; ++k, rest /= per_axis) {
+      xi[k] = 2 * rule.points[rest % per_axis] - 1;
+      w *= 2 * rule.weights[rest % per_axis];
+    }
+    // dN/dxi by dual numbers, one axis at a time.
+    std::vector<double> N(n), dxi(n * d);
+    for (int k = 0; k < d; ++k) {
+      std::array<Dual<double>, 3> z{Dual<double>(xi[0]), Dual<double>(xi[1]), Dual<double>(xi[2])};
+      z[k].d = 1;
+      for (int i = 0; i < n; ++i) {
+        const Dual<double> v = shape_value(natural[i], z, d, quadratic);
+        N[i] = v.v;
+        dxi[i * d + k] = v.d;
+      }
+    }
+    // J(a, k) = dX_a / dxi_k over the element's own dimensions.
+    double J[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    Vec<double> X{0, 0, 0};
+    for (int i = 0; i < n; ++i)
+      for (int a = 0; a < 3; ++a) {
+        X[a] += N[i] * x[i][a];
+        for (int k = 0; k < d; ++k)
+          if (a < d) J[a][k] += dxi[i * d + k] * x[i][a];
+      }
+    double det, inv[3][3];
+    if (d == 2) {
+      det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+      inv[0][0] = J[1][1] / det, inv[0][1] = -J[0][1] / det;
+      inv[1][0] = -J[1][0] / det, inv[1][1] = J[0][0] / det;
+    } else {
+      det = J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
+            J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
+            J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) {
+          // inverse = adjugate / det: cofactor of (c, r)
+          const int r1 = (c + 1) % 3, r2 = (c + 2) % 3, c1 = (r + 1) % 3, c2 = (r + 2) % 3;
+          inv[r][c] = (J[r1][c1] * J[r2][c2] - J[r1][c2] * J[r2][c1]) / det;
+        }
+    }
+    if (!(det > 0)) throw std::invalid_argument("an element of the mesh body is inverted");
+    SolidElementData::Point point;
+    point.N = N;
+    point.X = X;
+    point.weight = det * w * (d == 2 ? thickness : 1.0);
+    // dN/dX_a = sum_k dN/dxi_k dxi_k/dX_a, dxi/dX = J^-1.
+    point.dN.assign(n * d, 0.0);
+    for (int i = 0; i < n; ++i)
+      for (int a = 0; a < d; ++a)
+        for (int k = 0; k < d; ++k) point.dN[i * d + a] += dxi[i * d + k] * inv[k][a];
+    e.points.push_back(std::move(point));
+  }
+}
+
+/// A material point's displaced position, link frame.
+template <class S>
+Vec<S> solid_point(const FlexibleData& f, const SolidElementData& e, const SolidElementData::Point& p,
+                   const std::vector<S>& dofs) {
+  Vec<S> x{S(p.X[0]), S(p.X[1]), S(p.X[2])};
+  for (std::size_t i = 0; i < e.nodes.size(); ++i)
+    for (int a = 0; a < f.dofs_per_node; ++a) x[a] += p.N[i] * dofs[f.dof(e.nodes[i], a)];
+  return x;
+}
+
+/// Small-strain energy of the element: 1/2 int eps^T D eps, isotropic, plane
+/// stress in the plane.
+template <class S>
+S solid_strain_energy(const FlexibleData& f, const SolidElementData& e, const std::vector<S>& dofs) {
+  const int d = e.dimension();
+  const double E = f.E, nu = f.poisson;
+  S energy(0.0);
+  for (const SolidElementData::Point& p : e.points) {
+    S g[3][3];  // du_a / dX_b
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) g[a][b] = S(0.0);
+    for (std::size_t i = 0; i < e.nodes.size(); ++i)
+      for (int a = 0; a < d; ++a)
+        for (int b = 0; b < d; ++b) g[a][b] += p.dN[i * d + b] * dofs[f.dof(e.nodes[i], a)];
+    S density(0.0);
+    if (d == 2) {
+      const S exx = g[0][0], eyy = g[1][1], gxy = g[0][1] + g[1][0];
+      const double c = E / (1 - nu * nu);
+      density = c * (exx * exx + eyy * eyy + 2 * nu * exx * eyy + 0.5 * (1 - nu) * gxy * gxy);
+    } else {
+      const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
+      const S trace = g[0][0] + g[1][1] + g[2][2];
+      density = lambda * trace * trace;
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) {
+          const S eps = 0.5 * (g[a][b] + g[b][a]);
+          density += 2 * mu * eps * eps;
+        }
+    }
+    energy += 0.5 * p.weight * density;
+  }
+  return energy;
+}
+
+}  // namespace kanegen::numeric
