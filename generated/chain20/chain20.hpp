@@ -5,13 +5,13 @@
 //
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 6999 (a loop over 210 pairs of world axes and momenta; entry by entry: 6999)
-//   forcing: 4839
-//   forward_dynamics: 11837 (recursive; composite inertias and LDL^T: 15290) [split in 12 functions, 4,160 bytes of stack between them]
-//   kinetic_energy: 2137
+//   forcing: 4516
+//   forward_dynamics: 11403 (recursive; composite inertias and LDL^T: 14967) [split in 12 functions, 4,184 bytes of stack between them]
+//   kinetic_energy: 2029
 //   potential_energy: 941
 //   nonconservative_power: 39
 //   outputs: 0
-//   inverse_dynamics: 6627 (recursive; M udot - f from M and f: 12230) [split in 7 functions, 4,184 bytes of stack between them]
+//   inverse_dynamics: 6304 (recursive; M udot - f from M and f: 11907) [split in 7 functions, 4,024 bytes of stack between them]
 //   gravity: 1790
 //
 // Arrays are plain C arrays with their sizes in the comments; no function
