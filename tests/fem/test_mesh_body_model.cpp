@@ -11,6 +11,7 @@
 #include <iomanip>
 #include <sstream>
 #include <string>
+#include <unistd.h>
 
 #include "fem/model_beam.hpp"
 #include "model/load.hpp"
@@ -25,7 +26,10 @@ constexpr double kLength = 0.4, kHeight = 0.01, kThickness = 0.002, kE = 2.1e11,
 /// A one-body model whose flexible body is `flexible` (JSON), written to a temporary file and loaded.
 model::Model load_with(const std::string& flexible, const std::string& tip_joint = "") {
   const std::string path =
-      (std::filesystem::temp_directory_path() / "kanegen_test_mesh_body_model.json").string();
+      // One file per process: ctest runs this executable's cases in parallel.
+      (std::filesystem::temp_directory_path() /
+       ("kanegen_test_mesh_body_model_" + std::to_string(::getpid()) + ".json"))
+          .string();
   // A rigid body on the bar: in its frame unless tip_joint (its joint's extra keys) says where.
   std::ofstream(path) << R"({"format": "kanegen-model", "version": 1, "name": "bar", "bodies": [
     {"name": "bar", "flexible": )"

@@ -3,7 +3,11 @@
 # and no include of the symbolic stages. One exception, a choice of
 # coordinates rather than a derivation (docs/verify.md): numeric/instance.cpp
 # may include fem/model_beam.hpp, and use from it only the basis of the
-# elastic coordinates, fem::build_model_beam(...).reduced.basis.
+# elastic coordinates, fem::build_model_beam(...).reduced.basis; and, for a
+# mesh body, fem/model_mesh.hpp for the mesh file as read (nodes, elements,
+# node sets: a file format) and the order of the body's nodes and elements
+# that the basis's rows follow (fem::build_model_mesh_body(...)'s node_ids,
+# node_of and element_ids), never its matrices.
 # Run as cmake -DDIR=<generator> -P.
 file(GLOB files ${DIR}/numeric/*.hpp ${DIR}/numeric/*.cpp ${DIR}/model/expression.hpp ${DIR}/model/expression.cpp
      ${DIR}/model/expression_eval.hpp ${DIR}/model/expression_eval.cpp)
@@ -14,7 +18,7 @@ foreach(file ${files})
   get_filename_component(name ${file} NAME)
   file(STRINGS ${file} lines REGEX "#include")
   foreach(line ${lines})
-    if(name STREQUAL "instance.cpp" AND line MATCHES "^#include \"fem/model_beam.hpp\"$")
+    if(name STREQUAL "instance.cpp" AND line MATCHES "^#include \"fem/model_(beam|mesh).hpp\"$")
       continue()
     endif()
     if(line MATCHES "ginac|\"(symbolic|kinematics|kane|codegen|pipeline|fem)/")
@@ -26,10 +30,22 @@ foreach(file ${files})
   file(READ ${file} text)
   string(REGEX MATCHALL "fem::[A-Za-z_]+" uses "${text}")
   string(REGEX MATCHALL "fem::build_model_beam\\([^;]*\\)\\.reduced\\.basis" allowed "${text}")
+  string(REGEX MATCHALL "fem::(read_model_mesh|build_model_mesh_body|InpMesh|MeshBody|MeshElement|ContinuumFamily)[^A-Za-z_]"
+               mesh_input "${text}")
+  # The mesh body built by the layer (named `layout`) gives its order only.
+  string(REGEX MATCHALL "layout\\.[A-Za-z_]+" layout_uses "${text}")
+  foreach(use ${layout_uses})
+    if(NOT use MATCHES "^layout\\.(node_ids|node_of|element_ids)$")
+      message(FATAL_ERROR "${file}: reads ${use}: the numeric path takes the mesh body's node and element order "
+                          "(node_ids, node_of, element_ids), not the finite-element layer's matrices")
+    endif()
+  endforeach()
   list(LENGTH uses used)
   list(LENGTH allowed allowed_count)
+  list(LENGTH mesh_input mesh_count)
+  math(EXPR allowed_count "${allowed_count} + ${mesh_count}")
   if(NOT used EQUAL allowed_count OR (used GREATER 0 AND NOT name STREQUAL "instance.cpp"))
     message(FATAL_ERROR "${file}: uses ${uses} of the finite-element layer; the numeric path may take only "
-                        "fem::build_model_beam(...).reduced.basis (in instance.cpp)")
+                        "fem::build_model_beam(...).reduced.basis and a mesh body's file and node order (in instance.cpp)")
   endif()
 endforeach()
