@@ -3,6 +3,8 @@
 // elements, clamped on its root node set and reduced to its first modes,
 // against the Euler-Bernoulli beam elements of the same section (an
 // independent element family); and the errors of bad mesh references.
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
@@ -11,7 +13,6 @@
 #include <iomanip>
 #include <sstream>
 #include <string>
-#include <unistd.h>
 
 #include "fem/model_beam.hpp"
 #include "model/load.hpp"
