@@ -9,6 +9,15 @@
 
 namespace kanegen::fem {
 
+Eigen::MatrixXd reduced_damping(const model::FlexibleBeam& f, const ReducedBody& reduced, bool modal) {
+  if (!(modal && f.modal_damping > 0))
+    return f.rayleigh_alpha * reduced.mass + f.rayleigh_beta * reduced.stiffness;
+  const int n = static_cast<int>(reduced.names.size());
+  Eigen::MatrixXd damping = Eigen::MatrixXd::Zero(n, n);
+  for (int k = 0; k < n; ++k) damping(k, k) = 2.0 * f.modal_damping * reduced.omega(k) * reduced.mass(k, k);
+  return damping;
+}
+
 ModelBeam build_model_beam(const model::Body& body, const std::string& file, const ShapeSampler& shapes) {
   if (body.beam.mesh.present()) return build_model_mesh(body, file);
   const model::FlexibleBeam& f = body.beam;
@@ -79,14 +88,7 @@ ModelBeam build_model_beam(const model::Body& body, const std::string& file, con
     }
   }
 
-  const int n = static_cast<int>(out.reduced.names.size());
-  if (f.modes > 0 && f.modal_damping > 0) {
-    out.damping = Eigen::MatrixXd::Zero(n, n);
-    for (int k = 0; k < n; ++k)
-      out.damping(k, k) = 2.0 * f.modal_damping * out.reduced.omega(k) * out.reduced.mass(k, k);
-  } else {
-    out.damping = f.rayleigh_alpha * out.reduced.mass + f.rayleigh_beta * out.reduced.stiffness;
-  }
+  out.damping = reduced_damping(f, out.reduced, f.modes > 0);
   return out;
 }
 

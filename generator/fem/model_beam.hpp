@@ -62,6 +62,11 @@ struct ModelBeam {
   }
 };
 
+/// The damping matrix of the reduced body: 2 zeta omega_k m_kk on the
+/// diagonal with modal damping (`modal`: the body's coordinates are modes),
+/// else alpha M + beta K.
+Eigen::MatrixXd reduced_damping(const model::FlexibleBeam& f, const ReducedBody& reduced, bool modal);
+
 /// Builds the body; throws model::ModelError (naming the body's place) when
 /// the beam cannot be built. `shapes` samples the assumed modes, if any
 /// (fem/assumed_modes.hpp: each derivation brings its own).

@@ -150,14 +150,7 @@ ModelBeam build_model_mesh(const model::Body& body, const std::string& model_fil
   for (std::size_t i = 0; i < f.mesh.interfaces.size(); ++i)
     out.interfaces.push_back(interface_point(mb, mesh, f.mesh.interfaces[i], out.reduced.basis, model_file,
                                              f.mesh.interface_where[i]));
-  const int n = static_cast<int>(out.reduced.names.size());
-  if (f.modal_damping > 0) {
-    out.damping = Eigen::MatrixXd::Zero(n, n);
-    for (int k = 0; k < n; ++k)
-      out.damping(k, k) = 2.0 * f.modal_damping * out.reduced.omega(k) * out.reduced.mass(k, k);
-  } else {
-    out.damping = f.rayleigh_alpha * out.reduced.mass + f.rayleigh_beta * out.reduced.stiffness;
-  }
+  out.damping = reduced_damping(f, out.reduced, true);
   return out;
 }
 
