@@ -424,6 +424,57 @@ void elastic_rows(Derivation& d, const BodySums& sums, MassRows& rows) {
   }
 }
 
+/// Outward over a rigid tree, the motion that the joint rates alone give
+/// (rates: u for velocities, u_dot for accelerations), in each body's axes:
+///   w_i = E_i w_p + a_k rate_k (revolute),
+///   v_i = E_i (v_p + w_p x r_i) + a_k rate_k (prismatic).
+struct RateMotion {
+  std::vector<Vec3> angular, linear;
+};
+
+RateMotion motion_of_rates(Derivation& d, const std::vector<GiNaC::symbol>& rates) {
+  const auto& states = d.tree.bodies();
+  RateMotion out{std::vector<Vec3>(states.size()), std::vector<Vec3>(states.size())};
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    const kinematics::BodyState& b = states[i];
+    const kinematics::JointFrame& joint = d.tree.joints()[b.joint];
+    Vec3 angular = zero_vec(), linear = zero_vec();
+    if (b.parent_state >= 0) {
+      const Vec3& parent_angular = out.angular[b.parent_state];
+      angular = mul(b.to_child, parent_angular);
+      linear = mul(b.to_child, out.linear[b.parent_state] + cross(parent_angular, b.offset));
+    }
+    if (joint.speed >= 0) {
+      const ex rate = rates[joint.speed];
+      if (joint.prismatic)
+        linear = linear + rate * joint.axis;
+      else
+        angular = angular + rate * joint.axis;
+    }
+    out.angular[i] = named(d.program, angular);
+    out.linear[i] = named(d.program, linear);
+  }
+  return out;
+}
+
+/// A body's momentum about its origin for the motion (w, v): (K w + h x v, m v + w x h).
+Wrench momentum_of(const SpatialInertia& m, const Vec3& angular, const Vec3& linear) {
+  return {mul(m.second, angular) + cross(m.moment, linear), m.mass * linear + cross(angular, m.moment)};
+}
+
+/// Inward: each body's wrench named and added, in its parent's axes, to its parent's.
+void sum_into_parents(Derivation& d, std::vector<Wrench>& sums) {
+  const auto& states = d.tree.bodies();
+  for (std::size_t i = sums.size(); i-- > 0;) {
+    sums[i] = {named(d.program, sums[i].moment), named(d.program, sums[i].force)};
+    const int parent = states[i].parent_state;
+    if (parent < 0) continue;
+    const Wrench up = to_parent(d.program, sums[i], states[i].to_child, states[i].offset);
+    sums[parent].moment = sums[parent].moment + up.moment;
+    sums[parent].force = sums[parent].force + up.force;
+  }
+}
+
 /// Rigid trees: M u_dot - f (u_dot = Variables::udot, without the joints'
 /// own forces) and the gravity g(q) = dV_gravity/dq by Newton and Euler's
 /// recursion, without M. Outward, the accelerations that u_dot alone gives
@@ -436,47 +487,19 @@ void elastic_rows(Derivation& d, const BodySums& sums, MassRows& rows) {
 /// wrench of the forcing, in one sum. `own`: each body's inertia and wrench
 /// before the composites.
 void newton_euler(Derivation& d, const BodySums& own) {
-  Program& program = d.program;
   const auto& states = d.tree.bodies();
   const std::size_t count = states.size();
-  std::vector<Vec3> alpha(count), accel(count);
+  const RateMotion motion = motion_of_rates(d, d.vars.udot);
   std::vector<Wrench> inertial(count), weight(count);
   for (std::size_t i = 0; i < count; ++i) {
-    const kinematics::BodyState& b = states[i];
-    const kinematics::JointFrame& joint = d.tree.joints()[b.joint];
-    Vec3 angular = zero_vec(), linear = zero_vec();
-    if (b.parent_state >= 0) {
-      const Vec3& parent_alpha = alpha[b.parent_state];
-      angular = mul(b.to_child, parent_alpha);
-      linear = mul(b.to_child, accel[b.parent_state] + cross(parent_alpha, b.offset));
-    }
-    if (joint.speed >= 0) {
-      const ex udot = d.vars.udot[joint.speed];
-      if (joint.prismatic)
-        linear = linear + udot * joint.axis;
-      else
-        angular = angular + udot * joint.axis;
-    }
-    alpha[i] = named(program, angular);
-    accel[i] = named(program, linear);
     const SpatialInertia& m = own.inertia[i];
-    const Wrench& applied = own.wrench[i];
-    inertial[i] = {mul(m.second, alpha[i]) + cross(m.moment, accel[i]) - applied.moment,
-                   m.mass * accel[i] + cross(alpha[i], m.moment) - applied.force};
-    const Vec3 g = named(program, mul_transposed(b.rotation, d.gravity));
+    const Wrench rate = momentum_of(m, motion.angular[i], motion.linear[i]);
+    inertial[i] = {rate.moment - own.wrench[i].moment, rate.force - own.wrench[i].force};
+    const Vec3 g = named(d.program, mul_transposed(states[i].rotation, d.gravity));
     weight[i] = {cross(m.moment, g), m.mass * g};
   }
-  for (std::size_t i = count; i-- > 0;) {
-    inertial[i] = {named(program, inertial[i].moment), named(program, inertial[i].force)};
-    weight[i] = {named(program, weight[i].moment), named(program, weight[i].force)};
-    const int parent = states[i].parent_state;
-    if (parent < 0) continue;
-    for (auto* sums : {&inertial, &weight}) {
-      const Wrench w = to_parent(program, (*sums)[i], states[i].to_child, states[i].offset);
-      (*sums)[parent].moment = (*sums)[parent].moment + w.moment;
-      (*sums)[parent].force = (*sums)[parent].force + w.force;
-    }
-  }
+  sum_into_parents(d, inertial);
+  sum_into_parents(d, weight);
   d.eq.inverse_dynamics.assign(d.eq.nu, 0);
   d.eq.gravity_forces.assign(d.eq.nu, 0);
   for (std::size_t i = 0; i < count; ++i) {
@@ -493,41 +516,13 @@ void newton_euler(Derivation& d, const BodySums& own) {
 /// (+ a_k u_k if prismatic); its momentum about its origin (K w + h x v, m v + w x h);
 /// inward, the subtree sums projected on each joint: O(n), where M u is O(n^2).
 void momentum_recursion(Derivation& d, const BodySums& own) {
-  Program& program = d.program;
   const auto& states = d.tree.bodies();
   const std::size_t count = states.size();
-  std::vector<Vec3> omega(count), velocity(count);
+  const RateMotion motion = motion_of_rates(d, d.vars.u);
   std::vector<Wrench> momentum(count);  // (angular about the origin, linear)
-  for (std::size_t i = 0; i < count; ++i) {
-    const kinematics::BodyState& b = states[i];
-    const kinematics::JointFrame& joint = d.tree.joints()[b.joint];
-    Vec3 angular = zero_vec(), linear = zero_vec();
-    if (b.parent_state >= 0) {
-      const Vec3& parent_omega = omega[b.parent_state];
-      angular = mul(b.to_child, parent_omega);
-      linear = mul(b.to_child, velocity[b.parent_state] + cross(parent_omega, b.offset));
-    }
-    if (joint.speed >= 0) {
-      const ex u = d.vars.u[joint.speed];
-      if (joint.prismatic)
-        linear = linear + u * joint.axis;
-      else
-        angular = angular + u * joint.axis;
-    }
-    omega[i] = named(program, angular);
-    velocity[i] = named(program, linear);
-    const SpatialInertia& m = own.inertia[i];
-    momentum[i] = {mul(m.second, omega[i]) + cross(m.moment, velocity[i]),
-                   m.mass * velocity[i] + cross(omega[i], m.moment)};
-  }
-  for (std::size_t i = count; i-- > 0;) {
-    momentum[i] = {named(program, momentum[i].moment), named(program, momentum[i].force)};
-    const int parent = states[i].parent_state;
-    if (parent < 0) continue;
-    const Wrench up = to_parent(program, momentum[i], states[i].to_child, states[i].offset);
-    momentum[parent].moment = momentum[parent].moment + up.moment;
-    momentum[parent].force = momentum[parent].force + up.force;
-  }
+  for (std::size_t i = 0; i < count; ++i)
+    momentum[i] = momentum_of(own.inertia[i], motion.angular[i], motion.linear[i]);
+  sum_into_parents(d, momentum);
   d.eq.generalized_momentum.assign(d.eq.nu, 0);
   for (std::size_t i = 0; i < count; ++i) {
     const kinematics::JointFrame& joint = d.tree.joints()[states[i].joint];
