@@ -597,7 +597,7 @@ class Checker {
             "remove the node, or make '" + body_name + "' flexible");
     if (b->beam.mesh.present())
       error(place, what + " names a node of body '" + body_name + "', which is a mesh body",
-            "attach it to the body frame instead (nodes of mesh bodies are not addressable yet)");
+            "name a node set of its mesh instead (\"node_set\"; a joint: \"parent_node_set\")");
     const int last = b->beam.num_nodes() - 1;
     if (node == kTipNode) node = last;
     if (node < 0 || node > last)

@@ -155,6 +155,10 @@ TEST_CASE("bad node-set references are refused with the place and the fix", "[me
             R"([{"name": "o", "type": "node_displacement", "body": "bar", "node": 1, "node_set": "TIP"}])",
             "/outputs/0/node_set", "both 'node' and 'node_set' given", "give one");
   }
+  SECTION("a node of a mesh body, by index") {
+    refused("[]", R"([{"name": "f", "body": "bar", "node": 3, "force": [0, 1, 0]}])", "[]", "/forces/0/node",
+            "which is a mesh body", "name a node set of its mesh instead");
+  }
   SECTION("a section resultant, which a mesh has not") {
     refused("[]", "[]", R"([{"name": "o", "type": "axial_force", "body": "bar", "node_set": "TIP"}])",
             "/outputs/0/node_set", "section resultant", "node_displacement");
