@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -25,22 +26,25 @@ const fem::ShapeSampler kNoShapes = [](const std::string&, const std::map<std::s
                                        std::vector<double>&) {};
 
 /// The slender CPS8 bar (node sets ROOT, TIP, BAR) with CORNER, one node
-/// of its tip edge, added: a copy in the temporary directory.
-std::string mesh_with_corner() {
-  const std::string path = (std::filesystem::temp_directory_path() /
-                            ("kanegen_test_corner_" + std::to_string(::getpid()) + ".inp"))
-                               .string();
-  std::ofstream out(path);
-  out << std::ifstream(kData + "/slender_cps8.inp").rdbuf() << "*NSET,NSET=CORNER\n2\n";
-  return path;
-}
+/// of its tip edge, added: a copy in the temporary directory while the
+/// tests run.
+struct MeshWithCorner {
+  std::string path = (std::filesystem::temp_directory_path() /
+                      ("kanegen_test_corner_" + std::to_string(::getpid()) + ".inp"))
+                         .string();
+  MeshWithCorner() {
+    std::ofstream(path) << std::ifstream(kData + "/slender_cps8.inp").rdbuf() << "*NSET,NSET=CORNER\n2\n";
+  }
+  ~MeshWithCorner() { std::remove(path.c_str()); }
+};
 
 /// A model of the bar on a hub (clamped on ROOT, `reduction`), a rigid
 /// link on the ground and a rigid block, with the given "loops", "forces"
 /// and "outputs" (JSON arrays).
 model::Model load_bar(const std::string& loops, const std::string& forces, const std::string& outputs,
                       const std::string& reduction = "modal") {
-  static const std::string mesh = mesh_with_corner();
+  static const MeshWithCorner corner;
+  const std::string& mesh = corner.path;
   return kanegen_test::load_model_text(
       R"({"format": "kanegen-model", "version": 1, "name": "bar", "bodies": [
     {"name": "hub", "mass": 1, "inertia": {"ixx": 1e-3, "iyy": 1e-3, "izz": 1e-3}},
