@@ -224,6 +224,22 @@ Comparison compare(const std::string& path, std::mt19937& rng, double elastic_sc
   return c;
 }
 
+/// compare() on a model given as text, written to a file of this process
+/// (ctest runs the cases in parallel) and removed after.
+Comparison compare_text(const std::string& name, const std::string& text, std::mt19937& rng,
+                        double elastic_scale = 0.0) {
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("kanegen_" + name + "_" + std::to_string(::getpid()) + ".json"))
+                               .string();
+  {
+    std::ofstream out(path);
+    out << text;
+  }
+  const Comparison c = compare(path, rng, elastic_scale);
+  std::filesystem::remove(path);
+  return c;
+}
+
 }  // namespace
 
 TEST_CASE("recursive forward dynamics equals the composite solve on random trees", "[codegen][recursive]") {
@@ -306,16 +322,8 @@ TEST_CASE("recursive forward dynamics equals the composite solve on a random fle
     << ", \"frame\": \"body\"},\n"
     << "{\"name\": \"motor\", \"type\": \"joint_effort\", \"joint\": \"j2\", \"value\": "
        "\"0.3*sin(2*t)\"}]}\n";
-  const std::string path = (std::filesystem::temp_directory_path() /
-                            ("kanegen_random_flexible_tree_" + std::to_string(::getpid()) + ".json"))
-                               .string();
-  {
-    std::ofstream out(path);
-    out << m.str();
-  }
   INFO("model file:\n" << m.str());
-  const Comparison c = compare(path, rng, 0.02);
-  std::filesystem::remove(path);
+  const Comparison c = compare_text("random_flexible_tree", m.str(), rng, 0.02);
   CHECK(c.nu == 4 + 4 + 2 * 6 + 2);
   CHECK(c.worst < 1e-9);
   std::printf(
@@ -366,17 +374,9 @@ TEST_CASE("recursive forward dynamics equals the composite solve where the worki
     m << "}";
   }
   m << "]}\n";
-  const std::string path = (std::filesystem::temp_directory_path() /
-                            ("kanegen_special_frames_" + std::to_string(::getpid()) + ".json"))
-                               .string();
-  {
-    std::ofstream out(path);
-    out << m.str();
-  }
   INFO("model file:\n" << m.str());
   std::mt19937 rng(1720);
-  const Comparison c = compare(path, rng);
-  std::filesystem::remove(path);
+  const Comparison c = compare_text("special_frames", m.str(), rng);
   CHECK(c.nu == count - 1);
   CHECK(c.worst < 1e-10);
   std::printf("recursive vs composite where the working frames are special: max rel. difference %.2e\n",
