@@ -6,7 +6,7 @@
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 18
 //   forcing: 41
-//   forward_dynamics: 70 (composite inertias, 12 of them in LDL^T; recursive: 87)
+//   forward_dynamics: 70 (composite inertias, 12 of them in LDL^T; recursive: 86)
 //   kinetic_energy: 32
 //   potential_energy: 17
 //   nonconservative_power: 7

@@ -276,9 +276,13 @@ BodyState TreeKinematics::place(std::size_t k, int parent, const BodyState& p,
            vars.scalar(joint.origin_xyz[2])};
   Mat3 r_origin = rotation_rpy(vars.scalar(joint.origin_rpy[0]), vars.scalar(joint.origin_rpy[1]),
                                vars.scalar(joint.origin_rpy[2]));
+  JointFrame& frame = joints_[k];
+  frame.origin_xyz = xyz;
+  frame.origin_rotation = r_origin;
+  frame.on_node = attachment != nullptr;
+  if (frame.speed >= 0) frame.coordinate = vars.q[frame.speed];
   NodeMotion m;
   if (attachment) m = attach_to_node(*attachment, vars, program_, xyz, r_origin, b);
-  JointFrame& frame = joints_[k];
   frame.prismatic = joint.type == model::JointType::prismatic;
   for (int i = 0; i < 3; ++i) frame.axis[i] = snap(symbolic::number(joint.axis[i]));
 

@@ -28,7 +28,13 @@ using symbolic::Vec3;
 struct JointFrame {
   int speed = -1;  ///< index of its generalized speed; -1 for a fixed joint
   bool prismatic = false;
-  Vec3 axis;  ///< a_k, child axes (unit)
+  Vec3 axis;             ///< a_k, child axes (unit)
+  GiNaC::ex coordinate;  ///< q_k (a moving joint's)
+  /// The joint frame in the parent's, as the model gives it (before a node's
+  /// motion): origin (parent axes) and rotation (joint axes -> parent axes).
+  Vec3 origin_xyz;
+  Mat3 origin_rotation;
+  bool on_node = false;  ///< on a node of a flexible parent
 };
 
 /// A joint on a node of a flexible parent: the joint frame is the node's

@@ -224,6 +224,22 @@ Comparison compare(const std::string& path, std::mt19937& rng, double elastic_sc
   return c;
 }
 
+/// compare() on a model given as text, written to a file of this process
+/// (ctest runs the cases in parallel) and removed after.
+Comparison compare_text(const std::string& name, const std::string& text, std::mt19937& rng,
+                        double elastic_scale = 0.0) {
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("kanegen_" + name + "_" + std::to_string(::getpid()) + ".json"))
+                               .string();
+  {
+    std::ofstream out(path);
+    out << text;
+  }
+  const Comparison c = compare(path, rng, elastic_scale);
+  std::filesystem::remove(path);
+  return c;
+}
+
 }  // namespace
 
 TEST_CASE("recursive forward dynamics equals the composite solve on random trees", "[codegen][recursive]") {
@@ -306,19 +322,63 @@ TEST_CASE("recursive forward dynamics equals the composite solve on a random fle
     << ", \"frame\": \"body\"},\n"
     << "{\"name\": \"motor\", \"type\": \"joint_effort\", \"joint\": \"j2\", \"value\": "
        "\"0.3*sin(2*t)\"}]}\n";
-  const std::string path = (std::filesystem::temp_directory_path() /
-                            ("kanegen_random_flexible_tree_" + std::to_string(::getpid()) + ".json"))
-                               .string();
-  {
-    std::ofstream out(path);
-    out << m.str();
-  }
   INFO("model file:\n" << m.str());
-  const Comparison c = compare(path, rng, 0.02);
-  std::filesystem::remove(path);
+  const Comparison c = compare_text("random_flexible_tree", m.str(), rng, 0.02);
   CHECK(c.nu == 4 + 4 + 2 * 6 + 2);
   CHECK(c.worst < 1e-9);
   std::printf(
       "recursive vs composite on a random flexible tree (%d speeds): max rel. difference of u_dot %.2e\n",
       c.nu, c.worst);
+}
+
+TEST_CASE("recursive forward dynamics equals the composite solve where the working frames are special",
+          "[codegen][recursive]") {
+  // The recursion's working frames (kane/working_frames.*) take each joint's
+  // constant transform apart into turns about and shifts along coordinate
+  // axes; these joints hit its special cases: parallel and antiparallel axes
+  // (sin alpha = 0, with and without an offset across them), intersecting
+  // axes (a = 0), a prismatic joint with an offset origin along its own
+  // axis, a branch (the second child keeps gamma and eps), a fixed joint
+  // between moving ones, and a joint origin over a parameter (one general step).
+  const std::string body =
+      "\"mass\": 0.8, \"com\": [0.05, -0.02, 0.1], \"inertia\": {\"ixx\": 0.02, "
+      "\"iyy\": 0.03, \"izz\": 0.025, \"ixy\": 0.001, \"ixz\": -0.002, \"iyz\": 0.0015}";
+  const char* joints[][5] = {
+      // name, type, parent, axis, origin
+      {"j0", "revolute", "ground", "[0, 0, 1]", "{\"xyz\": [0.1, 0, 0]}"},
+      {"j1", "revolute", "b0", "[0, 0, 1]", "{\"xyz\": [0.3, 0.1, 0.05]}"},  // parallel
+      {"j2", "revolute", "b1", "[0, 0, -1]", "{\"xyz\": [0, 0, 0.2]}"},      // antiparallel, coaxial
+      {"j3", "revolute", "b2", "[1, 0, 0]", "{\"xyz\": [0, 0, 0.25]}"},      // intersecting
+      {"j4", "prismatic", "b3", "[0, 1, 0]",
+       "{\"xyz\": [0, 0.2, 0], \"rpy\": [0.3, 0, 0]}"},  // along its axis
+      {"j5", "fixed", "b4", "", "{\"xyz\": [0.1, 0.1, 0.1], \"rpy\": [0.2, -0.4, 0.7]}"},
+      {"j6", "revolute", "b5", "[0.6, 0, 0.8]", "{\"xyz\": [0.2, -0.1, 0], \"rpy\": [0, 0.5, 0]}"},
+      {"j7", "revolute", "b3", "[0, 1, 0]",
+       "{\"xyz\": [0.1, 0.3, -0.2], \"rpy\": [0.1, 0.2, 0.3]}"},                                  // branch
+      {"j8", "revolute", "b7", "[0, 0, 1]", "{\"xyz\": [\"l\", 0, 0.1], \"rpy\": [0.5, 0, 0]}"},  // parameter
+      {"j9", "prismatic", "b8", "[1, 0, 0]", "{\"xyz\": [0.2, 0, 0], \"rpy\": [0, 0, 1.5707963267948966]}"},
+  };
+  std::ostringstream m;
+  m << "{\"format\": \"kanegen-model\", \"version\": 1, \"name\": \"special_frames\", \"parameters\": "
+       "{\"l\": "
+       "0.35},\n\"gravity\": [0.5, -1, -9.81],\n\"bodies\": [\n";
+  const int count = sizeof joints / sizeof joints[0];
+  for (int b = 0; b < count; ++b) m << (b ? ",\n" : "") << "{\"name\": \"b" << b << "\", " << body << "}";
+  m << "],\n\"joints\": [\n";
+  for (int b = 0; b < count; ++b) {
+    const std::string type = joints[b][1];
+    m << (b ? ",\n" : "") << "{\"name\": \"" << joints[b][0] << "\", \"type\": \"" << type
+      << "\", \"parent\": \"" << joints[b][2] << "\", \"child\": \"b" << b
+      << "\", \"origin\": " << joints[b][4];
+    if (type != "fixed") m << ", \"axis\": " << joints[b][3] << ", \"damping\": 0.3";
+    m << "}";
+  }
+  m << "]}\n";
+  INFO("model file:\n" << m.str());
+  std::mt19937 rng(1720);
+  const Comparison c = compare_text("special_frames", m.str(), rng);
+  CHECK(c.nu == count - 1);
+  CHECK(c.worst < 1e-10);
+  std::printf("recursive vs composite where the working frames are special: max rel. difference %.2e\n",
+              c.worst);
 }
