@@ -2,7 +2,9 @@
 #include "fem/model_mesh.hpp"
 
 #include <fstream>
+#include <stdexcept>
 
+#include "fem/continuum_foreshortening.hpp"
 #include "fem/craig_bampton.hpp"
 #include "fem/reduction.hpp"
 #include "model/model_error.hpp"
@@ -22,6 +24,23 @@ auto at_model_place(const std::string& model_file, const std::string& place, F&&
   } catch (const ModelError& e) {
     throw ModelError(model_file, place, e.what(), "");
   }
+}
+
+/// Geometric stiffening: the second-order displacement field of the body held
+/// on `held` (its clamped set), and its foreshortening at each interface.
+void add_foreshortening(const model::Body& body, const Constraint& held, const std::string& model_file,
+                        ModelBeam& out) {
+  try {
+    out.second_order = second_order_fields(out.body, held, out.reduced.basis);
+  } catch (const std::invalid_argument& e) {
+    throw ModelError(model_file, body.beam.where + "/geometric_stiffening",
+                     "the geometric stiffening of body '" + body.name + "' failed: " + e.what(),
+                     "set \"geometric_stiffening\": false");
+  }
+  std::vector<Eigen::MatrixXd> points;
+  for (const InterfacePoint& p : out.interfaces) points.push_back(p.dof_translation);
+  out.foreshortening = continuum_foreshortening(out.body, out.second_order,
+                                                static_cast<int>(out.reduced.basis.cols()), points);
 }
 
 }  // namespace
@@ -95,6 +114,7 @@ InterfacePoint interface_point(const MeshBody& mb, const InpMesh& mesh, const st
   }
   p.translation = t * basis;
   p.rotation = theta * basis;
+  p.dof_translation = t;
   return p;
 }
 
@@ -111,7 +131,7 @@ ModelBeam build_model_mesh(const model::Body& body, const std::string& model_fil
                      "body '" + body.name + "' has " + std::to_string(constraint.num_free()) +
                          " free dofs, fewer than the " + std::to_string(f.modes) + " modes asked for",
                      "keep fewer modes, or refine the mesh");
-  ModelBeam out{mb.body, {}, {}, {}, {}, {}, std::nullopt, {}, true};
+  ModelBeam out{mb.body, {}, {}, {}, {}, {}, std::nullopt, {}, true, {}};
   if (f.mesh.craig_bampton) {
     std::vector<std::vector<int>> interfaces;
     for (std::size_t i = 0; i < f.mesh.interfaces.size(); ++i) {
@@ -151,6 +171,7 @@ ModelBeam build_model_mesh(const model::Body& body, const std::string& model_fil
     out.interfaces.push_back(interface_point(mb, mesh, f.mesh.interfaces[i], out.reduced.basis, model_file,
                                              f.mesh.interface_where[i]));
   out.damping = reduced_damping(f, out.reduced, true);
+  if (f.geometric_stiffening) add_foreshortening(body, constraint, model_file, out);
   return out;
 }
 
