@@ -27,6 +27,7 @@
 
 namespace {
 
+using kanegen_test::initial_state;
 using kanegen_test::output_index;
 
 /// A run from x sampled every dt (Dormand-Prince at rtol): the tip's
@@ -43,15 +44,8 @@ Run integrate(const typename System::Params& p, std::vector<double> x, double t_
   Run out;
   const double e0 = kanegen_test::energy<System>(p, x.data());
   double worst = 0, largest_kinetic = 0;
-  kanegen::runtime::IntegrationOptions opt;
-  opt.t_end = t_end;
-  opt.dt = dt;
-  opt.rtol = rtol;
-  opt.atol = rtol * 1e-2;
-  opt.max_steps = 20000000;
-  const auto result = kanegen::runtime::integrate(
-      kanegen::runtime::Method::kDopri5, kanegen_test::rhs<System>(p), 0.0, x.data(),
-      static_cast<int>(x.size()), opt, [&](double t, const double* state) {
+  const auto result = kanegen_test::integrate_sampled<System>(
+      p, std::move(x), t_end, dt, rtol, [&](double t, const double* state) {
         worst = std::max(worst, std::abs(kanegen_test::energy<System>(p, state) - e0));
         largest_kinetic = std::max(largest_kinetic, System::kinetic_energy(p, state, state + System::nq));
         double y[System::ny];
@@ -85,13 +79,6 @@ template <class System>
 Run beam_run(std::vector<double> x, double t_end, double dt, double rtol) {
   const int k = output_index<System>("tip.y");
   return integrate<System>({}, std::move(x), t_end, dt, rtol, [&](const double* y) { return y[k]; });
-}
-
-template <class System>
-std::vector<double> initial_state() {
-  std::vector<double> x(System::q0(), System::q0() + System::nq);
-  x.insert(x.end(), System::u0(), System::u0() + System::nu);
-  return x;
 }
 
 template <class System>
