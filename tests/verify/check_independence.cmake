@@ -11,6 +11,18 @@
 # that the basis's rows follow (fem::build_model_mesh_body(...)'s node_ids,
 # node_of and element_ids), never its matrices.
 # Run as cmake -DDIR=<generator> -P.
+
+# Every member read of the object named `name` in `text` must match `allowed`.
+function(only_members name allowed what)
+  string(REGEX MATCHALL "${name}[.][A-Za-z_.]+" member_uses "${text}")
+  foreach(use ${member_uses})
+    if(NOT use MATCHES "^${name}[.](${allowed})$")
+      message(FATAL_ERROR "${file}: reads ${use}: the numeric path takes ${what}, not the finite-element layer's "
+                          "matrices")
+    endif()
+  endforeach()
+endfunction()
+
 file(GLOB files ${DIR}/numeric/*.hpp ${DIR}/numeric/*.cpp ${DIR}/model/expression.hpp ${DIR}/model/expression.cpp
      ${DIR}/model/expression_eval.hpp ${DIR}/model/expression_eval.cpp)
 if(NOT files)
@@ -35,21 +47,11 @@ foreach(file ${files})
   string(REGEX MATCHALL "fem::(read_model_mesh|build_model_mesh_body|InpMesh|MeshBody|MeshElement|ContinuumFamily)[^A-Za-z_]"
                mesh_input "${text}")
   # The mesh body built by the layer (named `layout`) gives its order only.
-  string(REGEX MATCHALL "layout\\.[A-Za-z_]+" layout_uses "${text}")
-  foreach(use ${layout_uses})
-    if(NOT use MATCHES "^layout\\.(node_ids|node_of|element_ids)$")
-      message(FATAL_ERROR "${file}: reads ${use}: the numeric path takes the mesh body's node and element order "
-                          "(node_ids, node_of, element_ids), not the finite-element layer's matrices")
-    endif()
-  endforeach()
+  only_members(layout "(node_ids|node_of|element_ids)([.]at)?"
+               "the mesh body's node and element order (node_ids, node_of, element_ids)")
   # The reduced body built by the layer (named `built`) gives its coordinates only.
-  string(REGEX MATCHALL "built\\.[A-Za-z_.]+" built_uses "${text}")
-  foreach(use ${built_uses})
-    if(NOT use MATCHES "^built\\.(reduced\\.basis|second_order)$")
-      message(FATAL_ERROR "${file}: reads ${use}: the numeric path takes the elastic coordinates (reduced.basis) "
-                          "and the second-order fields (second_order) of the reduced body, not its matrices")
-    endif()
-  endforeach()
+  only_members(built "reduced[.]basis|second_order"
+               "the elastic coordinates (reduced.basis) and the second-order fields (second_order) of the reduced body")
   list(LENGTH uses used)
   list(LENGTH allowed allowed_count)
   list(LENGTH mesh_input mesh_count)
