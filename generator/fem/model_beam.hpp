@@ -28,8 +28,6 @@ struct InterfacePoint {
   Eigen::Vector3d position;     ///< the set's centroid, link frame
   Eigen::MatrixXd translation;  ///< 3 x n: displacement in the link frame = translation eta
   Eigen::MatrixXd rotation;     ///< 3 x n: small rotation
-  /// 3 x num_dofs: the mean translation in the body dofs (translation = this times the basis).
-  Eigen::MatrixXd dof_translation;
 };
 
 struct ModelBeam {

@@ -27,8 +27,11 @@ auto at_model_place(const std::string& model_file, const std::string& place, F&&
 }
 
 /// Geometric stiffening: the second-order displacement field of the body held
-/// on `held` (its clamped set), and its foreshortening at each interface.
-void add_foreshortening(const model::Body& body, const Constraint& held, const std::string& model_file,
+/// on `held` (its clamped set), and its foreshortening at each interface,
+/// by the mean translation of the interface's body nodes (as interface_point
+/// averages the first-order motion).
+void add_foreshortening(const model::Body& body, const Constraint& held,
+                        const std::vector<std::vector<int>>& interface_nodes, const std::string& model_file,
                         ModelBeam& out) {
   try {
     out.second_order = second_order_fields(out.body, held, out.reduced.basis);
@@ -38,7 +41,11 @@ void add_foreshortening(const model::Body& body, const Constraint& held, const s
                      "set \"geometric_stiffening\": false");
   }
   std::vector<Eigen::MatrixXd> points;
-  for (const InterfacePoint& p : out.interfaces) points.push_back(p.dof_translation);
+  for (const std::vector<int>& nodes : interface_nodes) {
+    Eigen::MatrixXd mean = Eigen::MatrixXd::Zero(3, out.body.num_dofs());
+    for (int n : nodes) mean += out.body.node_translation(n);
+    points.push_back(mean / static_cast<double>(nodes.size()));
+  }
   out.foreshortening = continuum_foreshortening(out.body, out.second_order,
                                                 static_cast<int>(out.reduced.basis.cols()), points);
 }
@@ -114,7 +121,6 @@ InterfacePoint interface_point(const MeshBody& mb, const InpMesh& mesh, const st
   }
   p.translation = t * basis;
   p.rotation = theta * basis;
-  p.dof_translation = t;
   return p;
 }
 
@@ -132,15 +138,16 @@ ModelBeam build_model_mesh(const model::Body& body, const std::string& model_fil
                          " free dofs, fewer than the " + std::to_string(f.modes) + " modes asked for",
                      "keep fewer modes, or refine the mesh");
   ModelBeam out{mb.body, {}, {}, {}, {}, {}, std::nullopt, {}, true, {}};
+  // The body nodes of each interface's node set.
+  std::vector<std::vector<int>> interfaces;
+  for (std::size_t i = 0; i < f.mesh.interfaces.size(); ++i) {
+    std::vector<int> nodes;
+    for (int id : at_model_place(model_file, f.mesh.interface_where[i],
+                                 [&] { return mesh.node_set(f.mesh.interfaces[i]); }))
+      if (mb.node_of.count(id)) nodes.push_back(mb.node_of.at(id));
+    interfaces.push_back(nodes);
+  }
   if (f.mesh.craig_bampton) {
-    std::vector<std::vector<int>> interfaces;
-    for (std::size_t i = 0; i < f.mesh.interfaces.size(); ++i) {
-      std::vector<int> nodes;
-      for (int id : at_model_place(model_file, f.mesh.interface_where[i],
-                                   [&] { return mesh.node_set(f.mesh.interfaces[i]); }))
-        if (mb.node_of.count(id)) nodes.push_back(mb.node_of.at(id));
-      interfaces.push_back(nodes);
-    }
     try {
       const CraigBamptonBasis cb = craig_bampton(out.body, constraint, interfaces, f.modes);
       out.reduced = reduce_assumed(out.body, cb.basis);
@@ -171,7 +178,7 @@ ModelBeam build_model_mesh(const model::Body& body, const std::string& model_fil
     out.interfaces.push_back(interface_point(mb, mesh, f.mesh.interfaces[i], out.reduced.basis, model_file,
                                              f.mesh.interface_where[i]));
   out.damping = reduced_damping(f, out.reduced, true);
-  if (f.geometric_stiffening) add_foreshortening(body, constraint, model_file, out);
+  if (f.geometric_stiffening) add_foreshortening(body, constraint, interfaces, model_file, out);
   return out;
 }
 
