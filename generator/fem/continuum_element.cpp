@@ -299,6 +299,36 @@ Eigen::Matrix3d ContinuumElement::stress(const Eigen::VectorXd& u_e, const Eigen
   return sigma;
 }
 
+Eigen::MatrixXd ContinuumElement::quadratic_strain_forces(const Eigen::MatrixXd& u_e) const {
+  if (u_e.rows() != num_dofs())
+    throw std::invalid_argument("ContinuumElement::quadratic_strain_forces: expected " +
+                                std::to_string(num_dofs()) + " element dofs, got " +
+                                std::to_string(u_e.rows()));
+  const int d = dimension(), n = static_cast<int>(u_e.cols()), nodes = num_nodes();
+  const Eigen::MatrixXd D = elasticity(d, material_.E, material_.nu);
+  // Voigt rows of strain_matrix: (a, b) components, shears doubled.
+  static const int plane[3][2] = {{0, 0}, {1, 1}, {0, 1}};
+  static const int solid[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {2, 0}};
+  const int voigt = d == 2 ? 3 : 6;
+  Eigen::MatrixXd g = Eigen::MatrixXd::Zero(num_dofs(), pair_count(n));
+  std::vector<Eigen::MatrixXd> grad(n);
+  Eigen::MatrixXd q(voigt, pair_count(n));
+  for (const GaussSample& s : gauss_) {
+    for (int i = 0; i < n; ++i)  // G_cb = sum_node u(node, c) dN_node/dx_b
+      grad[i] = Eigen::Map<const Eigen::MatrixXd>(u_e.col(i).data(), d, nodes) * s.dNdx;
+    for (int i = 0; i < n; ++i)
+      for (int j = i; j < n; ++j) {
+        const Eigen::MatrixXd Q = 0.5 * (grad[i].transpose() * grad[j] + grad[j].transpose() * grad[i]);
+        for (int v = 0; v < voigt; ++v) {
+          const int* ab = d == 2 ? plane[v] : solid[v];
+          q(v, pair_index(i, j, n)) = (ab[0] == ab[1] ? 1.0 : 2.0) * Q(ab[0], ab[1]);
+        }
+      }
+    g.noalias() += (s.weight * strain_matrix(s.dNdx).transpose() * D) * q;
+  }
+  return g;
+}
+
 std::vector<Eigen::Vector3d> ContinuumElement::gauss_points() const {
   std::vector<Eigen::Vector3d> points;
   for (const GaussSample& g : gauss_) points.push_back(g.xi);

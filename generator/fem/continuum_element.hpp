@@ -17,6 +17,7 @@
 #include <Eigen/Dense>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fem/element.hpp"
@@ -39,6 +40,14 @@ struct NaturalShape {
   Eigen::MatrixXd dN;
 };
 NaturalShape natural_shape(ContinuumFamily family, const Eigen::Vector3d& xi);
+
+/// The pairs of n modes i <= j: n (n + 1) / 2 of them, ordered (0, 0), (0, 1),
+/// ..., (0, n - 1), (1, 1), ...; pair_index(i, j) = pair_index(j, i).
+inline int pair_count(int n) { return n * (n + 1) / 2; }
+inline int pair_index(int i, int j, int n) {
+  if (i > j) std::swap(i, j);
+  return i * n - i * (i - 1) / 2 + (j - i);
+}
 
 /// Isotropic linear elastic material: Young's modulus (Pa), Poisson's ratio, density (kg/m^3).
 struct ContinuumMaterial {
@@ -89,6 +98,13 @@ class ContinuumElement final : public Element {
   /// sigma = D B u_e at xi (Pa, 3 x 3, symmetric): the linear elastic stress of
   /// the element displacement u_e; plane stress leaves the z row and column zero.
   Eigen::Matrix3d stress(const Eigen::VectorXd& u_e, const Eigen::Vector3d& xi) const;
+  /// The second-order strain's forces of the element displacements u_e
+  /// (ndof_e x n, one column per mode): the columns of pairs (i <= j, in the
+  /// order of pair_index) g_ij = int B^T D q_ij dV, q_ij the Voigt form
+  /// (engineering shears) of Q_ij = (G_i^T G_j + G_j^T G_i) / 2, G_i = grad u_i
+  /// (G_cb = du_c/dx_b). The quadratic part of the Green-Lagrange strain of
+  /// u = sum eta_i u_i is 1/2 sum_ij eta_i eta_j Q_ij. Quadrature of K_e.
+  Eigen::MatrixXd quadratic_strain_forces(const Eigen::MatrixXd& u_e) const;
   /// The natural coordinates of the Gauss points that K_e and K_sigma use.
   std::vector<Eigen::Vector3d> gauss_points() const;
 

@@ -14,14 +14,6 @@ namespace kanegen::fem {
 
 namespace {
 
-const ContinuumElement& continuum(const Body& body, int e) {
-  const auto* element = dynamic_cast<const ContinuumElement*>(body.element(e).element.get());
-  if (!element)
-    throw std::invalid_argument("element " + std::to_string(e) +
-                                " is not a plane or solid element: continuum prestress needs a mesh body");
-  return *element;
-}
-
 /// u^e = T u_b: element e's dofs in its own frame.
 Eigen::VectorXd element_displacement(const Body& body, int e, const Eigen::VectorXd& u) {
   const ElementPlacement& placed = body.element(e);
@@ -36,8 +28,23 @@ void check_size(const Body& body, const Eigen::VectorXd& v, const char* what) {
 
 }  // namespace
 
+const ContinuumElement& continuum_element(const Body& body, int e) {
+  const auto* element = dynamic_cast<const ContinuumElement*>(body.element(e).element.get());
+  if (!element)
+    throw std::invalid_argument("element " + std::to_string(e) +
+                                " is not a plane or solid element: continuum prestress needs a mesh body");
+  return *element;
+}
+
 Eigen::VectorXd static_displacement(const Body& body, const Constraint& held, const Eigen::VectorXd& f) {
   check_size(body, f, "static_displacement");
+  return static_displacements(body, held, f);
+}
+
+Eigen::MatrixXd static_displacements(const Body& body, const Constraint& held, const Eigen::MatrixXd& loads) {
+  if (loads.rows() != body.num_dofs())
+    throw std::invalid_argument("static_displacements: expected " + std::to_string(body.num_dofs()) +
+                                " body dofs, got " + std::to_string(loads.rows()));
   if (held.num_dofs() != body.num_dofs())
     throw std::invalid_argument("static_displacement: the constraint is for another body");
   const Eigen::MatrixXd k = held.reduce(body.stiffness());
@@ -49,7 +56,7 @@ Eigen::VectorXd static_displacement(const Body& body, const Constraint& held, co
     throw std::invalid_argument(
         "static_displacement: the held dofs leave the body free to move rigidly; hold a face or enough "
         "nodes to stop every rigid motion");
-  return held.expand(llt.solve(f(held.free())));
+  return held.expand(llt.solve(loads(held.free(), Eigen::all)));
 }
 
 Eigen::VectorXd centrifugal_load(const Body& body, const Eigen::Vector3d& omega) {
@@ -67,7 +74,7 @@ std::vector<ElementStress> gauss_point_stresses(const Body& body, const Eigen::V
   check_size(body, u, "gauss_point_stresses");
   std::vector<ElementStress> out;
   for (int e = 0; e < body.num_elements(); ++e) {
-    const ContinuumElement& element = continuum(body, e);
+    const ContinuumElement& element = continuum_element(body, e);
     const Eigen::VectorXd u_e = element_displacement(body, e, u);
     ElementStress s{element.gauss_points(), {}};
     for (const Eigen::Vector3d& xi : s.xi) s.sigma.push_back(element.stress(u_e, xi));
@@ -80,7 +87,7 @@ std::function<Prestress(int element)> displacement_prestress(const Body& body, c
   check_size(body, u, "displacement_prestress");
   auto fields = std::make_shared<std::vector<Prestress>>();
   for (int e = 0; e < body.num_elements(); ++e) {
-    continuum(body, e);  // refuses other elements here, not when K_sigma is formed
+    continuum_element(body, e);  // refuses other elements here, not when K_sigma is formed
     // Shares the element, so the field outlives neither it nor the body.
     auto element = std::static_pointer_cast<const ContinuumElement>(body.element(e).element);
     Prestress p;

@@ -12,12 +12,18 @@
 
 #include "fem/body.hpp"
 #include "fem/boundary.hpp"
+#include "fem/continuum_element.hpp"
 
 namespace kanegen::fem {
+
+/// Element e as a plane or solid element; throws std::invalid_argument for another element.
+const ContinuumElement& continuum_element(const Body& body, int e);
 
 /// u (num_dofs, zero on the held dofs) with K u = f on the free dofs. Throws
 /// std::invalid_argument if the held dofs leave the body free to move rigidly.
 Eigen::VectorXd static_displacement(const Body& body, const Constraint& held, const Eigen::VectorXd& f);
+/// The same for every column of `loads` (num_dofs x m), with one factorisation.
+Eigen::MatrixXd static_displacements(const Body& body, const Constraint& held, const Eigen::MatrixXd& loads);
 
 /// The centrifugal load of a body spinning at omega about the link origin:
 /// f = int rho N^T (-W^2 r) dV, W = skew(omega), r the undeformed position.

@@ -38,7 +38,8 @@ ModelBeam build_model_beam(const model::Body& body, const std::string& file, con
                 {},
                 std::nullopt,
                 {},
-                false};
+                false,
+                {}};
   int last = out.body.add_node(Eigen::Vector3d::Zero());
   for (const model::BeamSegment& s : f.segments)
     last = add_beam_run(out.body, last, Eigen::Vector3d(s.to[0], s.to[1], s.to[2]), s.elements, properties);

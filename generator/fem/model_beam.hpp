@@ -41,13 +41,19 @@ struct ModelBeam {
   /// axial displacements: the nonlinear axial strain energy
   /// (fem/axial_strain.hpp). Modes and assumed modes leave the stiff axial
   /// motion out: the foreshortening of the bending (fem/foreshortening.hpp)
-  /// carries the axial force instead. Both are conservative.
+  /// carries the axial force instead. Both are conservative. A mesh body's
+  /// foreshortening is its second-order displacement field
+  /// (fem/continuum_foreshortening.hpp), H at each interface.
   std::vector<AxialStrainElement> axial_strain;
   std::optional<Foreshortening> foreshortening;
   /// Mesh bodies: their points that joints attach to, by the index
   /// model::MeshSource::interfaces gives (a mesh body's "node" k is its interface k).
   std::vector<InterfacePoint> interfaces;
   bool is_mesh = false;
+  /// A mesh body with geometric stiffening: the second-order fields d_ij
+  /// (num_dofs x n (n + 1) / 2, pairs i <= j as fem::pair_index orders them):
+  /// its points are at r + N (basis eta + 1/2 sum_ij eta_i eta_j d_ij).
+  Eigen::MatrixXd second_order;
 
   /// A node of a beam, or an interface of a mesh body: undeformed position
   /// (link frame) and its displacement and small rotation in eta (3 x n).

@@ -2,7 +2,9 @@
 #include "fem/model_mesh.hpp"
 
 #include <fstream>
+#include <stdexcept>
 
+#include "fem/continuum_foreshortening.hpp"
 #include "fem/craig_bampton.hpp"
 #include "fem/reduction.hpp"
 #include "model/model_error.hpp"
@@ -22,6 +24,30 @@ auto at_model_place(const std::string& model_file, const std::string& place, F&&
   } catch (const ModelError& e) {
     throw ModelError(model_file, place, e.what(), "");
   }
+}
+
+/// Geometric stiffening: the second-order displacement field of the body held
+/// on `held` (its clamped set), and its foreshortening at each interface,
+/// by the mean translation of the interface's body nodes (as interface_point
+/// averages the first-order motion).
+void add_foreshortening(const model::Body& body, const Constraint& held,
+                        const std::vector<std::vector<int>>& interface_nodes, const std::string& model_file,
+                        ModelBeam& out) {
+  try {
+    out.second_order = second_order_fields(out.body, held, out.reduced.basis);
+  } catch (const std::invalid_argument& e) {
+    throw ModelError(model_file, body.beam.where + "/geometric_stiffening",
+                     "the geometric stiffening of body '" + body.name + "' failed: " + e.what(),
+                     "set \"geometric_stiffening\": false");
+  }
+  std::vector<Eigen::MatrixXd> points;
+  for (const std::vector<int>& nodes : interface_nodes) {
+    Eigen::MatrixXd mean = Eigen::MatrixXd::Zero(3, out.body.num_dofs());
+    for (int n : nodes) mean += out.body.node_translation(n);
+    points.push_back(mean / static_cast<double>(nodes.size()));
+  }
+  out.foreshortening = continuum_foreshortening(out.body, out.second_order,
+                                                static_cast<int>(out.reduced.basis.cols()), points);
 }
 
 }  // namespace
@@ -128,16 +154,17 @@ ModelBeam build_model_mesh(const model::Body& body, const std::string& model_fil
                      "body '" + body.name + "' has " + std::to_string(constraint.num_free()) +
                          " free dofs, fewer than the " + std::to_string(f.modes) + " modes asked for",
                      "keep fewer modes, or refine the mesh");
-  ModelBeam out{mb.body, {}, {}, {}, {}, {}, std::nullopt, {}, true};
+  ModelBeam out{mb.body, {}, {}, {}, {}, {}, std::nullopt, {}, true, {}};
+  // The body nodes of each interface's node set.
+  std::vector<std::vector<int>> interfaces;
+  for (std::size_t i = 0; i < f.mesh.interfaces.size(); ++i) {
+    std::vector<int> nodes;
+    for (int id : at_model_place(model_file, f.mesh.interfaces[i].where,
+                                 [&] { return mesh.node_set(f.mesh.interfaces[i].node_set); }))
+      if (mb.node_of.count(id)) nodes.push_back(mb.node_of.at(id));
+    interfaces.push_back(nodes);
+  }
   if (f.mesh.craig_bampton) {
-    std::vector<std::vector<int>> interfaces;
-    for (std::size_t i = 0; i < f.mesh.interfaces.size(); ++i) {
-      std::vector<int> nodes;
-      for (int id : at_model_place(model_file, f.mesh.interfaces[i].where,
-                                   [&] { return mesh.node_set(f.mesh.interfaces[i].node_set); }))
-        if (mb.node_of.count(id)) nodes.push_back(mb.node_of.at(id));
-      interfaces.push_back(nodes);
-    }
     try {
       const CraigBamptonBasis cb = craig_bampton(out.body, constraint, interfaces, f.modes);
       out.reduced = reduce_assumed(out.body, cb.basis);
@@ -167,6 +194,7 @@ ModelBeam build_model_mesh(const model::Body& body, const std::string& model_fil
   for (const model::MeshInterface& in : f.mesh.interfaces)
     out.interfaces.push_back(interface_point(mb, mesh, in, out.reduced.basis, model_file));
   out.damping = reduced_damping(f, out.reduced, true);
+  if (f.geometric_stiffening) add_foreshortening(body, constraint, interfaces, model_file, out);
   return out;
 }
 

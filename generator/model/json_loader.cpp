@@ -252,10 +252,17 @@ class JsonReader {
             "add \"modes\": k, the number of modes kept (its nodal coordinates would be far too many)");
     f.modes = j["modes"].get<int>();
     read_damping_and_initial(j, place, f);
-    if (j.value("geometric_stiffening", false))
-      error(place + "/geometric_stiffening", "geometric stiffening of mesh bodies is not available yet",
-            "set \"geometric_stiffening\": false (or leave it out)");
-    f.geometric_stiffening = false;
+    // The second-order field of the stiffening is measured from the held set:
+    // a free body has none, so its stiffening is off unless asked for, and refused then.
+    if (f.support == BeamSupport::free) {
+      if (j.value("geometric_stiffening", false))
+        error(place + "/geometric_stiffening",
+              "geometric stiffening of a free mesh body is not available: its second-order displacement "
+              "field needs the body held on a node set",
+              "give \"support\": \"clamped\" with a \"clamped_set\" (or Craig-Bampton), or set "
+              "\"geometric_stiffening\": false (or leave it out)");
+      f.geometric_stiffening = false;
+    }
     if (f.mesh.craig_bampton && f.modal_damping > 0)
       error(place + "/damping",
             "modal damping does not apply to Craig-Bampton coordinates (they are not modes)",

@@ -240,10 +240,34 @@ inline const Vec<double>& rest_node(const FlexibleData& f, int node) {
                 : f.nodes.at(static_cast<std::size_t>(node));
 }
 
+/// A mesh body's second-order displacement with geometric stiffening (its
+/// foreshortening): u2 = 1/2 sum_ij eta_i eta_j d_ij over the body dofs,
+/// eta = left_inverse dofs. Empty without stiffening.
+template <class S>
+std::vector<S> second_order_displacement(const FlexibleData& f, const std::vector<S>& dofs) {
+  if (!f.mesh || !f.shortens()) return {};
+  const int n = f.count();
+  std::vector<S> eta(n, S(0.0)), u2(dofs.size(), S(0.0));
+  for (int k = 0; k < n; ++k)
+    for (std::size_t i = 0; i < dofs.size(); ++i)
+      if (f.left_inverse[k][i] != 0.0) eta[k] += f.left_inverse[k][i] * dofs[i];
+  std::size_t pair = 0;
+  for (int i = 0; i < n; ++i)
+    for (int j = i; j < n; ++j, ++pair) {
+      const S c = (i == j ? 0.5 : 1.0) * eta[i] * eta[j];
+      for (const auto& [dof, value] : f.second_order[pair]) u2[dof] += value * c;
+    }
+  return u2;
+}
+
 /// A node's displaced position, link frame: undeformed + translation + foreshortening.
 template <class S>
 Vec<S> displaced_node(const FlexibleData& f, const std::vector<S>& dofs, int node) {
-  if (f.mesh) return add(rest_node(f, node), interface_translation(f, dofs, node));
+  if (f.mesh) {
+    const Vec<S> moved = add(rest_node(f, node), interface_translation(f, dofs, node));
+    const std::vector<S> u2 = second_order_displacement(f, dofs);
+    return u2.empty() ? moved : add(moved, interface_translation(f, u2, node));
+  }
   const Vec<S> moved = add(f.nodes[node], node_translation(f, dofs, node));
   return f.shortens() ? add(moved, node_shortening(f, dofs)[node]) : moved;
 }

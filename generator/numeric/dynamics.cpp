@@ -100,8 +100,11 @@ Touched touched_by(const Instance& m, const std::vector<Pose<D1>>& poses,
     for (int d = 0; d < f.num_dofs(); ++d)
       if (dofs[b][d].d != 0) t.node[b][d / f.dofs_per_node] = 1;
     // The foreshortening moves every point with the dofs of the nodes before it.
-    if (f.shortens())
+    if (f.shortens() && !f.mesh)
       for (std::size_t i = 1; i < f.nodes.size(); ++i) t.node[b][i] = t.node[b][i] || t.node[b][i - 1];
+    // A mesh body's second-order displacement moves every node with any dof.
+    if (f.shortens() && f.mesh && std::find(t.node[b].begin(), t.node[b].end(), 1) != t.node[b].end())
+      t.node[b].assign(f.nodes.size(), 1);
   }
   return t;
 }
@@ -135,6 +138,7 @@ void visit_masses(const Instance& m, const std::vector<Pose<S>>& poses,
     if (scale != 1.0)
       for (S& x : own) x = x * scale;
     const std::vector<Vec<S>> shortening = node_shortening(f, own);
+    const std::vector<S> second_order = second_order_displacement(f, own);
     for (const BeamElementData& e : f.elements) {
       if (touched && !touched->pose[b] && !touched->node[b][e.node] && !touched->node[b][e.node + 1]) {
         index += per_element;
@@ -154,7 +158,7 @@ void visit_masses(const Instance& m, const std::vector<Pose<S>>& poses,
         continue;
       }
       for (const SolidElementData::Point& p : e.points)
-        visit(index++, bi, to_world(pose, solid_point(f, e, p, own)), zero);
+        visit(index++, bi, to_world(pose, solid_point(f, e, p, own, second_order)), zero);
     }
     if (f.tip_mass > 0) {
       const int last = static_cast<int>(f.nodes.size()) - 1;

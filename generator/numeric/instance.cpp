@@ -91,6 +91,29 @@ void mesh_data(const model::Body& body, const std::string& file, FlexibleData& d
   d.poisson = body.beam.mesh.poisson;
 }
 
+/// A column's nonzero entries as (row, value) pairs.
+std::vector<std::pair<int, double>> nonzeros(const Eigen::VectorXd& column) {
+  std::vector<std::pair<int, double>> out;
+  for (Eigen::Index i = 0; i < column.size(); ++i)
+    if (column[i] != 0.0) out.emplace_back(static_cast<int>(i), column[i]);
+  return out;
+}
+
+/// The second-order fields of a mesh body (sparse, as the basis) and the
+/// basis's least-squares inverse.
+void second_order_data(const Eigen::MatrixXd& basis, const Eigen::MatrixXd& fields, FlexibleData& d) {
+  const Eigen::Index n = basis.cols();
+  if (fields.rows() != basis.rows() || fields.cols() != n * (n + 1) / 2)
+    throw std::invalid_argument("the second-order fields of body '" + d.body + "' do not match its basis");
+  for (Eigen::Index k = 0; k < fields.cols(); ++k) d.second_order.push_back(nonzeros(fields.col(k)));
+  // (B^T B)^-1 B^T: exact on dofs = B eta, the only dofs the path forms.
+  const Eigen::MatrixXd inverse = (basis.transpose() * basis).ldlt().solve(basis.transpose());
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const Eigen::RowVectorXd row = inverse.row(k);
+    d.left_inverse.emplace_back(row.data(), row.data() + row.size());
+  }
+}
+
 /// The beam of a flexible body: nodes along the segments, element axes
 /// (x along the run, y = z_link x x, z = x x y), numbers, and the basis.
 std::shared_ptr<const FlexibleData> beam_data(const model::Body& body, const std::string& file) {
@@ -143,16 +166,15 @@ std::shared_ptr<const FlexibleData> beam_data(const model::Body& body, const std
   }
   d->stiffening = f.geometric_stiffening;
 
-  const Eigen::MatrixXd basis = fem::build_model_beam(body, file, sample_shape).reduced.basis;
+  const auto built = fem::build_model_beam(body, file, sample_shape);
+  const Eigen::MatrixXd& basis = built.reduced.basis;
   if (basis.rows() != d->num_dofs())
     throw std::invalid_argument("the basis of body '" + body.name + "' has " + std::to_string(basis.rows()) +
                                 " rows for " + std::to_string(d->num_dofs()) + " dofs");
   static const char* planar_kinds[3] = {"u", "v", "theta_z"};
   static const char* spatial_kinds[6] = {"u", "v", "w", "theta_x", "theta_y", "theta_z"};
   for (Eigen::Index k = 0; k < basis.cols(); ++k) {
-    std::vector<std::pair<int, double>> column;
-    for (Eigen::Index i = 0; i < basis.rows(); ++i)
-      if (basis(i, k) != 0.0) column.emplace_back(static_cast<int>(i), basis(i, k));
+    std::vector<std::pair<int, double>> column = nonzeros(basis.col(k));
     if (d->modal) {
       d->names.push_back("mode" + std::to_string(k + 1));
     } else {
@@ -166,6 +188,7 @@ std::shared_ptr<const FlexibleData> beam_data(const model::Body& body, const std
     }
     d->basis.push_back(std::move(column));
   }
+  if (d->mesh && d->shortens()) second_order_data(basis, built.second_order, *d);
   return d;
 }
 

@@ -111,6 +111,14 @@ struct FlexibleData {
   };
   std::vector<Interface> interfaces;
   double poisson = 0;
+  /// A mesh body with geometric stiffening: the second-order fields d_ij
+  /// of its points' displacement u2 = 1/2 sum_ij eta_i eta_j d_ij, taken with
+  /// the basis from the finite-element layer (model data, as the mode
+  /// shapes are), as (dof, value) pairs by mode pairs i <= j: (0, 0), (0, 1),
+  /// ..., (1, 1), ...; and the basis's least-squares inverse (this path's
+  /// own), eta = left_inverse dofs, so that u2 is a function of the dofs.
+  std::vector<std::vector<std::pair<int, double>>> second_order;
+  std::vector<std::vector<double>> left_inverse;
 
   int count() const { return static_cast<int>(basis.size()); }
   int num_dofs() const { return static_cast<int>(nodes.size()) * dofs_per_node; }

@@ -136,13 +136,17 @@ inline void set_up_solid(SolidElementData& e, const std::vector<Vec<double>>& x,
   }
 }
 
-/// A material point's displaced position, link frame.
+/// A material point's displaced position, link frame: by the dofs, and by
+/// the second-order displacement u2 (second_order_displacement) if not empty.
 template <class S>
 Vec<S> solid_point(const FlexibleData& f, const SolidElementData& e, const SolidElementData::Point& p,
-                   const std::vector<S>& dofs) {
+                   const std::vector<S>& dofs, const std::vector<S>& u2 = {}) {
   Vec<S> x{S(p.X[0]), S(p.X[1]), S(p.X[2])};
   for (std::size_t i = 0; i < e.nodes.size(); ++i)
-    for (int a = 0; a < f.dofs_per_node; ++a) x[a] += p.N[i] * dofs[f.dof(e.nodes[i], a)];
+    for (int a = 0; a < f.dofs_per_node; ++a) {
+      const int dof = f.dof(e.nodes[i], a);
+      x[a] += p.N[i] * (u2.empty() ? dofs[dof] : dofs[dof] + u2[dof]);
+    }
   return x;
 }
 

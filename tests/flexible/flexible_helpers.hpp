@@ -2,12 +2,12 @@
 // Integrating a generated flexible model and reading an output column.
 #pragma once
 
-#include <kanegen/runtime/integrators.hpp>
-
 #include <algorithm>
 #include <cstring>
+#include <kanegen/runtime/integrators.hpp>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "system_helpers.hpp"
@@ -29,22 +29,36 @@ struct Series {
   long steps = 0;
 };
 
+/// The model's initial state: q0, then u0.
 template <class System>
-Series simulate_output(const typename System::Params& p, const char* output, double t_end, double dt,
-                       double rtol = 1e-8) {
+std::vector<double> initial_state() {
   std::vector<double> x(System::q0(), System::q0() + System::nq);
   x.insert(x.end(), System::u0(), System::u0() + System::nu);
-  const int k = output_index<System>(output);
-  Series s;
+  return x;
+}
+
+/// Integrates from x with Dormand-Prince (atol = rtol / 100), calling
+/// sample(t, state) every dt; sample returns false to stop the run.
+template <class System, class Sample>
+auto integrate_sampled(const typename System::Params& p, std::vector<double> x, double t_end, double dt,
+                       double rtol, Sample&& sample) {
   kanegen::runtime::IntegrationOptions opt;
   opt.t_end = t_end;
   opt.dt = dt;
   opt.rtol = rtol;
   opt.atol = rtol * 1e-2;
   opt.max_steps = 20000000;
-  const auto result = kanegen::runtime::integrate(
-      kanegen::runtime::Method::kDopri5, rhs<System>(p), 0.0, x.data(), static_cast<int>(x.size()), opt,
-      [&](double t, const double* state) {
+  return kanegen::runtime::integrate(kanegen::runtime::Method::kDopri5, rhs<System>(p), 0.0, x.data(),
+                                     static_cast<int>(x.size()), opt, std::forward<Sample>(sample));
+}
+
+template <class System>
+Series simulate_output(const typename System::Params& p, const char* output, double t_end, double dt,
+                       double rtol = 1e-8) {
+  const int k = output_index<System>(output);
+  Series s;
+  const auto result = integrate_sampled<System>(
+      p, initial_state<System>(), t_end, dt, rtol, [&](double t, const double* state) {
         double y[System::ny > 0 ? System::ny : 1];
         System::outputs(p, t, state, state + System::nq, y);
         s.t.push_back(t);

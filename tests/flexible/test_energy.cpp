@@ -29,12 +29,7 @@ double energy_drift(const std::vector<double>& x, double t_end, double* e0_out) 
   return d.relative_drift;
 }
 
-template <class System>
-std::vector<double> initial_state() {
-  std::vector<double> x(System::q0(), System::q0() + System::nq);
-  x.insert(x.end(), System::u0(), System::u0() + System::nu);
-  return x;
-}
+using kanegen_test::initial_state;
 
 /// A free run from x0 (Dormand-Prince at rtol 1e-10): the drift of T + V
 /// relative to the largest kinetic energy, and the largest |output| of `tip`
@@ -149,8 +144,8 @@ TEST_CASE("the free flexible pendulum with geometric stiffening conserves energy
     WARN("free pendulum released at "
          << speed << " rad/s, 5 s: largest |tip deflection| " << nodal.largest_tip << " m (nodal), "
          << modal.largest_tip << " m (modal), " << linear.largest_tip << " m (linear"
-         << (speed > 0 ? ", 1.2 s" : "") << "); T + V drift / T_max "
-         << nodal.drift << ", " << modal.drift << ", " << linear.drift);
+         << (speed > 0 ? ", 1.2 s" : "") << "); T + V drift / T_max " << nodal.drift << ", " << modal.drift
+         << ", " << linear.drift);
   }
 }
 

@@ -13,12 +13,7 @@
 
 namespace {
 
-template <class System>
-std::vector<double> initial_state() {
-  std::vector<double> x(System::q0(), System::q0() + System::nq);
-  x.insert(x.end(), System::u0(), System::u0() + System::nu);
-  return x;
-}
+using kanegen_test::initial_state;
 
 /// The payload's position every 10 ms over [0, t_end] (DOPRI5 at rtol 1e-11).
 template <class System>
