@@ -43,9 +43,13 @@ MeshBody build_model_mesh_body(const model::Body& body, const InpMesh& mesh, con
   });
 }
 
-InterfacePoint interface_point(const MeshBody& mb, const InpMesh& mesh, const std::string& name,
-                               const Eigen::MatrixXd& basis, const std::string& model_file,
-                               const std::string& place) {
+/// The interface's averaged motion in the basis. Its rotation is left zero
+/// where it is undetermined (one node; in space, nodes on one line), which
+/// is an error only if something uses it (`in.rotation_where`).
+InterfacePoint interface_point(const MeshBody& mb, const InpMesh& mesh, const model::MeshInterface& in,
+                               const Eigen::MatrixXd& basis, const std::string& model_file) {
+  const std::string& name = in.node_set;
+  const std::string& place = in.where;
   const std::vector<int> ids = at_model_place(model_file, place, [&] { return mesh.node_set(name); });
   std::vector<int> nodes;
   for (int id : ids) {
@@ -57,6 +61,9 @@ InterfacePoint interface_point(const MeshBody& mb, const InpMesh& mesh, const st
                        "put only nodes of the body's elements in the set");
     nodes.push_back(it->second);
   }
+  if (nodes.empty())
+    throw ModelError(model_file, place, "node set " + name + " of " + mesh.file + " has no nodes",
+                     "list the nodes of the set in the mesh file");
   const Body& b = mb.body;
   const bool plane = b.dofs_per_node() == 2;
   InterfacePoint p;
@@ -66,35 +73,45 @@ InterfacePoint interface_point(const MeshBody& mb, const InpMesh& mesh, const st
   p.position /= static_cast<double>(nodes.size());
   // Least squares: u_i ~ t + theta x r_i, r_i from the centroid: t is the
   // mean displacement, A theta = sum r_i x u_i with A = sum |r_i|^2 I - r_i r_i^T.
-  Eigen::MatrixXd t = Eigen::MatrixXd::Zero(3, b.num_dofs()), moment = t;
+  // In the basis (u_i: 3 x n), the moment taking u_i - u_0 (the same, as
+  // sum r_i = 0): a shape that translates the set rigidly turns it by
+  // exactly 0, not by the round-off of sum r_i over a small A (1e-12 on a
+  // solid's face).
+  Eigen::MatrixXd t = Eigen::MatrixXd::Zero(3, basis.cols()), moment = t;
   Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+  const Eigen::MatrixXd u0 = b.node_translation(nodes.front()) * basis;
   for (int n : nodes) {
     const Eigen::Vector3d r = b.node_position(n) - p.position;
-    const Eigen::MatrixXd u = b.node_translation(n);
+    const Eigen::MatrixXd u = b.node_translation(n) * basis;
     t += u / static_cast<double>(nodes.size());
     Eigen::Matrix3d cross;
     cross << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
-    moment += cross * u;
+    moment += cross * (u - u0);
     A += r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose();
   }
-  Eigen::MatrixXd theta = Eigen::MatrixXd::Zero(3, b.num_dofs());
+  Eigen::MatrixXd theta = Eigen::MatrixXd::Zero(3, basis.cols());
+  const std::string& turns = in.rotation_where;
   if (plane) {
     // In the plane only the rotation about z exists.
-    if (!(A(2, 2) > 0))
-      throw ModelError(model_file, place, "node set " + name + " of " + mesh.file + " is a single node",
-                       "give a set of two or more nodes, so that it has a rotation");
-    theta.row(2) = moment.row(2) / A(2, 2);
+    if (A(2, 2) > 0)
+      theta.row(2) = moment.row(2) / A(2, 2);
+    else if (!turns.empty())
+      throw ModelError(model_file, turns,
+                       "node set " + name + " of " + mesh.file + " is a single node, which has no rotation",
+                       "give a set of two or more nodes, so that it turns with the body");
   } else {
     const Eigen::LDLT<Eigen::Matrix3d> ldlt(A);
-    if (ldlt.rcond() < 1e-9 || ldlt.info() != Eigen::Success)
-      throw ModelError(model_file, place,
+    if (ldlt.rcond() >= 1e-9 && ldlt.info() == Eigen::Success)
+      theta = ldlt.solve(moment);
+    else if (!turns.empty())
+      throw ModelError(model_file, turns,
                        "the nodes of node set " + name + " of " + mesh.file +
-                           " lie on a line, so the rotation about it is undetermined",
+                           (nodes.size() == 1 ? " are one node" : " lie on a line") +
+                           ", so its rotation is undetermined",
                        "give a set of nodes on a face (not all on one line)");
-    theta = ldlt.solve(moment);
   }
-  p.translation = t * basis;
-  p.rotation = theta * basis;
+  p.translation = t;
+  p.rotation = theta;
   return p;
 }
 
@@ -116,8 +133,8 @@ ModelBeam build_model_mesh(const model::Body& body, const std::string& model_fil
     std::vector<std::vector<int>> interfaces;
     for (std::size_t i = 0; i < f.mesh.interfaces.size(); ++i) {
       std::vector<int> nodes;
-      for (int id : at_model_place(model_file, f.mesh.interface_where[i],
-                                   [&] { return mesh.node_set(f.mesh.interfaces[i]); }))
+      for (int id : at_model_place(model_file, f.mesh.interfaces[i].where,
+                                   [&] { return mesh.node_set(f.mesh.interfaces[i].node_set); }))
         if (mb.node_of.count(id)) nodes.push_back(mb.node_of.at(id));
       interfaces.push_back(nodes);
     }
@@ -147,9 +164,8 @@ ModelBeam build_model_mesh(const model::Body& body, const std::string& model_fil
     out.reduced = reduce_modal(out.body, constraint, f.modes);
   }
   out.is_mesh = true;
-  for (std::size_t i = 0; i < f.mesh.interfaces.size(); ++i)
-    out.interfaces.push_back(interface_point(mb, mesh, f.mesh.interfaces[i], out.reduced.basis, model_file,
-                                             f.mesh.interface_where[i]));
+  for (const model::MeshInterface& in : f.mesh.interfaces)
+    out.interfaces.push_back(interface_point(mb, mesh, in, out.reduced.basis, model_file));
   out.damping = reduced_damping(f, out.reduced, true);
   return out;
 }

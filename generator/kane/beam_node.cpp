@@ -10,8 +10,9 @@ NodePoint node_point(const fem::ModelBeam& beam, int node, const std::vector<GiN
                      symbolic::Program* program) {
   const auto define = [&](const GiNaC::ex& e) { return program ? program->define(e) : e; };
   const auto named = [&](const symbolic::Vec3& v) { return program ? symbolic::named(*program, v) : v; };
-  const Eigen::MatrixXd t = beam.reduced.node_translation(beam.body, node);
-  const Eigen::Vector3d r = beam.body.node_position(node);
+  // A beam's node, or a mesh body's interface (its averaged motion).
+  const Eigen::MatrixXd t = beam.point_translation(node);
+  const Eigen::Vector3d r = beam.point_position(node);
   const std::size_t n = eta.size();
   NodePoint out;
   out.partial.assign(n, symbolic::zero_vec());
@@ -20,7 +21,7 @@ NodePoint node_point(const fem::ModelBeam& beam, int node, const std::vector<GiN
     for (std::size_t k = 0; k < n; ++k)
       out.partial[k][a] = symbolic::number(t(a, static_cast<Eigen::Index>(k)));
   }
-  const Eigen::MatrixXd c = beam.reduced.node_rotation(beam.body, node);
+  const Eigen::MatrixXd c = beam.point_rotation(node);
   for (int a = 0; a < 3; ++a) out.rotation[a] = define(linear_combination(c.row(a).transpose(), eta));
   if (beam.foreshortening)
     for (int a = 0; a < 3; ++a) {

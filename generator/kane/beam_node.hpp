@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-// A node of a flexible body as a moving point of its link: where it is and
-// its partial velocities for the body's elastic speeds, with the beam's
+// A node of a flexible body (a beam's node, or a mesh body's interface: its
+// averaged node set) as a moving point of its link: where it is and its
+// partial velocities for the body's elastic speeds, with the beam's
 // foreshortening when it has one (fem/foreshortening.hpp). Node forces, loop
 // joints on nodes and node outputs all take the node from here.
 #pragma once

@@ -302,6 +302,19 @@ class JsonReader {
   /// A node given as an index or "tip" (kTipNode, resolved by check_model).
   static int node(const json& v) { return v.is_string() ? kTipNode : v.get<int>(); }
 
+  /// A place on a body is given one way: a point of its frame, a node of a
+  /// beam, or a node set of a mesh. `suffix` is "" or "2" (a loop's second
+  /// body).
+  void check_one_place(const json& j, const std::string& place, const std::string& suffix) const {
+    const std::string keys[] = {"point" + suffix, "node" + suffix, "node_set" + suffix};
+    for (int a = 0; a < 3; ++a)
+      for (int b = a + 1; b < 3; ++b)
+        if (j.contains(keys[a]) && j.contains(keys[b]))
+          error(place + "/" + keys[b], "both '" + keys[a] + "' and '" + keys[b] + "' given",
+                "give one: a point of the body frame, a node of a beam (\"node\"), or a node set of a mesh "
+                "body (\"node_set\")");
+  }
+
   Joint joint(std::size_t i) const {
     const json& j = doc_["joints"][i];
     const std::string place = "/joints/" + std::to_string(i);
@@ -409,6 +422,7 @@ class JsonReader {
             : std::vector<Key>{{"body", true, "add \"body\": the body it acts on"},
                                {"point", false, ""},
                                {"node", false, ""},
+                               {"node_set", false, ""},
                                {"force", true, "add \"force\": [fx, fy, fz] in N"},
                                {"frame", false, ""}};
     for (const Key& key : keys)
@@ -420,7 +434,7 @@ class JsonReader {
       if (key == "name" || key == "type") continue;
       if (std::none_of(keys.begin(), keys.end(), [&](const Key& k) { return key == k.name; }))
         error(place + "/" + pointer_token(key), "'" + key + "' does not apply to a '" + type + "' force",
-              "remove it (the keys of a constant force: body, point or node, force, frame. Of a "
+              "remove it (the keys of a constant force: body, point or node or node_set, force, frame. Of a "
               "spring: body, point, body2, point2, stiffness, rest_length, damping. Of a joint_effort: "
               "joint, value)");
     }
@@ -452,10 +466,10 @@ class JsonReader {
     f.name = j["name"].get<std::string>();
     f.where = place;
     f.body = j["body"].get<std::string>();
-    if (j.contains("point") && j.contains("node"))
-      error(place + "/node", "both 'point' and 'node' given", "give one: a point of the body frame, or a node");
+    check_one_place(j, place, "");
     f.point = vec3(j, "point", place, {0, 0, 0});
     if (j.contains("node")) f.node = node(j["node"]);
+    f.node_set = j.value("node_set", "");
     f.force = vec3(j, "force", place, {0, 0, 0});
     f.frame = j.value("frame", "world") == "body" ? ForceFrame::body : ForceFrame::world;
     return f;
@@ -478,16 +492,13 @@ class JsonReader {
             "use \"type\": \"revolute\" with \"planar\": true for a hinge of a planar mechanism");
     l.body = j["body"].get<std::string>();
     l.body2 = j["body2"].get<std::string>();
-    for (const char* key : {"", "2"}) {
-      const std::string point = std::string("point") + key, node_key = std::string("node") + key;
-      if (j.contains(point) && j.contains(node_key))
-        error(place + "/" + node_key, "both '" + point + "' and '" + node_key + "' given",
-              "give one: a point of the body frame, or a node");
-    }
+    for (const char* key : {"", "2"}) check_one_place(j, place, key);
     l.point = vec3(j, "point", place, {0, 0, 0});
     l.point2 = vec3(j, "point2", place, {0, 0, 0});
     if (j.contains("node")) l.node = node(j["node"]);
     if (j.contains("node2")) l.node2 = node(j["node2"]);
+    l.node_set = j.value("node_set", "");
+    l.node_set2 = j.value("node_set2", "");
     if (j.contains("axis")) {
       if (l.type == LoopType::spherical)
         error(place + "/axis", "a spherical loop joint has no axis", "remove \"axis\"");
@@ -518,9 +529,11 @@ class JsonReader {
     const bool node_output = o.kind != OutputKind::point_position && o.kind != OutputKind::joint_coordinate &&
                              o.kind != OutputKind::joint_speed && o.kind != OutputKind::reaction;
     // Each output type takes its own keys; a key of another type is a mistake.
+    // A node output names its node of a beam, or its node set of a mesh body.
+    const char* node_key = j.contains("node_set") ? "node_set" : "node";
     const std::vector<std::string> needed =
         o.kind == OutputKind::point_position ? std::vector<std::string>{"body", "point"}
-        : node_output                        ? std::vector<std::string>{"body", "node"}
+        : node_output                        ? std::vector<std::string>{"body", node_key}
         : o.kind == OutputKind::reaction     ? std::vector<std::string>{"loop"}
                                              : std::vector<std::string>{"joint"};
     for (const std::string& key : needed)
@@ -528,20 +541,23 @@ class JsonReader {
         error(place, "missing required key '" + key + "' for a '" + type + "' output",
               key == "joint"  ? "add \"joint\": the joint name"
               : key == "body" ? "add \"body\": the body name"
-              : key == "node" ? "add \"node\": a node index of the flexible body, or \"tip\""
+              : key == "node" ? "add \"node\": a node index of the flexible body, or \"tip\" (a mesh body: "
+                                "\"node_set\": the name of a node set)"
               : key == "loop" ? "add \"loop\": the loop name"
                               : "add \"point\": [x, y, z] in the body frame");
-    for (const char* key : {"body", "point", "joint", "node", "loop"})
+    if (node_output) check_one_place(j, place, "");
+    for (const char* key : {"body", "point", "joint", "node", "node_set", "loop"})
       if (j.contains(key) && std::find(needed.begin(), needed.end(), key) == needed.end())
         error(place + "/" + key, "'" + std::string(key) + "' does not apply to a '" + type + "' output",
               "remove it (a point output takes body and point, joint and joint_speed take joint, the node "
-              "outputs take body and node, reaction takes loop)");
+              "outputs take body and node (or node_set), reaction takes loop)");
     if (o.kind == OutputKind::point_position) {
       o.body = j["body"].get<std::string>();
       o.point = vec3(j, "point", place, {0, 0, 0});
     } else if (node_output) {
       o.body = j["body"].get<std::string>();
-      o.node = node(j["node"]);
+      if (j.contains("node")) o.node = node(j["node"]);
+      o.node_set = j.value("node_set", "");
     } else if (o.kind == OutputKind::reaction) {
       o.loop = j["loop"].get<std::string>();
     } else {

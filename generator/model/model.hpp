@@ -71,6 +71,18 @@ struct AssumedMode {
 /// model gives none: the shapes are sampled at its nodes (docs/flexible-bodies.md).
 inline constexpr int kAssumedModeElements = 100;
 
+/// A node set of a mesh body that something attaches to: one averaging
+/// interface, however many joints, loops, forces and outputs name it.
+struct MeshInterface {
+  std::string node_set;
+  std::string where;  ///< the place that first named it
+  /// The first place that needs its rotation (a joint frame, a hinge or a
+  /// slider's line turning with it); empty if only its position is used
+  /// (forces, displacements, spherical and planar hinges), which a set of
+  /// one node (or of nodes on one line, in space) also has.
+  std::string rotation_where;
+};
+
 /// A flexible body meshed with plane or solid elements (a CalculiX/Abaqus
 /// .inp file, e.g. from Gmsh) instead of a beam. The mesh's coordinates are
 /// the body frame's. Read and reduced when code is generated
@@ -84,11 +96,11 @@ struct MeshSource {
   /// The node set held fixed in the body frame (support "clamped"): the
   /// body's joint acts on it. Empty with support "free".
   std::string clamped_set;
-  /// The node sets that joints attach to ("parent_node_set"), in the order
-  /// check_model first meets them; such a joint's parent_node is the index
+  /// The node sets that joints, loops, point forces and node outputs name
+  /// ("parent_node_set", "node_set", "node_set2"), in the order check_model
+  /// first meets them; their node (parent_node, node, node2) is the index
   /// here. Each is an averaging interface (fem/model_mesh.hpp).
-  std::vector<std::string> interfaces;
-  std::vector<std::string> interface_where;  ///< the place of the joint that first named each
+  std::vector<MeshInterface> interfaces;
   /// Craig-Bampton: the coordinates are the static shapes of the interfaces'
   /// rigid motions, then the first `modes` fixed-interface modes.
   bool craig_bampton = false;
@@ -211,7 +223,10 @@ struct PointForce {
   std::string body;
   Vec3 point;     ///< in the body frame
   int node = -1;  ///< or: at this node of a flexible body, moving with it
-  Vec3 force;     ///< in `frame` axes
+  /// Or: at this node set of a mesh body (check_model makes it `node`, an
+  /// index of the body's mesh.interfaces).
+  std::string node_set;
+  Vec3 force;  ///< in `frame` axes
   ForceFrame frame = ForceFrame::world;
   std::string where;
 };
@@ -261,11 +276,12 @@ enum class OutputKind {
 struct Output {
   std::string name;
   OutputKind kind = OutputKind::point_position;
-  std::string body;   ///< for point_position
-  Vec3 point;         ///< for point_position, in the body frame
-  std::string joint;  ///< for joint_coordinate / joint_speed
-  int node = -1;      ///< for the node outputs of a flexible body
-  std::string loop;   ///< for reaction
+  std::string body;      ///< for point_position
+  Vec3 point;            ///< for point_position, in the body frame
+  std::string joint;     ///< for joint_coordinate / joint_speed
+  int node = -1;         ///< for the node outputs of a flexible body
+  std::string node_set;  ///< or a node set of a mesh body (check_model makes it `node`)
+  std::string loop;      ///< for reaction
   std::string where;
 };
 
@@ -284,6 +300,8 @@ struct Loop {
   std::string body, body2;  ///< body2 may be Model::ground
   Vec3 point, point2;       ///< in the bodies' frames (world axes for the ground)
   int node = -1, node2 = -1;
+  /// Or: node sets of mesh bodies (check_model makes them node and node2).
+  std::string node_set, node_set2;
   std::array<double, 3> axis{0.0, 0.0, 1.0};  ///< unit; see the type
   std::string where;
 };

@@ -70,6 +70,7 @@ class Checker {
     check_references();
     check_flexible();
     check_loops();
+    check_interfaces();
     check_moving_mass();
   }
 
@@ -440,7 +441,7 @@ class Checker {
         }
         continue;
       }
-      if (o.kind == OutputKind::point_position || o.node != -1) {
+      if (o.kind == OutputKind::point_position || o.node != -1 || !o.node_set.empty()) {
         if (!bodies.count(o.body))
           error(at(o.where, "body"), "output '" + o.name + "' names unknown body '" + o.body + "'",
                 unknown_body_fix(o.body, false));
@@ -636,27 +637,53 @@ class Checker {
            " for each dof the support leaves free)";
   }
 
-  /// A joint on a node set of a mesh parent: the set becomes one of the
-  /// parent's interfaces (whether the mesh has it is checked when the mesh
-  /// is read, fem/model_mesh.hpp).
+  /// A node set of mesh body `body_name` that something attaches to (`key`
+  /// at `where` names it): it becomes one of the body's interfaces, the same
+  /// set named twice being one, and its index is returned. `turns`: the
+  /// rotation of the set is used. Whether the mesh has the set, and a
+  /// rotation where one is used, are checked when the mesh is read
+  /// (fem/model_mesh.hpp).
+  int interface_of(const std::string& body_name, const std::string& set, const std::string& where,
+                   const std::string& key, const std::string& what, bool turns) {
+    const std::string place = at(where, key);
+    if (body_name == m_.ground) error(place, "the ground has no node sets", "remove \"" + key + "\"");
+    const auto b =
+        std::find_if(m_.bodies.begin(), m_.bodies.end(), [&](const Body& x) { return x.name == body_name; });
+    if (b == m_.bodies.end() || !b->flexible || !b->beam.mesh.present())
+      error(place,
+            what + " names node set '" + set + "' of '" + body_name + "', which is not a mesh body (it is " +
+                (b == m_.bodies.end() ? "unknown"
+                 : !b->flexible       ? "rigid"
+                                      : "a beam") +
+                ")",
+            b != m_.bodies.end() && b->flexible
+                ? "remove \"" + key + "\": a beam's nodes are given by index (\"" +
+                      (key == "parent_node_set" ? std::string("parent_node") : "node" + key.substr(8)) +
+                      "\": 3, or \"tip\")"
+                : "remove \"" + key +
+                      "\" and give a point of the body frame; node sets belong to bodies "
+                      "with \"flexible\": {\"mesh\": ...}");
+    std::vector<MeshInterface>& sets = b->beam.mesh.interfaces;
+    auto found =
+        std::find_if(sets.begin(), sets.end(), [&](const MeshInterface& x) { return x.node_set == set; });
+    if (found == sets.end()) {
+      sets.push_back({set, place, ""});
+      found = sets.end() - 1;
+    }
+    if (turns && found->rotation_where.empty()) found->rotation_where = place;
+    return static_cast<int>(found - sets.begin());
+  }
+
+  /// A joint on a node set of a mesh parent: its frame moves and turns with
+  /// the set's averaged motion.
   void attach_to_node_set(Joint& j) {
-    const std::string place = at(j.where, "parent_node_set");
-    const auto parent =
-        std::find_if(m_.bodies.begin(), m_.bodies.end(), [&](const Body& b) { return b.name == j.parent; });
-    if (parent == m_.bodies.end() || !parent->flexible || !parent->beam.mesh.present())
-      error(place, "joint '" + j.name + "' names a node set of '" + j.parent + "', which is not a mesh body",
-            "remove \"parent_node_set\" (beams take \"parent_node\")");
+    const std::string what = "joint '" + j.name + "'";
+    j.parent_node = interface_of(j.parent, j.parent_node_set, j.where, "parent_node_set", what, true);
     if (j.type == JointType::prismatic)
-      error(place, "only revolute, continuous and fixed joints on node sets are supported",
+      error(at(j.where, "parent_node_set"),
+            "only revolute, continuous and fixed joints on node sets are supported",
             "attach prismatic joint '" + j.name +
                 "' to the body frame, or put a fixed joint and a body on the set");
-    std::vector<std::string>& sets = parent->beam.mesh.interfaces;
-    const auto found = std::find(sets.begin(), sets.end(), j.parent_node_set);
-    j.parent_node = static_cast<int>(found - sets.begin());
-    if (found == sets.end()) {
-      sets.push_back(j.parent_node_set);
-      parent->beam.mesh.interface_where.push_back(place);
-    }
   }
 
   void check_flexible() {
@@ -676,12 +703,6 @@ class Checker {
     }
     for (Joint& j : m_.joints)
       if (!j.parent_node_set.empty()) attach_to_node_set(j);
-    for (const Body& b : m_.bodies)
-      if (b.flexible && b.beam.mesh.craig_bampton && b.beam.mesh.interfaces.empty())
-        error(at(b.beam.mesh.where, "reduction"),
-              "Craig-Bampton reduction of body '" + b.name +
-                  "' needs an interface, and no joint sits on its node sets",
-              "attach a joint with \"parent_node_set\", or use \"reduction\": \"modal\"");
     for (Joint& j : m_.joints)
       if (j.parent_node != -1 && j.parent_node_set.empty()) {
         if (j.parent == m_.ground)
@@ -696,9 +717,22 @@ class Checker {
                   "' to the body frame (remove \"parent_node\"), or put a fixed joint and a body on the node "
                   "and the slide on that body");
       }
-    for (PointForce& f : m_.forces)
-      if (f.node != -1) check_node(f.node, f.body, at(f.where, "node"), "force '" + f.name + "'");
+    for (PointForce& f : m_.forces) {
+      // A force acts at the set's averaged point, in world or body axes: the set's rotation is not used.
+      if (!f.node_set.empty())
+        f.node = interface_of(f.body, f.node_set, f.where, "node_set", "force '" + f.name + "'", false);
+      else if (f.node != -1)
+        check_node(f.node, f.body, at(f.where, "node"), "force '" + f.name + "'");
+    }
     for (Output& o : m_.outputs) {
+      if (!o.node_set.empty()) {
+        if (o.kind != OutputKind::node_displacement)
+          error(at(o.where, "node_set"),
+                "output '" + o.name + "' is a beam's section resultant; a mesh body's node set has none",
+                "use \"type\": \"node_displacement\" on a node set (its averaged displacement)");
+        o.node = interface_of(o.body, o.node_set, o.where, "node_set", "output '" + o.name + "'", false);
+        continue;
+      }
       if (o.node == -1) continue;
       const Body* b = check_node(o.node, o.body, at(o.where, "node"), "output '" + o.name + "'");
       if (b && o.kind == OutputKind::bending_stress &&
@@ -728,6 +762,14 @@ class Checker {
         if (l.body2 == m_.ground) error(at(l.where, "node2"), "the ground has no nodes", "use \"point2\"");
         check_node(l.node2, l.body2, at(l.where, "node2"), what);
       }
+      // Which sides' frames the loop's equations turn with (kane/loop_constraints.cpp): a spatial
+      // hinge aligns both; a slider's line is the first body's; points alone need no rotation.
+      const bool hinge = l.type == LoopType::revolute && !l.planar;
+      if (!l.node_set.empty())
+        l.node =
+            interface_of(l.body, l.node_set, l.where, "node_set", what, hinge || l.type == LoopType::slider);
+      if (!l.node_set2.empty())
+        l.node2 = interface_of(l.body2, l.node_set2, l.where, "node_set2", what, hinge);
       for (double a : l.axis)
         if (!std::isfinite(a))
           error(at(l.where, "axis"), "number is not finite (" + format(a) + ")", "use a finite value");
@@ -741,6 +783,18 @@ class Checker {
                                           [](const Joint& j) { return j.moves() && !j.is_prescribed(); }))
       error(m_.loops.front().where, "the loops close a mechanism with no free coordinate",
             "make a joint revolute, continuous or prismatic, and not prescribed");
+  }
+
+  /// Craig-Bampton keeps the interfaces as coordinates: a body needs one.
+  void check_interfaces() const {
+    for (const Body& b : m_.bodies)
+      if (b.flexible && b.beam.mesh.craig_bampton && b.beam.mesh.interfaces.empty())
+        error(
+            at(b.beam.mesh.where, "reduction"),
+            "Craig-Bampton reduction of body '" + b.name +
+                "' needs an interface, and nothing is attached to its node sets",
+            "attach a joint with \"parent_node_set\" (or a loop, force or output with \"node_set\"), or use "
+            "\"reduction\": \"modal\"");
   }
 
   void check_moving_mass() const {

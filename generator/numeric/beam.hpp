@@ -76,10 +76,13 @@ Vec<S> interface_translation(const FlexibleData& f, const std::vector<S>& dofs, 
 template <class S>
 Vec<S> interface_rotation(const FlexibleData& f, const std::vector<S>& dofs, int k) {
   const FlexibleData::Interface& in = f.interfaces.at(static_cast<std::size_t>(k));
+  // sum r_i x (u_i - u_0), equal to sum r_i x u_i as sum r_i = 0: a rigid
+  // translation turns the set by exactly 0, not by sum r_i's round-off.
+  const Vec<S> u0 = node_translation(f, dofs, in.nodes.front());
   Vec<S> moment{S(0.0), S(0.0), S(0.0)};
   for (int n : in.nodes) {
     const Vec<double> r = sub(f.nodes[n], in.centroid);
-    moment = add(moment, cross(cast<S>(r), node_translation(f, dofs, n)));
+    moment = add(moment, cross(cast<S>(r), sub(node_translation(f, dofs, n), u0)));
   }
   return mul(in.inverse_A, moment);
 }
@@ -230,12 +233,17 @@ std::vector<Vec<S>> node_shortening(const FlexibleData& f, const std::vector<S>&
   return out;
 }
 
+/// A node of a beam, or an interface of a mesh body (its centroid): where it
+/// is undeformed, link frame.
+inline const Vec<double>& rest_node(const FlexibleData& f, int node) {
+  return f.mesh ? f.interfaces.at(static_cast<std::size_t>(node)).centroid
+                : f.nodes.at(static_cast<std::size_t>(node));
+}
+
 /// A node's displaced position, link frame: undeformed + translation + foreshortening.
 template <class S>
 Vec<S> displaced_node(const FlexibleData& f, const std::vector<S>& dofs, int node) {
-  if (f.mesh)
-    return add(f.interfaces.at(static_cast<std::size_t>(node)).centroid,
-               interface_translation(f, dofs, node));
+  if (f.mesh) return add(rest_node(f, node), interface_translation(f, dofs, node));
   const Vec<S> moved = add(f.nodes[node], node_translation(f, dofs, node));
   return f.shortens() ? add(moved, node_shortening(f, dofs)[node]) : moved;
 }

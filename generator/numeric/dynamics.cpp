@@ -264,7 +264,7 @@ double output_value(const Instance& m, const model::OutputColumn& column, const 
     }
     case model::OutputKind::node_displacement: {
       const FlexibleData& f = *m.bodies[o.body].beam;
-      return sub(displaced_node(f, dofs[o.body], o.node), f.nodes[o.node])[column.component];
+      return sub(displaced_node(f, dofs[o.body], o.node), rest_node(f, o.node))[column.component];
     }
     default:
       break;

@@ -64,9 +64,9 @@ void mesh_data(const model::Body& body, const std::string& file, FlexibleData& d
   d.mesh = true;
   d.planar = false;
   d.dofs_per_node = d.solids.front().dimension();
-  for (const std::string& name : body.beam.mesh.interfaces) {
+  for (const model::MeshInterface& set : body.beam.mesh.interfaces) {
     FlexibleData::Interface in;
-    for (int id : mesh.node_set(name)) in.nodes.push_back(layout.node_of.at(id));
+    for (int id : mesh.node_set(set.node_set)) in.nodes.push_back(layout.node_of.at(id));
     in.centroid = {0, 0, 0};
     for (int n : in.nodes) in.centroid = add(in.centroid, d.nodes[n]);
     in.centroid = scale(in.centroid, 1.0 / static_cast<double>(in.nodes.size()));
@@ -76,11 +76,13 @@ void mesh_data(const model::Body& body, const std::string& file, FlexibleData& d
       const Eigen::Vector3d v(r[0], r[1], r[2]);
       A += v.squaredNorm() * Eigen::Matrix3d::Identity() - v * v.transpose();
     }
+    // A set without a rotation (one node; in space, nodes on one line) keeps
+    // inverse_A zero: only its position may be used (model::MeshInterface).
     in.inverse_A = {};
     if (d.dofs_per_node == 2) {
-      in.inverse_A[8] = 1.0 / A(2, 2);
-    } else {
-      const Eigen::Matrix3d inverse = A.inverse();
+      if (A(2, 2) > 0) in.inverse_A[8] = 1.0 / A(2, 2);
+    } else if (const Eigen::FullPivLU<Eigen::Matrix3d> lu(A); lu.isInvertible()) {
+      const Eigen::Matrix3d inverse = lu.inverse();
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c) in.inverse_A[3 * r + c] = inverse(r, c);
     }

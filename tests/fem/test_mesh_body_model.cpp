@@ -3,8 +3,6 @@
 // elements, clamped on its root node set and reduced to its first modes,
 // against the Euler-Bernoulli beam elements of the same section (an
 // independent element family); and the errors of bad mesh references.
-#include <unistd.h>
-
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
@@ -16,6 +14,7 @@
 
 #include "fem/model_beam.hpp"
 #include "model/load.hpp"
+#include "model_text.hpp"
 
 namespace {
 
@@ -26,21 +25,14 @@ constexpr double kLength = 0.4, kHeight = 0.01, kThickness = 0.002, kE = 2.1e11,
 
 /// A one-body model whose flexible body is `flexible` (JSON), written to a temporary file and loaded.
 model::Model load_with(const std::string& flexible, const std::string& tip_joint = "") {
-  const std::string path =
-      // One file per process: ctest runs this executable's cases in parallel.
-      (std::filesystem::temp_directory_path() /
-       ("kanegen_test_mesh_body_model_" + std::to_string(::getpid()) + ".json"))
-          .string();
   // A rigid body on the bar: in its frame unless tip_joint (its joint's extra keys) says where.
-  std::ofstream(path) << R"({"format": "kanegen-model", "version": 1, "name": "bar", "bodies": [
-    {"name": "bar", "flexible": )"
-                      << flexible << R"(}, {"name": "tip_body", "mass": 0.1}],
+  return kanegen_test::load_model_text(R"({"format": "kanegen-model", "version": 1, "name": "bar", "bodies": [
+    {"name": "bar", "flexible": )" + flexible +
+                                           R"(}, {"name": "tip_body", "mass": 0.1}],
     "joints": [{"name": "j", "type": "revolute", "parent": "ground", "child": "bar"},
-               {"name": "k", "type": "fixed", "parent": "bar", "child": "tip_body")"
-                      << tip_joint << "}]}";
-  model::Model m = model::load_model(path);
-  std::remove(path.c_str());
-  return m;
+               {"name": "k", "type": "fixed", "parent": "bar", "child": "tip_body")" +
+                                           tip_joint + "}]}",
+                                       "mesh_body_model");
 }
 
 std::string mesh_json(const std::string& mesh_extra, const std::string& body_extra = "") {

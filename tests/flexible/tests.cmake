@@ -1,16 +1,18 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 # Flexible links (issue 3) in motion: the spin-up beam with and without
 # geometric stiffening, mesh convergence and modal reduction; energy of free
-# flexible models; bodies carried on beam nodes. Frequencies are in tests/modes.
+# flexible models; bodies carried on beam nodes; a force and a loop on a mesh
+# body's node set at rest (test_mesh_node_sets.cpp). Frequencies are in tests/modes.
 find_package(Eigen3 REQUIRED NO_MODULE)
 foreach(stem flex_tip_mass flex_tip_body flex_tip_mass_linear flex_tip_body_linear spin_up_beam_e5 spin_up_beam_e20
              spin_up_beam_modal free_strip free_strip_linear free_strip_modal spatial_arm2_stiff
-             spatial_arm2_rigid)
+             spatial_arm2_rigid slender_tip_force slender_propped)
   kanegen_add_model(kanegen_test_${stem} ${PROJECT_SOURCE_DIR}/tests/data/models/${stem}.json)
 endforeach()
 add_executable(test_flexible ${CMAKE_CURRENT_LIST_DIR}/test_spin_up.cpp
                              ${CMAKE_CURRENT_LIST_DIR}/test_node_bodies.cpp ${CMAKE_CURRENT_LIST_DIR}/test_energy.cpp
-                             ${CMAKE_CURRENT_LIST_DIR}/test_spatial_nodes.cpp)
+                             ${CMAKE_CURRENT_LIST_DIR}/test_spatial_nodes.cpp
+                             ${CMAKE_CURRENT_LIST_DIR}/test_mesh_node_sets.cpp)
 target_include_directories(test_flexible PRIVATE ${CMAKE_CURRENT_LIST_DIR}/../regression)
 target_compile_options(test_flexible PRIVATE ${KANEGEN_WARNINGS})
 target_link_libraries(test_flexible PRIVATE kanegen_model_spin_up_beam kanegen_model_spin_up_beam_linear
@@ -21,5 +23,6 @@ target_link_libraries(test_flexible PRIVATE kanegen_model_spin_up_beam kanegen_m
                                             kanegen_test_free_strip kanegen_test_free_strip_linear
                                             kanegen_test_free_strip_modal kanegen_test_spatial_arm2_stiff
                                             kanegen_test_spatial_arm2_rigid kanegen_model_spatial_arm2
+                                            kanegen_test_slender_tip_force kanegen_test_slender_propped
                                             kanegen_catch_main Eigen3::Eigen)
 catch_discover_tests(test_flexible TEST_PREFIX "flexible: ")
