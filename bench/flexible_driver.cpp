@@ -3,7 +3,10 @@
 // forward_dynamics. bench/flexible_arm.py compiles it once per --dynamics
 // (recursive, composite), with
 //   -DKANEGEN_FLEX_HEADER="<flexible_arm10.hpp>" -DKANEGEN_FLEX_NAMESPACE=flexible_arm10
-// and compares the runs. It prints one JSON object:
+// and compares the runs; bench/solid_slider_crank.py once per number of modes.
+// A model with loops (System::nc) is timed the same way: its forward_dynamics
+// solves the saddle point [M C^T; C 0] [u_dot; -lambda] = [f; gamma], which
+// the checks below then use in place of M u_dot = f. It prints one JSON object:
 //   {"forward_dynamics_ns": ..., "backward_error": ..., "udot_vs_ldlt": ...,
 //    "condition_of_M": ..., "udot": [...]}
 // the median time per call over a fixed set of states; at those states the
@@ -20,6 +23,7 @@
 #include <cstdlib>
 #include <random>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include KANEGEN_FLEX_HEADER
@@ -29,6 +33,75 @@ namespace {
 namespace model = ::kanegen_models::KANEGEN_FLEX_NAMESPACE;
 using S = model::System;
 constexpr int kStates = 64;
+
+/// The model's loop-closure equations (0 for a tree, whose System has no nc).
+template <class T, class = void>
+struct Loops : std::integral_constant<int, 0> {};
+template <class T>
+struct Loops<T, std::void_t<decltype(T::nc)>> : std::integral_constant<int, T::nc> {};
+constexpr int kNc = Loops<S>::value;
+
+/// Whether speed i is prescribed (q_dot = u: coordinate i is speed i); only models with a prescribed
+/// motion have coordinate_roles.
+template <class T, class = void>
+struct Roles {
+  static bool prescribed(int) { return false; }
+};
+template <class T>
+struct Roles<T, std::void_t<decltype(T::coordinate_roles())>> {
+  static bool prescribed(int i) { return T::coordinate_roles()[i] == 2; }
+};
+
+/// M and f at a state; with loops, the saddle point's matrix [M C^T; C 0] and [f; gamma] (C^T lambda is
+/// the loop force on f, so that the solution is [u_dot; -lambda]). The row of a prescribed speed says
+/// that it takes the acceleration `udot` has there (its motion's; its row of M u_dot = f is the drive).
+/// Returns the condition number of M.
+/// (Templates, so that a tree's System need not have the loop kernels.)
+template <class Sys = S>
+double system(const typename Sys::Params& p, const double* q, const double* u, const double* tau,
+              const double* udot, Eigen::MatrixXd& m, Eigen::VectorXd& f) {
+  std::vector<double> mass(Sys::nu * Sys::nu), forcing(Sys::nu);
+  Sys::mass_matrix(p, q, mass.data());
+  Sys::forcing(p, 0.0, q, u, tau, forcing.data());
+  m = Eigen::MatrixXd::Zero(Sys::nu + kNc, Sys::nu + kNc);
+  f = Eigen::VectorXd::Zero(Sys::nu + kNc);
+  m.topLeftCorner(Sys::nu, Sys::nu) = Eigen::Map<const Eigen::MatrixXd>(mass.data(), Sys::nu, Sys::nu);
+  f.head(Sys::nu) = Eigen::Map<const Eigen::VectorXd>(forcing.data(), Sys::nu);
+  if constexpr (kNc > 0) {
+    std::vector<double> jacobian(kNc * Sys::nu), gamma(kNc);
+    Sys::constraint_jacobian(p, q, jacobian.data());
+    Sys::constraint_bias(p, q, u, gamma.data());
+    const Eigen::Map<const Eigen::Matrix<double, kNc, Sys::nu, Eigen::RowMajor>> c(jacobian.data());
+    m.bottomLeftCorner(kNc, Sys::nu) = c;
+    m.topRightCorner(Sys::nu, kNc) = c.transpose();
+    f.tail(kNc) = Eigen::Map<const Eigen::VectorXd>(gamma.data(), kNc);
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(m.topLeftCorner(Sys::nu, Sys::nu),
+                                                             Eigen::EigenvaluesOnly);
+  for (int i = 0; i < Sys::nu; ++i)
+    if (Roles<Sys>::prescribed(i)) {
+      m.row(i).setZero();
+      m(i, i) = 1;
+      f[i] = udot[i];
+    }
+  return eigen.eigenvalues().maxCoeff() / eigen.eigenvalues().minCoeff();
+}
+
+/// The solution [u_dot; -lambda] of the system at state k, from the model's own kernels.
+template <class Sys = S>
+Eigen::VectorXd solution(const typename Sys::Params& p, const double* q, const double* u, const double* tau,
+                         double* udot) {
+  Eigen::VectorXd x(Sys::nu + kNc);
+  if constexpr (kNc > 0) {
+    double lambda[kNc > 0 ? kNc : 1];
+    if (Sys::constrained_dynamics(p, 0.0, q, u, tau, udot, lambda) != 0) return {};
+    for (int i = 0; i < kNc; ++i) x[Sys::nu + i] = -lambda[i];
+  } else if (Sys::forward_dynamics(p, 0.0, q, u, tau, udot) != 0) {
+    return {};
+  }
+  x.head(Sys::nu) = Eigen::Map<const Eigen::VectorXd>(udot, Sys::nu);
+  return x;
+}
 
 [[noreturn]] void die(const std::string& msg) {
   std::fprintf(stderr, "flexible_driver: %s\n", msg.c_str());
@@ -61,38 +134,36 @@ int main() {
   // order of the arm's deflections (modal amplitudes).
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  const int joints = S::ntau;  // one input per joint coordinate, none for the elastic ones
   std::vector<double> q(kStates * S::nq), u(kStates * S::nu), udot(kStates * S::nu), tau(S::ntau, 0.0);
   for (int k = 0; k < kStates; ++k)
     for (int i = 0; i < S::nq; ++i) {
-      const double scale = i < joints ? 1.5 : 1e-3;
+      const bool joint = model::coordinate_joints[i][0] != '\0';  // "" for an elastic coordinate
+      const double scale = joint ? 1.5 : 1e-3;
       q[k * S::nq + i] = scale * unit(rng);
       u[k * S::nu + i] = 2 * scale * unit(rng);
     }
   S::Params p{};
 
   // The backward error of u_dot, |M u_dot - f| / (|M| |u_dot| + |f|) (max
-  // norms): M of the flexible arm is ill-conditioned (stiff modes beside
-  // the joints), so the forward difference from an LDL^T of M is reported,
-  // not checked.
+  // norms; with loops, of the saddle point): M of the flexible arm is
+  // ill-conditioned (stiff modes beside the joints), so the forward
+  // difference from a dense solve (LDL^T of M, LU of a saddle point) is
+  // reported, not checked.
   double backward = 0, forward = 0, condition = 0;
-  std::vector<double> mass(S::nu * S::nu), forcing(S::nu);
   for (int k = 0; k < kStates; ++k) {
     const double* qk = &q[k * S::nq];
     const double* uk = &u[k * S::nu];
-    if (S::forward_dynamics(p, 0.0, qk, uk, tau.data(), &udot[k * S::nu]) != 0)
-      die("forward_dynamics failed at state " + std::to_string(k));
-    S::mass_matrix(p, qk, mass.data());
-    S::forcing(p, 0.0, qk, uk, tau.data(), forcing.data());
-    const Eigen::Map<const Eigen::MatrixXd> m(mass.data(), S::nu, S::nu);
-    const Eigen::Map<const Eigen::VectorXd> f(forcing.data(), S::nu), a(&udot[k * S::nu], S::nu);
+    const Eigen::VectorXd a = solution(p, qk, uk, tau.data(), &udot[k * S::nu]);
+    if (a.size() == 0) die("forward_dynamics failed at state " + std::to_string(k));
+    Eigen::MatrixXd m;
+    Eigen::VectorXd f;
+    condition = std::max(condition, system(p, qk, uk, tau.data(), &udot[k * S::nu], m, f));
     const double scale =
         m.cwiseAbs().rowwise().sum().maxCoeff() * a.cwiseAbs().maxCoeff() + f.cwiseAbs().maxCoeff();
     backward = std::max(backward, (m * a - f).cwiseAbs().maxCoeff() / scale);
-    const Eigen::VectorXd reference = m.ldlt().solve(f);
-    forward = std::max(forward, (a - reference).cwiseAbs().maxCoeff() / reference.cwiseAbs().maxCoeff());
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(m, Eigen::EigenvaluesOnly);
-    condition = std::max(condition, eigen.eigenvalues().maxCoeff() / eigen.eigenvalues().minCoeff());
+    const Eigen::VectorXd reference = kNc > 0 ? Eigen::VectorXd(m.fullPivLu().solve(f)) : m.ldlt().solve(f);
+    forward = std::max(forward, (a - reference).head(S::nu).cwiseAbs().maxCoeff() /
+                                    reference.head(S::nu).cwiseAbs().maxCoeff());
   }
   if (!(backward < 1e-12)) {
     char text[64];

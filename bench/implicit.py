@@ -51,7 +51,7 @@ def build_runner(kanegen, model):
     if match:
         return os.path.join(match.group(1), "runner")
     # Built before: kanegen said nothing. The newest cached runner of this model with Jacobians.
-    name = os.path.splitext(model)[0]
+    name = os.path.splitext(os.path.basename(model))[0]
     found = [os.path.join(d.path, "runner") for d in os.scandir(CACHE) if
              os.path.exists(os.path.join(d.path, "runner")) and os.path.exists(os.path.join(d.path, name + ".hpp"))
              and "forcing_jacobian(" in open(os.path.join(d.path, name + ".hpp")).read()]

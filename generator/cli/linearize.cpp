@@ -26,12 +26,15 @@ class Rows {
       : runner_(runner), point_(point), options_(options) {}
 
   Eigen::VectorXd residual(const std::vector<double>& q, const std::vector<double>& u,
-                           Eigen::MatrixXd* mass = nullptr) {
+                           Eigen::MatrixXd* mass = nullptr, Eigen::MatrixXd* loops = nullptr) {
     const json reply = batch_request(runner_, json{{"t", point_.t}, {"q", q}, {"u", u}, {"p", point_.p}});
     const json& M = reply.at("mass_matrix");
     const json& f = reply.at("forcing");
     const std::vector<int>& s = options_.selected;
-    const int n = static_cast<int>(s.size()), nu = static_cast<int>(f.size());
+    const std::vector<double>& lambda = options_.loop_forces;
+    const int n = static_cast<int>(s.size()), nu = static_cast<int>(f.size()),
+              nc = static_cast<int>(lambda.size());
+    const json& C = nc > 0 ? reply.at("constraint_jacobian") : reply;
     Eigen::VectorXd r(n);
     for (int i = 0; i < n; ++i) {
       double value = finite(f[s[i]], "forcing");
@@ -40,7 +43,13 @@ class Rows {
         if (a != 0.0 && !std::binary_search(s.begin(), s.end(), o))
           value -= finite(M[s[i]][o], "mass matrix") * a;
       }
+      for (int k = 0; k < nc; ++k) value += finite(C[k][s[i]], "constraint jacobian") * lambda[k];
       r[i] = value;
+    }
+    if (loops) {
+      loops->resize(nc, n);
+      for (int k = 0; k < nc; ++k)
+        for (int j = 0; j < n; ++j) (*loops)(k, j) = finite(C[k][s[j]], "constraint jacobian");
     }
     if (mass) {
       mass->resize(n, n);
@@ -91,7 +100,7 @@ Linearization linearize(RunnerProcess& runner, const OperatingPoint& point, cons
     throw std::logic_error("linearize: one given acceleration per speed is needed");
   Rows rows(runner, point, options);
   Linearization out;
-  out.forcing = rows.residual(point.q, point.u, &out.mass);
+  out.forcing = rows.residual(point.q, point.u, &out.mass, &out.loops);
   out.stiffness = derivative(rows, point, options, false);
   if (options.velocity) out.velocity = derivative(rows, point, options, true);
   return out;

@@ -7,7 +7,9 @@
 // prescribed one for a prescribed joint), so the selected rows read
 //   M_ss u_dot_s = r(q, u),  r = f_s - M_s,o a_o,
 // and, about the state, M_ss dq_s'' + C dq_s' + K dq_s = r(state) with
-// K = -dr/dq_s and C = -dr/du_s.
+// K = -dr/dq_s and C = -dr/du_s. With loops, r also holds the loop forces
+// C^T lambda of given multipliers lambda (held at their value), so that K
+// has their geometric stiffness, and the loops' Jacobian is returned.
 #pragma once
 
 #include <Eigen/Dense>
@@ -28,6 +30,7 @@ struct LinearizeOptions {
   std::vector<double> other_accelerations;  ///< per speed: the given u_dot of an unselected speed
   bool velocity = false;                    ///< also C (2 n more evaluations)
   double step = 1e-6;                       ///< relative step: h_j = step * max(1, |x_j|)
+  std::vector<double> loop_forces;          ///< lambda of the loops (empty: none), M u_dot = f + C^T lambda
 };
 
 struct Linearization {
@@ -35,6 +38,7 @@ struct Linearization {
   Eigen::MatrixXd stiffness;  ///< K = -dr/dq_s, as computed (not symmetrised)
   Eigen::MatrixXd velocity;   ///< C = -dr/du_s (empty unless asked for)
   Eigen::VectorXd forcing;    ///< r at the state
+  Eigen::MatrixXd loops;  ///< the loops' Jacobian C in the selected speeds' columns (nc x n; 0 rows: none)
 };
 
 /// Throws std::runtime_error if the runner fails or gives a non-finite value.

@@ -446,7 +446,9 @@ void add_modes(CLI::App& app, ModesCommand& c) {
       "eigen-coordinates are the elastic coordinates of the flexible bodies; free joints are held at\n"
       "their initial state (with --free-joints, or in a model without flexible bodies, their coordinates\n"
       "join in); prescribed joints move as prescribed, so a hub spinning at a constant rate gives the\n"
-      "rotating-beam frequencies. Mode shapes are mass-normalised, largest entry positive. Exit status 1\n"
+      "rotating-beam frequencies. With loops, the motions that keep them closed (C dq = 0), with the\n"
+      "stiffness of the loop forces at the state. Mode shapes are mass-normalised, largest entry\n"
+      "positive. Exit status 1\n"
       "if a mode is unstable (omega^2 < 0; the JSON marks it \"stable\": false). See docs/modes.md.");
   kanegen::cli::ModesOptions& o = c.options;
   modes->add_option("--set", o.sets, "parameter value NAME=VALUE (repeatable)");

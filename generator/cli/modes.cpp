@@ -192,11 +192,11 @@ Problem set_up(const model::Model& model, const json& info, const ModesOptions& 
 /// The first `shown` modes as JSON; `first_unstable`: the index of the first mode with omega^2 < 0, or -1.
 ordered_json modes_json(const fem::ModalBasis& basis, const std::vector<std::string>& names, int shown,
                         int& first_unstable) {
-  const int n = static_cast<int>(names.size());
+  const int n = static_cast<int>(names.size()), count = static_cast<int>(basis.eigenvalues.size());
   const double scale = basis.eigenvalues.cwiseAbs().maxCoeff();
   ordered_json modes = ordered_json::array();
   first_unstable = -1;
-  for (int i = 0; i < n; ++i) {
+  for (int i = 0; i < count; ++i) {
     double lambda = basis.eigenvalues[i];
     if (std::abs(lambda) <= kZeroEigenvalue * scale) lambda = 0.0;
     const bool stable = lambda >= 0.0;
@@ -262,16 +262,45 @@ int find_elastic_equilibrium(RunnerProcess& process, Problem& pb, const std::vec
                            "loads may be past buckling); the modes need the prestressed equilibrium");
 }
 
+/// The modes on the loops' tangent space: the motions dq = N z of the
+/// eigen-coordinates with C dq = 0 (N an orthonormal basis of C's null
+/// space), K phi = omega^2 M phi reduced to N^T K N z = omega^2 N^T M N z,
+/// the shapes N z (mass-normalised, largest entry positive).
+fem::ModalBasis modes_on_loops(const Eigen::MatrixXd& M, const Eigen::MatrixXd& K, const Eigen::MatrixXd& C,
+                               const std::string& file) {
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(C, Eigen::ComputeFullV);
+  const Eigen::VectorXd& sigma = svd.singularValues();
+  int rank = 0;
+  while (rank < sigma.size() && sigma[rank] > 1e-10 * sigma[0]) ++rank;
+  const Eigen::Index n = C.cols();
+  if (rank == n)
+    throw std::runtime_error(
+        file +
+        ": the loops leave the eigen-coordinates no motion at the initial state (the "
+        "mechanism is driven or held rigid): free its joints (--free-joints), or compute "
+        "the modes of the open tree (remove \"loops\")");
+  const Eigen::MatrixXd N = svd.matrixV().rightCols(n - rank);
+  fem::ModalBasis basis = fem::modal_analysis(N.transpose() * M * N, N.transpose() * K * N);
+  basis.shapes = N * basis.shapes;
+  for (Eigen::Index j = 0; j < basis.shapes.cols(); ++j) {
+    Eigen::Index largest = 0;
+    basis.shapes.col(j).cwiseAbs().maxCoeff(&largest);
+    if (basis.shapes(largest, j) < 0) basis.shapes.col(j) *= -1.0;
+  }
+  return basis;
+}
+
 }  // namespace
 
 int modes(const ModesOptions& options) {
   const model::Model model = model::load_model(options.model, options.build.load);
-  // Linearising on the constraint manifold needs the tangent space of the
-  // loops; the tree's M and K alone would give the modes of the cut mechanism.
-  if (!model.loops.empty())
-    throw model::ModelError(model.source_file, model.loops.front().where,
-                            "kanegen modes does not support closed loops yet",
-                            "compute the modes of the open tree (remove \"loops\"), or simulate the linkage");
+  // The elastic equilibrium moves the elastic coordinates alone, which would leave the loops open.
+  if (!model.loops.empty() && stiffens_by_strain(model))
+    throw model::ModelError(
+        model.source_file, model.loops.front().where,
+        "kanegen modes does not take closed loops with a nodal beam's geometric stiffening",
+        "set \"geometric_stiffening\": false on the beams in the loops, use modes, or "
+        "compute the modes of the open tree (remove \"loops\")");
   const std::string runner = build_runner(options.model, options.build);
   const json info = runner_info(runner);
   Problem pb = set_up(model, info, options);
@@ -286,6 +315,17 @@ int modes(const ModesOptions& options) {
     RunnerProcess process(runner, {"batch"});
     if (stiffens_by_strain(model))
       equilibrium_iterations = find_elastic_equilibrium(process, pb, elastic, model.source_file);
+    if (!model.loops.empty()) {
+      // The loop forces of the model's own constrained dynamics at the state, held at their value: their
+      // geometric stiffness enters K (a load carried through a loop stiffens or softens it).
+      const json reply = batch_request(
+          process, json{{"t", pb.point.t}, {"q", pb.point.q}, {"u", pb.point.u}, {"p", pb.point.p}});
+      if (!reply.at("lambda").is_array())
+        throw std::runtime_error(model.source_file +
+                                 ": the loops are singular at the initial state (no loop forces); choose a "
+                                 "state where they are independent");
+      pb.linearize.loop_forces = reply.at("lambda").get<std::vector<double>>();
+    }
     lz = linearize(process, pb.point, pb.linearize);
     if (process.finish() != 0) throw std::runtime_error(runner + " batch failed");
   }
@@ -295,11 +335,12 @@ int modes(const ModesOptions& options) {
   const double k_norm = K.norm();
   const double asymmetry =
       k_norm > 0 ? (lz.stiffness - lz.stiffness.transpose()).norm() / (2.0 * k_norm) : 0.0;
-  const fem::ModalBasis basis = fem::modal_analysis(M, K);
-  const int n = static_cast<int>(pb.names.size());
+  const fem::ModalBasis basis =
+      lz.loops.rows() > 0 ? modes_on_loops(M, K, lz.loops, model.source_file) : fem::modal_analysis(M, K);
+  const int n = static_cast<int>(pb.names.size()), count = static_cast<int>(basis.eigenvalues.size());
   int first_unstable = -1;
   const ordered_json modes =
-      modes_json(basis, pb.names, options.count > 0 ? std::min(options.count, n) : n, first_unstable);
+      modes_json(basis, pb.names, options.count > 0 ? std::min(options.count, count) : count, first_unstable);
 
   ordered_json out{{"model", info.at("name").get<std::string>()}, {"time", pb.point.t}};
   ordered_json params = ordered_json::object();
@@ -315,6 +356,7 @@ int modes(const ModesOptions& options) {
   }
   out["held"] = pb.held;
   out["prescribed"] = pb.prescribed;
+  if (!model.loops.empty()) out["loop_forces"] = pb.linearize.loop_forces;
   out["stable"] = first_unstable < 0;
   out["stiffness_asymmetry"] = asymmetry;
   out["modes"] = modes;

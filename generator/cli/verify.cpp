@@ -410,6 +410,11 @@ class Comparison {
     }
     for (std::size_t i = 0; i < samples_.size(); ++i) {
       const std::vector<double> b = reference(samples_[i]), local = size(samples_[i]);
+      if (local.size() != b.size() || generated(samples_[i]).size() != b.size())
+        throw std::runtime_error("verify: " + quantity + " at sample " + std::to_string(i) + " has " +
+                                 std::to_string(generated(samples_[i]).size()) + " generated entries, " +
+                                 std::to_string(b.size()) + " numeric and " + std::to_string(local.size()) +
+                                 " magnitudes (a bug: please report it with the model)");
       std::vector<double> scales(b.size());
       for (std::size_t k = 0; k < b.size(); ++k) {
         scales[k] = scale(std::max(local[k], std::abs(b[k])), run[k], all);
@@ -729,6 +734,8 @@ void add_loop_rows(const Comparison& c, const Link& link, std::vector<Row>& rows
       },
       c.constraint_name(), false,
       [rtol](const Sample& s) {
+        // No numeric lambda (its saddle-point solve failed): NaN, as the reference.
+        if (s.reference.lambda.empty()) return std::vector<double>(s.reference.phi.size(), std::nan(""));
         std::vector<double> size = s.reference.lambda;
         const double allowance = std::max(1.0, saddle_condition(s.reference) * kRoundoff / rtol);
         for (double& v : size) v = std::abs(v) * allowance;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "fem/craig_bampton.hpp"
 
+#include <cmath>
 #include <set>
 #include <stdexcept>
 
@@ -70,9 +71,13 @@ CraigBamptonBasis craig_bampton(const Body& body, const Constraint& held,
   out.constraint_modes = columns;
   out.omega = modes.omega;
   out.basis.resize(n, columns + k);
+  // Each constraint mode scaled to unit modal mass, as the fixed-interface modes are: a small bore's
+  // unit rotation moves little mass, and unscaled its coordinate's inertia would be 1e-6 of the others'.
+  const Eigen::MatrixXd M = body.mass();
   int at = 0;
   for (const Eigen::MatrixXd& p : psi) {
-    out.basis.middleCols(at, p.cols()) = p;
+    for (Eigen::Index j = 0; j < p.cols(); ++j)
+      out.basis.col(at + j) = p.col(j) / std::sqrt(p.col(j).dot(M * p.col(j)));
     at += static_cast<int>(p.cols());
   }
   out.basis.rightCols(k) = fixed_interface.expand(modes.shapes);

@@ -7,6 +7,7 @@
 file(GLOB KANEGEN_FEM_TEST_SOURCES CONFIGURE_DEPENDS ${CMAKE_CURRENT_LIST_DIR}/*.cpp)
 add_executable(test_fem ${KANEGEN_FEM_TEST_SOURCES})
 target_compile_options(test_fem PRIVATE ${KANEGEN_WARNINGS})
-target_compile_definitions(test_fem PRIVATE KANEGEN_FEM_DATA_DIR="${CMAKE_CURRENT_LIST_DIR}/data")
+target_compile_definitions(test_fem PRIVATE KANEGEN_FEM_DATA_DIR="${CMAKE_CURRENT_LIST_DIR}/data"
+                                            KANEGEN_MODELS_DIR="${PROJECT_SOURCE_DIR}/models")
 target_link_libraries(test_fem PRIVATE kanegen_fem kanegen_catch_main)
 catch_discover_tests(test_fem TEST_PREFIX "fem: ")

@@ -13,7 +13,8 @@ add_executable(test_loops ${CMAKE_CURRENT_LIST_DIR}/test_loops.cpp
                           ${CMAKE_CURRENT_LIST_DIR}/test_loop_kernels.cpp
                           ${CMAKE_CURRENT_LIST_DIR}/test_references.cpp
                           ${CMAKE_CURRENT_LIST_DIR}/test_spatial_loops.cpp
-                          ${CMAKE_CURRENT_LIST_DIR}/test_saddle_solve.cpp)
+                          ${CMAKE_CURRENT_LIST_DIR}/test_saddle_solve.cpp
+                          ${CMAKE_CURRENT_LIST_DIR}/test_solid_slider_crank.cpp)
 target_include_directories(test_loops PRIVATE ${CMAKE_CURRENT_LIST_DIR}/../regression ${PROJECT_SOURCE_DIR}/templates)
 target_compile_options(test_loops PRIVATE ${KANEGEN_WARNINGS})
 target_link_libraries(test_loops PRIVATE kanegen_model_four_bar kanegen_model_slider_crank kanegen_model_nfourbar2
@@ -21,7 +22,7 @@ target_link_libraries(test_loops PRIVATE kanegen_model_four_bar kanegen_model_sl
                                          kanegen_test_slider_crank_free kanegen_test_rsur_spherical
                                          kanegen_test_rsur_revolute kanegen_test_ring_slider kanegen_test_quick_return
                                          kanegen_test_ring_slider_flexible kanegen_model_nfourbar40
-                                         kanegen_model_spatial_slider_crank
+                                         kanegen_model_spatial_slider_crank kanegen_model_solid_slider_crank
                                          kanegen_runtime kanegen_catch_main)
 catch_discover_tests(test_loops TEST_PREFIX "loops: ")
 

@@ -2,8 +2,9 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 """Writes the CalculiX references of the plane and solid elements (tests/fem/data).
 
-Four meshes of steel cantilevers, each run clamped at its root (node set ROOT)
-and free-free, with CalculiX's *FREQUENCY on the same mesh and element type:
+Four meshes of steel cantilevers and a shipped solid connecting rod, each run
+clamped at its root (node set ROOT; the rod: BIG_END) and free-free, with
+CalculiX's *FREQUENCY on the same mesh and element type:
 
   plate_cps4   plane-stress plate 0.3 x 0.05 m, t 4 mm, 24 x 4 CPS4
   plate_cps8   the same plate, 12 x 2 CPS8
@@ -12,9 +13,15 @@ and free-free, with CalculiX's *FREQUENCY on the same mesh and element type:
   bar_c3d20    the same bar, 8 x 2 x 1 C3D20 (records continued over two lines);
                bar_c3d20_gmsh.inp is Gmsh's mesh of it (bar_c3d20_gmsh.geo), only
                meshed: the test checks it against bar_c3d20's reference
+  solid_slider_crank
+               the connecting rod of models/solid_slider_crank.json, 28 C3D20
+               meshed by Gmsh from models/solid_slider_crank.geo (the shipped
+               mesh, read as it is), Simeon's steel (E 2e11, nu 0.3, rho 7870),
+               clamped at its big-end bore (node set BIG_END)
 
-For each mesh this writes NAME.inp (the mesh; Gmsh's own output for bar_c3d8)
-and NAME_ccx.txt: parameters as "# key value" lines, then
+For each mesh this writes NAME.inp (the mesh; Gmsh's own output for bar_c3d8;
+not for a shipped mesh, which it only reads) and NAME_ccx.txt: parameters as
+"# key value" lines, then
 "support mode omega_rad_s frequency_hz" for support clamped (modes 1-12) and
 free (the first 12 elastic modes: 4-15 of a plate, whose 1-3 are its rigid
 motions in its plane, 7-18 of a bar).
@@ -35,6 +42,7 @@ import sys
 import tempfile
 
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data")
+MODELS_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "models")
 
 MATERIAL = {"E": 2.1e11, "nu": 0.3, "rho": 7850.0}
 PLATE = {"L": 0.3, "H": 0.05, "t": 0.004}
@@ -51,6 +59,9 @@ MODELS = {
     "plate_cps8": {"type": "CPS8", "divisions": (12, 2)},
     "bar_c3d8": {"type": "C3D8", "gmsh": []},
     "bar_c3d20": {"type": "C3D20", "divisions": (8, 2, 1)},
+    # A shipped mesh: read from models/, clamped at its own node set, in its model's material.
+    "solid_slider_crank": {"type": "C3D20", "shipped": True, "clamp": "BIG_END",
+                           "material": {"E": 2.0e11, "nu": 0.3, "rho": 7870.0}},
 }
 
 # Natural coordinates of the nodes, CalculiX order (as generator/fem/continuum_element.cpp).
@@ -125,15 +136,15 @@ def mesh_for_ccx(path, etype):
     return "".join(out)
 
 
-def run_ccx(ccx, mesh_text, etype, clamped):
+def run_ccx(ccx, mesh_text, etype, clamped, material=MATERIAL, clamp="ROOT"):
     plane = etype.startswith("CPS")
     deck = [mesh_text, "*MATERIAL, NAME=STEEL\n*ELASTIC\n",
-            f"{MATERIAL['E']:.12g}, {MATERIAL['nu']:.12g}\n*DENSITY\n{MATERIAL['rho']:.12g}\n",
+            f"{material['E']:.12g}, {material['nu']:.12g}\n*DENSITY\n{material['rho']:.12g}\n",
             "*SOLID SECTION, ELSET=EBODY, MATERIAL=STEEL\n"]
     if plane:
         deck.append(f"{PLATE['t']:.12g}\n")
     if clamped:
-        deck.append(f"*BOUNDARY\nROOT, 1, {2 if plane else 3}\n")
+        deck.append(f"*BOUNDARY\n{clamp}, 1, {2 if plane else 3}\n")
     rigid = 0 if clamped else (3 if plane else 6)  # a free plane body moves rigidly in its plane only
     deck.append(f"*STEP\n*FREQUENCY\n{MODES + rigid}\n*END STEP\n")
     with tempfile.TemporaryDirectory() as work:
@@ -174,17 +185,20 @@ def main():
     for name, options in GMSH_ONLY.items():
         gmsh_mesh(args.gmsh, name, options)
     for name, model in MODELS.items():
-        inp = os.path.join(DATA, name + ".inp")
+        inp = os.path.join(MODELS_DIR if model.get("shipped") else DATA, name + ".inp")
+        material, clamp = model.get("material", MATERIAL), model.get("clamp", "ROOT")
         if "gmsh" in model:
             gmsh_mesh(args.gmsh, name, model["gmsh"])
-        else:
+        elif not model.get("shipped"):
             write_structured(inp, name, model)
         mesh = mesh_for_ccx(inp, model["type"])
-        results = {s: run_ccx(args.ccx, mesh, model["type"], s == "clamped") for s in ("clamped", "free")}
+        results = {s: run_ccx(args.ccx, mesh, model["type"], s == "clamped", material, clamp)
+                   for s in ("clamped", "free")}
         with open(os.path.join(DATA, name + "_ccx.txt"), "w") as f:
-            f.write(f"# CalculiX {version} ({model['type']}, *FREQUENCY), mesh {name}.inp, "
-                    "by tests/fem/ccx/make_solid_reference.py\n")
-            f.write(f"# E {MATERIAL['E']:.12g}\n# nu {MATERIAL['nu']:.12g}\n# rho {MATERIAL['rho']:.12g}\n")
+            where = "models/" if model.get("shipped") else ""
+            f.write(f"# CalculiX {version} ({model['type']}, *FREQUENCY), mesh {where}{name}.inp"
+                    f"{', clamped at ' + clamp if clamp != 'ROOT' else ''}, by tests/fem/ccx/make_solid_reference.py\n")
+            f.write(f"# E {material['E']:.12g}\n# nu {material['nu']:.12g}\n# rho {material['rho']:.12g}\n")
             if model["type"].startswith("CPS"):
                 f.write(f"# thickness {PLATE['t']:.12g}\n")
             f.write("# support mode omega_rad_s frequency_hz\n")
