@@ -17,6 +17,7 @@ spatial chains of N links from scripts/make_chain_urdf.py, and for each
     bench/scaling.py [--sizes 7,20,50,100] [--sympy 7] [--kanegen build/generator/kanegen]
                      [--out DIR] [--reps 3] [--plot FIG.png] [--dynamics auto]
                      [--split-threshold N]
+    bench/scaling.py --from-json DIR/scaling.json [--plot FIG.png]
 
 Writes DIR/scaling.json and prints a markdown table; --plot draws operation
 counts and the time ratio against N with gnuplot. A benchmark, not a test:
@@ -136,19 +137,20 @@ def plot(rows, path):
     with open(data, "w") as f:
         for r in rows:
             f.write("%d %d %g\n" % (r["links"], r["operations"].get("chosen", 0), r["ratio_to_mj_forward"]))
-    script = """set terminal pngcairo size 900,420 font ',10'
+    script = """set terminal pngcairo size 900,420 font ',10' noenhanced
 set output '%s'
 set multiplot layout 1,2
 set xlabel 'links N'
+set xrange [5:150]
 set ylabel 'operations in forward_dynamics'
 set logscale xy
 set key top left
-plot '%s' using 1:2 with linespoints title 'kanegen', '' using 1:(200*$1) with lines dashtype 2 title '200 N'
+plot '%s' using 1:2 with linespoints title 'kanegen', '' using 1:(500*$1) with lines dashtype 2 title '500 N'
 unset logscale y
 set logscale x
 set ylabel 'time / mj_forward'
 set yrange [0:*]
-plot '%s' using 1:3 with linespoints title 'forward\\_dynamics / mj\\_forward'
+plot '%s' using 1:3 with linespoints title 'forward_dynamics / mj_forward'
 unset multiplot
 """ % (path, data, data)
     subprocess.run(["gnuplot"], input=script, text=True, check=True)
@@ -168,7 +170,13 @@ def main():
     parser.add_argument("--out", default=os.path.join(ROOT, "build", "bench_scaling"))
     parser.add_argument("--reps", type=int, default=3, help="generation runs per size; the fastest counts")
     parser.add_argument("--plot", help="write a PNG of operations and time ratio against N")
+    parser.add_argument("--from-json", metavar="FILE",
+                        help="measure nothing: print the tables (and --plot) of an earlier run's scaling.json")
     args = parser.parse_args()
+    if args.from_json:
+        with open(args.from_json) as f:
+            report(json.load(f), args.plot)
+        return
     if not os.access(args.kanegen, os.X_OK):
         sys.exit("bench/scaling.py: no kanegen at %s (build it, or pass --kanegen)" % args.kanegen)
     os.makedirs(args.out, exist_ok=True)
@@ -181,8 +189,13 @@ def main():
     result = {"machine": {"cores": os.cpu_count(), "load": os.getloadavg()}, "chains": rows, "sympy": peers}
     with open(os.path.join(args.out, "scaling.json"), "w") as f:
         json.dump(result, f, indent=2)
+    report(result, args.plot)
 
-    print("machine: %d cores, load %.1f %.1f %.1f" % ((os.cpu_count(),) + os.getloadavg()))
+
+def report(result, plot_path):
+    """The markdown tables of a run's result, and its plot if asked for."""
+    rows, peers = result["chains"], result["sympy"]
+    print("machine: %d cores, load %.1f %.1f %.1f" % ((result["machine"]["cores"],) + tuple(result["machine"]["load"])))
     print()
     print("| links | method | operations (chosen; recursive / composite) | generation [s] | source [MB] |"
           " compile -O2 CPU [s] | compile -O2 wall [s] | forward_dynamics [us] | mj_forward [us] | ratio |")
@@ -201,9 +214,9 @@ def main():
         for p in peers:
             sympy_time = "%.1f" % p["seconds"] if p.get("seconds") is not None else p.get("note", "-")
             print("| %d | %s | %.2f |" % (p["links"], sympy_time, p.get("kanegen_generation_s", float("nan"))))
-    if args.plot:
-        plot(rows, args.plot)
-        print("\nwrote %s" % args.plot)
+    if plot_path:
+        plot(rows, plot_path)
+        print("\nwrote %s" % plot_path)
 
 
 if __name__ == "__main__":
