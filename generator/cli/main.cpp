@@ -206,8 +206,10 @@ int run_generate(const GenerateCommand& c) {
   }();
   kanegen::codegen::write_files_atomically(c.out_dir, g.files);
   if (!c.run.quiet) {
-    std::printf("%s: %d coordinates, %zu intermediates; load %.3f s, derive %.3f s, emit %.3f s",
-                g.name.c_str(), g.nq, g.intermediates, g.seconds.load, g.seconds.derive, g.seconds.emit);
+    std::printf(
+        "%s: %d coordinates, %zu intermediates; load %.3f s, derive %.3f s, choose %.3f s, emit %.3f s",
+        g.name.c_str(), g.nq, g.intermediates, g.seconds.load, g.seconds.derive, g.seconds.choose,
+        g.seconds.emit);
     if (c.jacobians || c.controller)
       std::printf(", emit with %s %.3f s", c.controller ? "controller kernels" : "jacobians",
                   g.seconds.jacobians);

@@ -74,12 +74,14 @@ int ExpressionGraph::intern(Node node) {
   key = mix(key, model::fnv1a(node.name));
   for (int a : node.args) key = mix(key, nodes_[a].key);
   node.key = key;
-  std::vector<int>& candidates = index_[key];
-  for (int id : candidates)
-    if (same(nodes_[id], node)) return id;
+  auto [first, inserted] = first_with_key_.try_emplace(key, -1);
+  if (!inserted)
+    for (int id = first->second; id >= 0; id = next_with_key_[id])
+      if (same(nodes_[id], node)) return id;
   nodes_.push_back(std::move(node));
   const int id = static_cast<int>(nodes_.size()) - 1;
-  candidates.push_back(id);
+  next_with_key_.push_back(first->second);
+  first->second = id;
   return id;
 }
 
@@ -99,14 +101,12 @@ ExpressionGraph::Term ExpressionGraph::split_coefficient(int id) {
   if (n.op == Op::number) return {n.value, -1};
   if (n.op != Op::mul) return {1.0, id};
   double coefficient = 1.0;
+  for (int a : n.args)
+    if (nodes_[a].op == Op::number) coefficient *= nodes_[a].value;
+  if (coefficient == 1.0) return {1.0, id};  // the common case: no copy of the factors
   std::vector<int> rest;
-  for (int a : n.args) {
-    if (nodes_[a].op == Op::number)
-      coefficient *= nodes_[a].value;
-    else
-      rest.push_back(a);
-  }
-  if (coefficient == 1.0) return {1.0, id};
+  for (int a : n.args)
+    if (nodes_[a].op != Op::number) rest.push_back(a);
   if (rest.size() == 1) return {coefficient, rest[0]};
   Node base;
   base.op = Op::mul;

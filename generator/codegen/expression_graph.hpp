@@ -14,6 +14,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "symbolic/ex_hash.hpp"
 #include "symbolic/program.hpp"
 #include "symbolic/variables.hpp"
 
@@ -23,10 +24,10 @@ enum class Op { number, input, add, mul, power, sin, cos, tan, exp, log, sqrt, a
 
 struct Node {
   Op op = Op::number;
-  double value = 0.0;      ///< number: its value; power: the exponent
-  std::string name;        ///< input: C++ text ("q[0]", "p.m1")
-  std::vector<int> args;   ///< operands, in canonical order
-  std::uint64_t key = 0;   ///< structural hash, independent of GiNaC's order
+  double value = 0.0;     ///< number: its value; power: the exponent
+  std::string name;       ///< input: C++ text ("q[0]", "p.m1")
+  std::vector<int> args;  ///< operands, in canonical order
+  std::uint64_t key = 0;  ///< structural hash, independent of GiNaC's order
 };
 
 class ExpressionGraph {
@@ -71,12 +72,15 @@ class ExpressionGraph {
   const symbolic::Variables& vars_;
   const symbolic::Program& program_;
   std::vector<Node> nodes_;
-  // Hash-consing on the structural key (ids with that key; equal keys are
-  // told apart by same()), and the GiNaC expressions already converted, on
-  // GiNaC's hash: both O(1) where ordered maps on deep compares grew with the
-  // model. Neither is iterated, so their order never reaches the output.
-  std::unordered_map<std::uint64_t, std::vector<int>> index_;
-  std::unordered_map<GiNaC::ex, int, std::hash<GiNaC::ex>, GiNaC::ex_is_equal> converted_;
+  // Hash-consing on the structural key: the newest node with a key, and for
+  // each node the previous one with its key (equal keys are told apart by
+  // same()); a list threaded through a vector, not a vector per key, which
+  // cost an allocation per node. The GiNaC expressions already converted are
+  // keyed on GiNaC's hash. Both O(1) where ordered maps on deep compares grew
+  // with the model. Neither is iterated, so their order never reaches the output.
+  std::unordered_map<std::uint64_t, int> first_with_key_;
+  std::vector<int> next_with_key_;
+  std::unordered_map<GiNaC::ex, int, symbolic::StoredExHash, GiNaC::ex_is_equal> converted_;
 };
 
 }  // namespace kanegen::codegen

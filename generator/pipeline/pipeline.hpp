@@ -16,6 +16,7 @@ namespace kanegen::pipeline {
 
 struct StageTimes {
   double load = 0, derive = 0, emit = 0;  ///< seconds
+  double choose = 0;     ///< seconds: counting each derivation's composite forward_dynamics, to keep one
   double jacobians = 0;  ///< seconds: emitting with the Jacobian kernels (0 without them: then in emit)
 };
 

@@ -12,6 +12,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include "symbolic/ex_hash.hpp"
+
 namespace kanegen::symbolic {
 
 class Program {
@@ -32,7 +34,7 @@ class Program {
   std::vector<GiNaC::symbol> symbols_;
   // On GiNaC's hash: an ordered map compared symbols through a copy of each
   // (a symbol becomes an ex to compare), a large part of generation's time.
-  std::unordered_map<GiNaC::ex, GiNaC::ex, std::hash<GiNaC::ex>, GiNaC::ex_is_equal> definitions_;
+  std::unordered_map<GiNaC::ex, GiNaC::ex, StoredExHash, GiNaC::ex_is_equal> definitions_;
 };
 
 }  // namespace kanegen::symbolic
