@@ -60,8 +60,9 @@ void Progress::update(double t) {
   if (!terminal_) return;
   const auto now = std::chrono::steady_clock::now();
   const double wall = std::chrono::duration<double>(now - start_).count();
-  // Quiet for short runs, then at most ten updates a second.
-  if (wall < quiet_for_ || std::chrono::duration<double>(now - last_).count() < 0.1) return;
+  // Quiet for short runs, then the line at once (a run shorter than 0.1 s
+  // after the quiet start would show none otherwise), then at most ten updates a second.
+  if (wall < quiet_for_ || (shown_ && std::chrono::duration<double>(now - last_).count() < 0.1)) return;
   last_ = now;
   shown_ = true;
   std::fprintf(err_, "\r\033[Ksimulate: t = %.6g of %.6g s, wall %.1f s, %ld %s", t, t_end_, wall,
