@@ -69,11 +69,10 @@ MeshBody build_model_mesh_body(const model::Body& body, const InpMesh& mesh, con
   });
 }
 
-/// The interface's averaged motion in the basis. Its rotation is left zero
-/// where it is undetermined (one node; in space, nodes on one line), which
-/// is an error only if something uses it (`in.rotation_where`).
-InterfacePoint interface_point(const MeshBody& mb, const InpMesh& mesh, const model::MeshInterface& in,
-                               const Eigen::MatrixXd& basis, const std::string& model_file) {
+/// The body nodes of the interface's node set; a ModelError if the mesh
+/// lacks the set, the set is empty or holds a node of no element of the body.
+std::vector<int> interface_nodes(const MeshBody& mb, const InpMesh& mesh, const model::MeshInterface& in,
+                                 const std::string& model_file) {
   const std::string& name = in.node_set;
   const std::string& place = in.where;
   const std::vector<int> ids = at_model_place(model_file, place, [&] { return mesh.node_set(name); });
@@ -90,6 +89,17 @@ InterfacePoint interface_point(const MeshBody& mb, const InpMesh& mesh, const mo
   if (nodes.empty())
     throw ModelError(model_file, place, "node set " + name + " of " + mesh.file + " has no nodes",
                      "list the nodes of the set in the mesh file");
+  return nodes;
+}
+
+/// The averaged motion in the basis of the interface on body nodes `nodes`
+/// (interface_nodes). Its rotation is left zero where it is undetermined
+/// (one node; in space, nodes on one line), which is an error only if
+/// something uses it (`in.rotation_where`).
+InterfacePoint interface_point(const MeshBody& mb, const InpMesh& mesh, const model::MeshInterface& in,
+                               const std::vector<int>& nodes, const Eigen::MatrixXd& basis,
+                               const std::string& model_file) {
+  const std::string& name = in.node_set;
   const Body& b = mb.body;
   const bool plane = b.dofs_per_node() == 2;
   InterfacePoint p;
@@ -155,15 +165,9 @@ ModelBeam build_model_mesh(const model::Body& body, const std::string& model_fil
                          " free dofs, fewer than the " + std::to_string(f.modes) + " modes asked for",
                      "keep fewer modes, or refine the mesh");
   ModelBeam out{mb.body, {}, {}, {}, {}, {}, std::nullopt, {}, true, {}};
-  // The body nodes of each interface's node set.
   std::vector<std::vector<int>> interfaces;
-  for (std::size_t i = 0; i < f.mesh.interfaces.size(); ++i) {
-    std::vector<int> nodes;
-    for (int id : at_model_place(model_file, f.mesh.interfaces[i].where,
-                                 [&] { return mesh.node_set(f.mesh.interfaces[i].node_set); }))
-      if (mb.node_of.count(id)) nodes.push_back(mb.node_of.at(id));
-    interfaces.push_back(nodes);
-  }
+  for (const model::MeshInterface& in : f.mesh.interfaces)
+    interfaces.push_back(interface_nodes(mb, mesh, in, model_file));
   if (f.mesh.craig_bampton) {
     try {
       const CraigBamptonBasis cb = craig_bampton(out.body, constraint, interfaces, f.modes);
@@ -191,8 +195,9 @@ ModelBeam build_model_mesh(const model::Body& body, const std::string& model_fil
     out.reduced = reduce_modal(out.body, constraint, f.modes);
   }
   out.is_mesh = true;
-  for (const model::MeshInterface& in : f.mesh.interfaces)
-    out.interfaces.push_back(interface_point(mb, mesh, in, out.reduced.basis, model_file));
+  for (std::size_t i = 0; i < interfaces.size(); ++i)
+    out.interfaces.push_back(
+        interface_point(mb, mesh, f.mesh.interfaces[i], interfaces[i], out.reduced.basis, model_file));
   out.damping = reduced_damping(f, out.reduced, true);
   if (f.geometric_stiffening) add_foreshortening(body, constraint, interfaces, model_file, out);
   return out;
