@@ -6,7 +6,7 @@
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 521
 //   forcing: 1080
-//   forward_dynamics: 1829 (composite inertias, 252 of them in LDL^T; recursive: 1954)
+//   forward_dynamics: 1829 (composite inertias, 252 of them in LDL^T; recursive: 1839)
 //   kinetic_energy: 464
 //   potential_energy: 137
 //   nonconservative_power: 13

@@ -4,6 +4,7 @@
 #include <cstddef>
 
 #include "kane/working_frames.hpp"
+#include "kane/working_motion.hpp"
 
 namespace kanegen::kane {
 using namespace kanegen::symbolic;  // the vector algebra and its operators
@@ -166,6 +167,29 @@ Articulated own_terms(const TreeBody& body) {
   s.elastic_force = body.elastic_linear;
   s.elastic_block = body.elastic_mass;
   for (const ex& f : body.elastic_forcing) s.elastic_bias.push_back(-f);
+  return s;
+}
+
+/// A rigid body's own terms in its working axes: its inertia carried there
+/// (numbers for a rigid body), its applied wrench turned and shifted, and
+/// the rate of its momentum about the working origin with the rest
+/// accelerations, (K alpha + h x a + w x K w, m a + alpha x h + w x (w x h)),
+/// formed there: the bias is minus the applied-plus-inertia wrench.
+Articulated rigid_terms(Program& program, const TreeBody& body, const FrameStep& from_body,
+                        const WorkingMotion& m) {
+  Articulated s;
+  s.a = body.second;
+  s.b = skew(body.moment);
+  s.c = Mat3{body.mass, 0, 0, 0, body.mass, 0, 0, 0, body.mass};
+  s.bias_moment = zero_vec() - body.applied_moment;
+  s.bias_force = zero_vec() - body.applied_force;
+  s = carried(program, s, from_body);
+  s.c = Mat3{body.mass, 0, 0, 0, body.mass, 0, 0, 0, body.mass};  // m 1 in any axes, without round-off
+  const Vec3 h{s.b[7], s.b[2], s.b[3]};                           // s.b = [h]x
+  const Vec3 spin = named(program, mul(s.a, m.omega));
+  const Vec3 whirl = named(program, cross(m.omega, h));
+  s.bias_moment = s.bias_moment + mul(s.a, m.alpha_rest) + cross(h, m.accel_rest) + cross(m.omega, spin);
+  s.bias_force = s.bias_force + body.mass * m.accel_rest + cross(m.alpha_rest, h) + cross(m.omega, whirl);
   return s;
 }
 
@@ -360,25 +384,26 @@ std::vector<ex> block_accelerations(Program& program, const BlockTerms& t, const
 
 RecursiveDynamics articulated_body_dynamics(const kinematics::TreeKinematics& tree,
                                             const std::vector<TreeBody>& bodies,
-                                            const std::vector<ex>& joint_forces, Program& program) {
+                                            const std::vector<ex>& joint_forces,
+                                            const std::vector<ex>& speeds, Program& program) {
   const auto& states = tree.bodies();
   const std::size_t count = states.size();
-  const std::size_t speeds = joint_forces.size();
   RecursiveDynamics out;
-  out.accelerations.assign(speeds, 0);
-  out.pivots.assign(speeds, 0);
+  out.accelerations.assign(joint_forces.size(), 0);
+  out.pivots.assign(joint_forces.size(), 0);
 
   // The recursion works in each body's working frame (its joint axis along z).
   std::vector<bool> flexible(count);
   for (std::size_t i = 0; i < count; ++i) flexible[i] = bodies[i].elastic_first >= 0;
   const std::vector<WorkingFrame> frames = working_frames(tree, flexible, program);
+  const std::vector<WorkingMotion> motion = working_motion(tree, frames, flexible, speeds, program);
 
   // Inward: children come after their parents, so a reverse sweep has every
   // child's share added before its parent is named.
   std::vector<Articulated> sums(count);
   for (std::size_t i = 0; i < count; ++i)
     sums[i] =
-        flexible[i] ? own_terms(bodies[i]) : carried(program, own_terms(bodies[i]), frames[i].from_body);
+        flexible[i] ? own_terms(bodies[i]) : rigid_terms(program, bodies[i], frames[i].from_body, motion[i]);
   std::vector<JointTerms> terms(count);
   std::vector<BlockTerms> blocks(count);
   for (std::size_t i = count; i-- > 0;) {

@@ -24,6 +24,11 @@ struct TreeBody {
   symbolic::Vec3 moment;
   symbolic::Mat3 second;
   symbolic::Vec3 wrench_moment, wrench_force;
+  /// Of that wrench, the applied part alone (point forces off nodes,
+  /// springs), body axes: a rigid body's inertia wrench is formed in its
+  /// working axes instead (kane/working_motion.*); a flexible body takes
+  /// the whole wrench above.
+  symbolic::Vec3 applied_moment = symbolic::zero_vec(), applied_force = symbolic::zero_vec();
   /// A flexible body's m elastic speeds, from speed `elastic_first` on
   /// (m = 0, -1 for a rigid body), with its own floating-frame terms: per
   /// speed k, the momentum (angular about the origin, linear) of the body
@@ -49,7 +54,8 @@ struct RecursiveDynamics {
 };
 
 /// `joint_forces`: per speed, the joint's own generalized force (spring,
-/// damper, input, efforts), the part of f not from the bodies. The
+/// damper, input, efforts), the part of f not from the bodies; `speeds`: u.
+/// The
 /// recursion, with the accelerations that u_dot alone gives (the rest
 /// accelerations are in the wrenches):
 ///   inward:  I^A_i = I_i + sum_c X_c^T (I^A_c - U_c U_c^T / D_c) X_c,
@@ -66,6 +72,6 @@ struct RecursiveDynamics {
 RecursiveDynamics articulated_body_dynamics(const kinematics::TreeKinematics& tree,
                                             const std::vector<TreeBody>& bodies,
                                             const std::vector<GiNaC::ex>& joint_forces,
-                                            symbolic::Program& program);
+                                            const std::vector<GiNaC::ex>& speeds, symbolic::Program& program);
 
 }  // namespace kanegen::kane

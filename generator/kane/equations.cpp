@@ -118,6 +118,7 @@ struct Derivation {
 struct BodySums {
   std::vector<SpatialInertia> inertia;
   std::vector<Wrench> wrench;
+  std::vector<Wrench> applied;  ///< of `wrench`, the applied part alone (the recursion's)
   std::map<std::size_t, FlexibleTerms> elastic;
 };
 
@@ -182,6 +183,8 @@ void add_rigid_body(Derivation& d, BodySums& sums, std::size_t i) {
     const Vec3 at = vec(vars, pf.point);
     force = force + f;
     torque = torque + cross(at - com, f);
+    Wrench& applied = sums.applied[i];
+    applied = {applied.moment + cross(at, f), applied.force + f};
     // A world-fixed force has a potential; one turning with the body does work.
     if (pf.frame == model::ForceFrame::world)
       d.eq.potential_energy -= dot(given, d.tree.world_point(b, at));
@@ -259,9 +262,10 @@ void add_springs(Derivation& d, BodySums& sums) {
   for (const model::Spring& spring : d.model.springs) {
     const SpringLoads s = spring_loads(spring, d.tree, d.vars, d.program);
     for (const PointLoad& load : s.loads) {
-      Wrench& w = sums.wrench[load.state];
-      w.force = w.force + load.force;
-      w.moment = w.moment + cross(load.at, load.force);
+      for (Wrench* w : {&sums.wrench[load.state], &sums.applied[load.state]}) {
+        w->force = w->force + load.force;
+        w->moment = w->moment + cross(load.at, load.force);
+      }
     }
     d.eq.potential_energy += s.energy;
     d.eq.nonconservative_power += s.damping_power;
@@ -555,6 +559,8 @@ void recursive_dynamics(Derivation& d, const BodySums& own, const std::vector<ex
     b.second = own.inertia[i].second;
     b.wrench_moment = own.wrench[i].moment;
     b.wrench_force = own.wrench[i].force;
+    b.applied_moment = own.applied[i].moment;
+    b.applied_force = own.applied[i].force;
     const auto elastic = own.elastic.find(i);
     if (elastic == own.elastic.end()) continue;
     b.elastic_first = d.vars.elastic_first[d.tree.bodies()[i].body];
@@ -565,7 +571,8 @@ void recursive_dynamics(Derivation& d, const BodySums& own, const std::vector<ex
   }
   std::vector<ex> joint_forces(d.eq.nu);
   for (int r = 0; r < d.eq.nu; ++r) joint_forces[r] = d.eq.forcing[r] - body_forcing[r];
-  RecursiveDynamics r = articulated_body_dynamics(d.tree, bodies, joint_forces, d.program);
+  RecursiveDynamics r = articulated_body_dynamics(
+      d.tree, bodies, joint_forces, std::vector<ex>(d.vars.u.begin(), d.vars.u.end()), d.program);
   if (r.zero_pivot >= 0) {
     d.eq.recursive_unavailable = "elastic coordinate '" + d.eq.coordinate_names[r.zero_pivot] +
                                  "' moves no inertia in any state (the recursion divides by it)";
@@ -788,7 +795,8 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
   Derivation d{model, vars, program, flexible, tree, method, gravity, eq};
 
   const std::size_t count = tree.bodies().size();
-  BodySums sums{std::vector<SpatialInertia>(count), std::vector<Wrench>(count), {}};
+  BodySums sums{
+      std::vector<SpatialInertia>(count), std::vector<Wrench>(count), std::vector<Wrench>(count), {}};
   for (std::size_t i = 0; i < count; ++i) {
     add_rigid_body(d, sums, i);
     if (model.bodies[tree.bodies()[i].body].flexible) add_flexible_body(d, sums, i);

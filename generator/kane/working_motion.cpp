@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "kane/working_motion.hpp"
+
+namespace kanegen::kane {
+using namespace kanegen::symbolic;  // the vector algebra and its operators
+namespace {
+
+/// The body frame's motion at the working origin, in working axes: with
+/// x_working = T x_body + s the working origin is at -T^T s in body
+/// coordinates, so a = T a_body - alpha x s - omega x (omega x s).
+WorkingMotion from_body(const kinematics::BodyState& b, const FrameStep& step, Program& program) {
+  WorkingMotion m;
+  m.omega = named(program, mul(step.turn, b.omega));
+  m.alpha_rest = named(program, mul(step.turn, b.alpha_rest));
+  m.accel_rest = named(program, mul(step.turn, b.accel_rest));
+  if (step.shifts()) {
+    const Vec3 spin = named(program, cross(m.omega, step.shift));
+    m.accel_rest = named(program, m.accel_rest - cross(m.alpha_rest, step.shift) - cross(m.omega, spin));
+  }
+  return m;
+}
+
+}  // namespace
+
+std::vector<WorkingMotion> working_motion(const kinematics::TreeKinematics& tree,
+                                          const std::vector<WorkingFrame>& frames,
+                                          const std::vector<bool>& flexible,
+                                          const std::vector<GiNaC::ex>& speeds, Program& program) {
+  const auto& states = tree.bodies();
+  std::vector<WorkingMotion> out(states.size());
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    const kinematics::BodyState& state = states[i];
+    const kinematics::JointFrame& joint = tree.joints()[state.joint];
+    if (state.parent_state < 0 || joint.on_node || flexible[i]) {
+      out[i] = from_body(state, frames[i].from_body, program);
+      continue;
+    }
+    // Outward through the steps, parent's side first (x_outer = turn x_inner + shift).
+    WorkingMotion m = out[state.parent_state];
+    for (const FrameStep& step : frames[i].to_parent) {
+      if (step.shifts()) {
+        const Vec3 spin = named(program, cross(m.omega, step.shift));
+        m.accel_rest = named(program, m.accel_rest + cross(m.alpha_rest, step.shift) + cross(m.omega, spin));
+      }
+      if (!step.turns()) continue;
+      m.omega = named(program, mul_transposed(step.turn, m.omega));
+      m.alpha_rest = named(program, mul_transposed(step.turn, m.alpha_rest));
+      m.accel_rest = named(program, mul_transposed(step.turn, m.accel_rest));
+    }
+    // The joint's own motion: a turn about the working axis, or a slide
+    // along it (the slide's Coriolis term 2 omega x u a).
+    if (joint.speed >= 0) {
+      const GiNaC::ex& u = speeds[joint.speed];
+      const Vec3& axis = frames[i].axis;
+      if (joint.prismatic) {
+        m.accel_rest = named(program, m.accel_rest + 2 * u * cross(m.omega, axis));
+      } else {
+        m.alpha_rest = named(program, m.alpha_rest + u * cross(m.omega, axis));
+        m.omega = named(program, m.omega + u * axis);
+      }
+    }
+    out[i] = m;
+  }
+  return out;
+}
+
+}  // namespace kanegen::kane
