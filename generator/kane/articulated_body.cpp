@@ -110,17 +110,42 @@ Mat3 turned_symmetric(Program& program, const Mat3& m, int k, const DoubleAngle&
   return r;
 }
 
+/// R M R^T for any M and R a turn about coordinate axis k: the (i, j)
+/// block's symmetric part turns as turned_symmetric's, its antisymmetric
+/// part (M_ij - M_ji) / 2 not at all; row and column k turn as vectors.
+/// 15 operations for the block instead of 24.
+Mat3 turned_general(Program& program, const Mat3& m, int k, const DoubleAngle& t) {
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  const ex delta = program.define(at(m, i, i) - at(m, j, j));
+  const ex sum = program.define(at(m, i, j) + at(m, j, i));
+  const ex u = program.define(t.ss * delta + t.cs * sum);
+  const ex symmetric = program.define(t.cs * delta + t.c2 * sum / 2);
+  const ex antisymmetric = program.define((at(m, i, j) - at(m, j, i)) / 2);
+  Mat3 r;
+  r[4 * i] = program.define(at(m, i, i) - u);
+  r[4 * j] = program.define(at(m, j, j) + u);
+  r[3 * i + j] = program.define(symmetric + antisymmetric);
+  r[3 * j + i] = program.define(symmetric - antisymmetric);
+  r[3 * i + k] = program.define(t.c * at(m, i, k) - t.s * at(m, j, k));
+  r[3 * j + k] = program.define(t.s * at(m, i, k) + t.c * at(m, j, k));
+  r[3 * k + i] = program.define(t.c * at(m, k, i) - t.s * at(m, k, j));
+  r[3 * k + j] = program.define(t.s * at(m, k, i) + t.c * at(m, k, j));
+  r[4 * k] = at(m, k, k);
+  return r;
+}
+
 /// The inertia and bias in axes turned by `turn` (inner -> outer axes).
 Articulated turned(Program& program, const Articulated& x, const Mat3& turn) {
   const Mat3 to_inner = transpose(turn);
   Articulated r;
-  r.b = to_parent_axes(program, to_inner, x.b, false);
   if (const int k = turn_axis(turn); k >= 0) {
     const int i = (k + 1) % 3, j = (k + 2) % 3;
     const DoubleAngle angle(program, turn[4 * i], turn[3 * j + i]);
+    r.b = turned_general(program, x.b, k, angle);
     r.a = turned_symmetric(program, x.a, k, angle);
     r.c = turned_symmetric(program, x.c, k, angle);
   } else {
+    r.b = to_parent_axes(program, to_inner, x.b, false);
     r.a = to_parent_axes(program, to_inner, x.a, true);
     r.c = to_parent_axes(program, to_inner, x.c, true);
   }

@@ -817,22 +817,24 @@ TEST_CASE("a number out of range is refused without the range's 309 digits", "[c
 TEST_CASE("generate --dynamics picks forward_dynamics's method, states it and refuses what it cannot solve",
           "[cli][recursive]") {
   const fs::path dir = scratch() / "gen_dynamics";
-  // arm7: auto keeps the composite solve (fewer operations at 7 joints) and names both counts.
-  const Result automatic = kanegen("generate " + model("arm7.urdf") + " -o " + (dir / "auto").string());
+  // double_pendulum: auto keeps the composite solve (fewer operations at 2 joints) and names both counts.
+  const Result automatic =
+      kanegen("generate " + model("double_pendulum.json") + " -o " + (dir / "auto").string());
   REQUIRE(automatic.status == 0);
   CHECK(automatic.out.find("forward_dynamics: composite inertias (recursive ") != std::string::npos);
-  const std::string header = slurp(dir / "auto" / "arm7.hpp");
+  const std::string header = slurp(dir / "auto" / "double_pendulum.hpp");
   CHECK(std::regex_search(header, std::regex("forward_dynamics: [0-9]+ \\(composite inertias, [0-9]+ of them "
                                              "in LDL\\^T; recursive: [0-9]+\\)")));
-  const Result recursive = kanegen("generate " + model("arm7.urdf") + " -o " + (dir / "recursive").string() +
-                                   " --dynamics recursive");
+  const Result recursive = kanegen("generate " + model("double_pendulum.json") + " -o " +
+                                   (dir / "recursive").string() + " --dynamics recursive");
   REQUIRE(recursive.status == 0);
-  const std::string recursive_header = slurp(dir / "recursive" / "arm7.hpp");
+  const std::string recursive_header = slurp(dir / "recursive" / "double_pendulum.hpp");
   CHECK(std::regex_search(recursive_header,
                           std::regex("forward_dynamics: [0-9]+ \\(recursive; composite inertias and LDL\\^T: "
                                      "[0-9]+\\)")));
-  CHECK(slurp(dir / "recursive" / "arm7.cpp").find("Articulated-body recursion") != std::string::npos);
-  CHECK(slurp(dir / "auto" / "arm7.cpp").find("Articulated-body recursion") == std::string::npos);
+  CHECK(slurp(dir / "recursive" / "double_pendulum.cpp").find("Articulated-body recursion") !=
+        std::string::npos);
+  CHECK(slurp(dir / "auto" / "double_pendulum.cpp").find("Articulated-body recursion") == std::string::npos);
 
   // Flexible bodies are in the recursion (their elastic speeds a block per body).
   const Result flexible = kanegen("generate " + model("spatial_arm2.json") + " -o " +

@@ -26,8 +26,8 @@ GeneratedModel generate(const std::string& model, DynamicsMethod method, bool ja
 }  // namespace
 
 TEST_CASE("the forward_dynamics not printed is counted as it would print", "[codegen][choice]") {
-  // arm7: the composite solve wins; chain20: the recursion wins.
-  for (const char* model : {"arm7.urdf", "chain20.urdf"}) {
+  // double_pendulum: the composite solve wins; arm7 (by a few operations) and chain20: the recursion.
+  for (const char* model : {"double_pendulum.json", "arm7.urdf", "chain20.urdf"}) {
     INFO(model);
     const GeneratedModel chosen = generate(model, DynamicsMethod::automatic);
     const GeneratedModel recursive = generate(model, DynamicsMethod::recursive);
@@ -43,7 +43,7 @@ TEST_CASE("the forward_dynamics not printed is counted as it would print", "[cod
                                                                  ? chosen.dynamics.recursive_operations
                                                                  : chosen.dynamics.composite_operations));
   }
-  CHECK_FALSE(generate("arm7.urdf", DynamicsMethod::automatic).dynamics.recursive);
+  CHECK_FALSE(generate("double_pendulum.json", DynamicsMethod::automatic).dynamics.recursive);
   CHECK(generate("chain20.urdf", DynamicsMethod::automatic).dynamics.recursive);
 }
 
