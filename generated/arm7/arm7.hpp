@@ -6,7 +6,7 @@
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 521
 //   forcing: 1080
-//   forward_dynamics: 1807 (recursive; composite inertias and LDL^T: 1829)
+//   forward_dynamics: 1777 (recursive; composite inertias and LDL^T: 1829)
 //   kinetic_energy: 464
 //   potential_energy: 137
 //   nonconservative_power: 13

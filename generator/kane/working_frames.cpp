@@ -144,8 +144,15 @@ std::vector<FrameStep> khalil_steps(const Khalil& k, const kinematics::JointFram
   add_shift(steps, {0, 0, delta});
   const ex c0 = exact(std::cos(theta0)), s0 = exact(std::sin(theta0));
   if (moves && !joint.prismatic) {
-    const ex c = GiNaC::cos(joint.coordinate), s = GiNaC::sin(joint.coordinate);
-    add_turn(steps, rot_z(program.define(c * c0 - s * s0), program.define(s * c0 + c * s0)));
+    // cos and sin of q + theta0 at once, where the sum formulas would cost
+    // six operations; with theta0 a multiple of pi/2 they cost none.
+    const bool plain = c0.is_zero() || s0.is_zero();
+    const ex angle = plain ? joint.coordinate : program.define(joint.coordinate + number(theta0));
+    const ex c = GiNaC::cos(angle), s = GiNaC::sin(angle);
+    if (plain)
+      add_turn(steps, rot_z(program.define(c * c0 - s * s0), program.define(s * c0 + c * s0)));
+    else
+      add_turn(steps, rot_z(program.define(c), program.define(s)));
   } else {
     add_turn(steps, rot_z(c0, s0));
   }
