@@ -559,15 +559,15 @@ void outputs(const Params& p, double t, const double* q, const double* u, double
 void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
                       const double* udot, double* tau) {
   const double x0 = cos(q[1]);
-  const double x1 = x0*udot[0]*p.rr;
-  const double x2 = udot[0] + udot[1];
-  const double x3 = u[0]*u[0];
-  const double x4 = sin(q[1]);
-  const double x5 = x3*x4*p.rr;
-  const double x6 = p.m2*x1*p.da - (x2*(p.i2 + p.m2*p.da*p.da)) + p.m2*x5*p.da;
-  const double x7 = u[1] + u[0];
-  tau[0] = -(p.mom - (udot[0]*(p.i1 + p.ra*p.ra*p.m1) - (x6 - ((x0*(-(x2*p.m2*p.da) + p.m2*x1 + p.m2*x5) + x4*(-(p.m2*(-(x7*x7*p.da) + x0*x3*p.rr)) + p.m2*(x4*udot[0]*p.rr)))*p.rr))));
-  tau[1] = -x6;
+  const double x1 = udot[0]*p.rr;
+  const double x2 = u[0]*p.rr;
+  const double x3 = sin(q[1]);
+  const double x4 = x0*x1 + u[0]*x2*x3;
+  const double x5 = udot[0] + udot[1];
+  const double x6 = u[1] + u[0];
+  const double x7 = -(p.m2*x4*p.da - (x5*(p.i2 + p.m2*p.da*p.da)));
+  tau[0] = -(p.mom - (udot[0]*(p.i1 + p.ra*p.ra*p.m1) + ((p.m2*x4 - (x5*p.m2*p.da))*x0 + (p.m2*x6*x6*p.da + p.m2*(-(u[0]*x2*x0) + x3*x1))*x3)*p.rr + x7));
+  tau[1] = x7;
   const double x8 = cos(q[2]);
   const double x9 = sin(q[2]);
   const double x10 = p.yc - (p.yb - (p.sc*x8) + x9*p.sd);
@@ -575,29 +575,29 @@ void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* 
   const double x12 = sqrt(x10*x10 + x11*x11);
   const double x13 = 1.0/(x12);
   const double x14 = p.l0 - x12;
-  const double x15 = u[2]*u[2];
-  tau[2] = -(-((p.i3 + p.m3*(p.sa*p.sa + p.sb*p.sb))*udot[2]) + (x13*p.c0*x14*x9*x11 - (x13*p.c0*x14*x8*x10))*p.sd - ((x13*p.c0*x14*x11*x8 + x13*p.c0*x14*x9*x10)*p.sc) - (p.m3*(x15*p.sa)*p.sb - ((p.m3*x15*p.sb)*p.sa)));
+  tau[2] = -(-((p.i3 + p.m3*(p.sa*p.sa + p.sb*p.sb))*udot[2]) + (x13*p.c0*x14*x9*x11 - (x13*p.c0*x14*x8*x10))*p.sd - ((x13*p.c0*x14*x11*x8 + x13*p.c0*x14*x9*x10)*p.sc));
+  const double x15 = p.zt*udot[4];
   const double x16 = sin(q[3]);
-  const double x17 = p.zt*udot[4]*x16;
-  const double x18 = p.e - p.ea;
-  const double x19 = udot[4] + udot[3];
-  const double x20 = u[4]*u[4];
-  const double x21 = cos(q[3]);
-  const double x22 = p.m4*p.zt*x20*x21;
-  const double x23 = p.m4*x17*x18 + (p.i4 + x18*x18*p.m4)*x19 - (x22*x18);
-  tau[3] = x23;
-  const double x24 = u[3] + u[4];
-  tau[4] = -(p.ta*(p.m5*p.tb*x20) - (p.tb*(p.m5*p.ta*x20))) + (p.m5*(p.tb*p.tb + p.ta*p.ta) + p.i5)*udot[4] + x23 + (-((x22 - (p.m4*x19*x18) - (p.m4*x17))*x16) + (p.m4*(p.zt*udot[4]*x21) + p.m4*(x18*x24*x24 + p.zt*x20*x16))*x21)*p.zt;
+  const double x17 = cos(q[3]);
+  const double x18 = p.zt*u[4];
+  const double x19 = x15*x16 - (u[4]*x17*x18);
+  const double x20 = p.e - p.ea;
+  const double x21 = udot[4] + udot[3];
+  const double x22 = p.m4*x19*x20 + (p.i4 + x20*x20*p.m4)*x21;
+  tau[3] = x22;
+  const double x23 = u[3] + u[4];
+  tau[4] = (p.m5*(p.tb*p.tb + p.ta*p.ta) + p.i5)*udot[4] + p.zt*((p.m4*(u[4]*x16*x18 + x15*x17) + (p.m4*x20*x23)*x23)*x17 + x16*(p.m4*x19 + p.m4*x21*x20)) + x22;
+  const double x24 = udot[5] + udot[6];
   const double x25 = p.zf - p.fa;
-  const double x26 = sin(q[5]);
-  const double x27 = cos(q[5]);
-  const double x28 = u[6]*u[6];
-  const double x29 = x27*p.uu*x28;
-  const double x30 = udot[5] + udot[6];
-  const double x31 = -(p.m6*p.uu*x25*udot[6]*x26) + p.m6*x25*x29 + x30*(p.i6 + p.m6*x25*x25);
+  const double x26 = p.uu*udot[6];
+  const double x27 = sin(q[5]);
+  const double x28 = cos(q[5]);
+  const double x29 = u[6]*(p.uu*u[6]);
+  const double x30 = x26*x27 - (x28*x29);
+  const double x31 = -(-(x24*(p.i6 + p.m6*x25*x25)) + p.m6*x25*x30);
   tau[5] = x31;
   const double x32 = u[5] + u[6];
-  tau[6] = (x27*((-(x32*x32*x25) + p.uu*x28*x26)*p.m6 + p.m6*(x27*p.uu*udot[6])) - ((-(p.m6*p.uu*udot[6]*x26) + p.m6*x29 + p.m6*x30*x25)*x26))*p.uu + x31 + udot[6]*(p.i7 + p.m7*(p.ub*p.ub + p.ua*p.ua)) - (-(p.m7*p.ub*(p.ua*x28)) + p.ua*(p.m7*p.ub*x28));
+  tau[6] = p.uu*((-(p.m6*x24*x25) + p.m6*x30)*x27 - (x28*(-(p.m6*(x28*x26 + x27*x29)) + x32*(p.m6*x25*x32)))) + x31 + udot[6]*(p.i7 + p.m7*(p.ub*p.ub + p.ua*p.ua));
 }
 
 void gravity([[maybe_unused]] const Params& p, [[maybe_unused]] const double* q, double* g) {

@@ -11,7 +11,7 @@
 //   potential_energy: 20
 //   nonconservative_power: 14
 //   outputs: 38
-//   inverse_dynamics: 214 (recursive; M udot - f from M and f: 211)
+//   inverse_dynamics: 172 (recursive; M udot - f from M and f: 211)
 //   gravity: 0
 //   constraints: 68
 //   constraint_jacobian: 55

@@ -6,13 +6,13 @@
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 521
 //   forcing: 1080
-//   forward_dynamics: 1777 (recursive; composite inertias and LDL^T: 1829)
+//   forward_dynamics: 1780 (recursive; composite inertias and LDL^T: 1829)
 //   kinetic_energy: 464
 //   potential_energy: 137
 //   nonconservative_power: 13
 //   outputs: 0
-//   inverse_dynamics: 1505 (recursive; M udot - f from M and f: 1668)
-//   gravity: 294
+//   inverse_dynamics: 1370 (recursive; M udot - f from M and f: 1668)
+//   gravity: 269
 //
 // Arrays are plain C arrays with their sizes in the comments; no function
 // allocates, throws or keeps state, and nothing beyond <math.h> is needed.

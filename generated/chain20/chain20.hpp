@@ -6,13 +6,13 @@
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 6999 (a loop over 210 pairs of world axes and momenta; entry by entry: 6999)
 //   forcing: 4516
-//   forward_dynamics: 8629 (recursive; composite inertias and LDL^T: 14967) [split in 9 functions, 3,312 bytes of stack between them]
+//   forward_dynamics: 8653 (recursive; composite inertias and LDL^T: 14967) [split in 9 functions, 3,280 bytes of stack between them]
 //   kinetic_energy: 2029
 //   potential_energy: 941
 //   nonconservative_power: 39
 //   outputs: 0
-//   inverse_dynamics: 6304 (recursive; M udot - f from M and f: 11907) [split in 7 functions, 4,024 bytes of stack between them]
-//   gravity: 1790
+//   inverse_dynamics: 5372 (recursive; M udot - f from M and f: 11907)
+//   gravity: 1233
 //
 // Arrays are plain C arrays with their sizes in the comments; no function
 // allocates, throws or keeps state, and nothing beyond <math.h> is needed.

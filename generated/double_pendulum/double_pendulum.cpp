@@ -188,15 +188,16 @@ void outputs(const Params& p, [[maybe_unused]] double t, const double* q, [[mayb
 void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
                       const double* udot, double* tau) {
   const double x0 = cos(q[0]);
-  const double x1 = sin(q[1]);
+  const double x1 = udot[0] + udot[1];
   const double x2 = cos(q[1]);
-  const double x3 = 9.81*sin(q[0]) + p.l1*u[0]*u[0];
-  const double x4 = u[1] + u[0];
-  const double x5 = -(x1*x3) + 9.81*(x0*x2);
-  const double x6 = udot[0] + udot[1];
-  const double x7 = -0.5*(p.m2*p.l1*p.l2*x2*udot[0]) - 0.3333333333333333*(x6*p.m2*p.l2*p.l2) + 0.5*(p.m2*p.l2*x5);
-  tau[0] = u[0]*p.c1 - (-0.3333333333333333*(p.m1*p.l1*p.l1*udot[0]) + 4.905*(p.m1*x0*p.l1) + p.l1*(x1*(p.m2*(9.81*(x0*x1) + x2*x3 + 0.5*(p.l2*x4*x4)) - (p.m2*(p.l1*x1*udot[0]))) - (x2*(-(p.m2*x5) + p.m2*p.l1*x2*udot[0] + 0.5*(x6*p.m2*p.l2)))) + x7);
-  tau[1] = u[1]*p.c2 - x7;
+  const double x3 = sin(q[1]);
+  const double x4 = 9.81*sin(q[0]) + u[0]*(u[0]*p.l1);
+  const double x5 = p.l1*udot[0];
+  const double x6 = 9.81*(x0*x2) - (x3*x4) - (x5*x2);
+  const double x7 = 0.3333333333333333*(x1*p.m2*p.l2*p.l2) - 0.5*(p.m2*p.l2*x6);
+  const double x8 = u[1] + u[0];
+  tau[0] = u[0]*p.c1 - (-0.3333333333333333*(p.m1*p.l1*p.l1*udot[0]) + 4.905*(p.m1*x0*p.l1) + -x7 + p.l1*((0.5*(p.m2*p.l2*x8*x8) - (p.m2*(-(9.81*(x0*x3) + x2*x4) + x5*x3)))*x3 - ((-(p.m2*x6) + 0.5*(x1*p.m2*p.l2))*x2)));
+  tau[1] = u[1]*p.c2 + x7;
 }
 
 void gravity(const Params& p, const double* q, double* g) {
@@ -204,9 +205,9 @@ void gravity(const Params& p, const double* q, double* g) {
   const double x1 = cos(q[1]);
   const double x2 = sin(q[0]);
   const double x3 = sin(q[1]);
-  const double x4 = x0*x1 - (x2*x3);
-  g[0] = -(4.905*(p.m2*p.l2*x4) + p.l1*(9.81*(p.m2*x3*(x0*x3 + x2*x1)) + 9.81*(p.m2*x1*x4)) + 4.905*(p.m1*x0*p.l1));
-  g[1] = -4.905*p.m2*p.l2*x4;
+  const double x4 = 9.81*(x0*x1) - 9.81*(x2*x3);
+  g[0] = -(4.905*(p.m1*x0*p.l1) + 0.5*(p.m2*p.l2*x4) + p.l1*((p.m2*x4)*x1 + x3*(p.m2*(9.81*(x0*x3) + 9.81*(x2*x1)))));
+  g[1] = -0.5*p.m2*p.l2*x4;
 }
 
 }  // namespace double_pendulum

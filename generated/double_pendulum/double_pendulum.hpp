@@ -11,8 +11,8 @@
 //   potential_energy: 17
 //   nonconservative_power: 7
 //   outputs: 16
-//   inverse_dynamics: 68 (recursive; M udot - f from M and f: 65)
-//   gravity: 29
+//   inverse_dynamics: 60 (recursive; M udot - f from M and f: 65)
+//   gravity: 31
 //
 // Arrays are plain C arrays with their sizes in the comments; no function
 // allocates, throws or keeps state, and nothing beyond <math.h> is needed.

@@ -266,16 +266,16 @@ void outputs(const Params& p, double t, const double* q, const double* u, double
 
 void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
                       const double* udot, double* tau) {
-  const double x0 = cos(q[0]);
-  const double x1 = cos(q[1]);
+  const double x0 = udot[0] + udot[1];
+  const double x1 = 9.81*sin(q[0]) - (u[0]*(u[0]*p.a));
   const double x2 = sin(q[1]);
-  const double x3 = -9.81*sin(q[0]) + p.a*u[0]*u[0];
-  const double x4 = 9.81*(x0*x1) + x2*x3;
-  const double x5 = p.a*x1*udot[0];
-  const double x6 = udot[0] + udot[1];
-  const double x7 = 0.5*(p.b*x4*p.m_b) + 0.5*(p.b*p.m_b*x5) + 0.3333333333333333*(x6*p.m_b*p.b*p.b);
+  const double x3 = cos(q[0]);
+  const double x4 = cos(q[1]);
+  const double x5 = p.a*udot[0];
+  const double x6 = -(x1*x2) + 9.81*(x3*x4) + x4*x5;
+  const double x7 = 0.3333333333333333*(x0*p.m_b*p.b*p.b) + 0.5*(p.b*p.m_b*x6);
   const double x8 = u[1] + u[0];
-  tau[0] = x7 + p.a*((p.m_b*(9.81*(x0*x2) - (x1*x3) - 0.5*(p.b*x8*x8)) + p.m_b*(p.a*x2*udot[0]))*x2 + x1*(x4*p.m_b + 0.5*(x6*p.b*p.m_b) + p.m_b*x5)) + 0.3333333333333333*(p.m_a*udot[0]*p.a*p.a) + 4.905*(x0*p.a*p.m_a);
+  tau[0] = x7 + p.a*((p.m_b*x6 + 0.5*(x0*p.b*p.m_b))*x4 - ((-(p.m_b*(x2*x5 + 9.81*(x3*x2) + x1*x4)) + 0.5*(p.b*p.m_b*x8*x8))*x2)) + 0.3333333333333333*(p.m_a*udot[0]*p.a*p.a) + 4.905*(x3*p.a*p.m_a);
   tau[1] = x7;
   tau[2] = 4.905*(p.c*p.m_c*cos(q[2])) + 0.3333333333333333*(p.m_c*p.c*p.c*udot[2]);
 }
@@ -285,9 +285,9 @@ void gravity(const Params& p, const double* q, double* g) {
   const double x1 = cos(q[0]);
   const double x2 = sin(q[0]);
   const double x3 = cos(q[1]);
-  const double x4 = x1*x3 - (x2*x0);
-  g[0] = p.a*(9.81*(p.m_b*x0*(x1*x0 + x2*x3)) + 9.81*(p.m_b*x3*x4)) + 4.905*(p.b*p.m_b*x4) + 4.905*(x1*p.a*p.m_a);
-  g[1] = 4.905*p.b*p.m_b*x4;
+  const double x4 = 9.81*(x1*x3) - 9.81*(x2*x0);
+  g[0] = p.a*(p.m_b*x0*(9.81*(x1*x0) + 9.81*(x2*x3)) + p.m_b*x3*x4) + 0.5*(p.b*p.m_b*x4) + 4.905*(x1*p.a*p.m_a);
+  g[1] = 0.5*p.b*p.m_b*x4;
   g[2] = 4.905*p.c*p.m_c*cos(q[2]);
 }
 

@@ -11,8 +11,8 @@
 //   potential_energy: 22
 //   nonconservative_power: 5
 //   outputs: 23
-//   inverse_dynamics: 71 (recursive; M udot - f from M and f: 69)
-//   gravity: 33
+//   inverse_dynamics: 65 (recursive; M udot - f from M and f: 69)
+//   gravity: 35
 //   constraints: 23
 //   constraint_jacobian: 21
 //   constraint_bias: 45

@@ -280,48 +280,48 @@ void outputs(const Params& p, double t, const double* q, const double* u, double
 
 void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
                       const double* udot, double* tau) {
-  const double x0 = cos(q[3]);
-  const double x1 = p.l*udot[0]*x0;
-  const double x2 = cos(q[0]);
-  const double x3 = sin(q[3]);
-  const double x4 = 9.81*sin(q[0]) - (p.l*u[0]*u[0]);
-  const double x5 = (-9.81*(x2*x0) + x3*x4)*p.m;
-  const double x6 = p.l*p.l;
-  const double x7 = udot[0] + udot[3];
-  const double x8 = 0.5*(x1*p.m*p.l) - 0.5*(p.l*x5) + 0.3333333333333333*(p.m*x6*x7);
-  const double x9 = u[0] + u[3];
-  tau[0] = x8 + p.l*(x0*(0.5*(p.m*p.l*x7) + x1*p.m - x5) + x3*(p.m*(9.81*(x2*x3) + x0*x4 - 0.5*(p.l*x9*x9)) + (p.l*x3*udot[0])*p.m)) + 0.3333333333333333*(p.m*x6*udot[0]) + 4.905*(x2*p.m*p.l);
-  const double x10 = cos(q[1]);
-  const double x11 = cos(q[4]);
-  const double x12 = p.l*udot[1]*x11;
-  const double x13 = -(p.l*u[1]*u[1]) + 9.81*sin(q[1]);
-  const double x14 = sin(q[4]);
-  const double x15 = -(x13*x14) + 9.81*(x10*x11);
-  const double x16 = udot[4] + udot[1];
-  const double x17 = 0.5*(p.m*p.l*x12) + 0.5*(p.m*p.l*x15) + 0.3333333333333333*(p.m*x6*x16);
-  const double x18 = u[1] + u[4];
-  tau[1] = 0.3333333333333333*(p.m*x6*udot[1]) + 4.905*(p.m*p.l*x10) + x17 + p.l*((0.5*(p.m*p.l*x16) + p.m*x15 + p.m*x12)*x11 - (x14*(p.m*(0.5*(p.l*x18*x18) - (x13*x11 + 9.81*(x10*x14))) - (p.m*(p.l*udot[1]*x14)))));
-  tau[2] = 4.905*(p.m*p.l*cos(q[2])) + 0.3333333333333333*(p.m*x6*udot[2]);
-  tau[3] = x8;
-  tau[4] = x17;
+  const double x0 = udot[0] + udot[3];
+  const double x1 = cos(q[3]);
+  const double x2 = p.l*udot[0];
+  const double x3 = -9.81*sin(q[0]) + u[0]*(u[0]*p.l);
+  const double x4 = sin(q[3]);
+  const double x5 = cos(q[0]);
+  const double x6 = x1*x2 + x3*x4 + 9.81*(x5*x1);
+  const double x7 = u[0] + u[3];
+  const double x8 = p.l*p.l;
+  const double x9 = 0.5*(x6*p.m*p.l) + 0.3333333333333333*(p.m*x8*x0);
+  tau[0] = -(p.l*(-((0.5*(p.m*p.l*x0) + x6*p.m)*x1) + (-(p.m*(-(x3*x1) + 9.81*(x5*x4) + x4*x2)) + 0.5*(p.m*p.l*x7*x7))*x4) - x9) + 0.3333333333333333*(p.m*x8*udot[0]) + 4.905*(x5*p.m*p.l);
+  const double x10 = udot[4] + udot[1];
+  const double x11 = cos(q[1]);
+  const double x12 = cos(q[4]);
+  const double x13 = sin(q[4]);
+  const double x14 = -9.81*sin(q[1]) + u[1]*(u[1]*p.l);
+  const double x15 = p.l*udot[1];
+  const double x16 = 9.81*(x11*x12) + x13*x14 + x15*x12;
+  const double x17 = u[1] + u[4];
+  const double x18 = 0.5*(p.m*p.l*x16) + 0.3333333333333333*(p.m*x8*x10);
+  tau[1] = ((0.5*(p.m*p.l*x10) + p.m*x16)*x12 - ((0.5*(p.m*p.l*x17*x17) - (p.m*(x13*x15 + 9.81*(x11*x13) - (x14*x12))))*x13))*p.l + x18 + 0.3333333333333333*(p.m*x8*udot[1]) + 4.905*(p.m*p.l*x11);
+  tau[2] = 4.905*(p.m*p.l*cos(q[2])) + 0.3333333333333333*(p.m*x8*udot[2]);
+  tau[3] = x9;
+  tau[4] = x18;
 }
 
 void gravity(const Params& p, const double* q, double* g) {
-  const double x0 = sin(q[0]);
-  const double x1 = sin(q[3]);
-  const double x2 = cos(q[0]);
-  const double x3 = cos(q[3]);
-  const double x4 = x0*x1 - (x2*x3);
-  g[0] = p.l*(-9.81*(p.m*x4*x3) + 9.81*(p.m*(x2*x1 + x0*x3)*x1)) - 4.905*(p.m*p.l*x4) + 4.905*(x2*p.m*p.l);
+  const double x0 = cos(q[0]);
+  const double x1 = cos(q[3]);
+  const double x2 = sin(q[0]);
+  const double x3 = sin(q[3]);
+  const double x4 = -9.81*(x0*x1) + 9.81*(x2*x3);
+  g[0] = -(0.5*(p.m*p.l*x4) + p.l*((p.m*x4)*x1 - (p.m*(9.81*(x2*x1) + 9.81*(x0*x3))*x3)) - 4.905*(x0*p.m*p.l));
   const double x5 = cos(q[1]);
-  const double x6 = sin(q[4]);
-  const double x7 = sin(q[1]);
-  const double x8 = cos(q[4]);
-  const double x9 = x5*x8 - (x7*x6);
-  g[1] = p.l*(9.81*((x5*x6 + x7*x8)*p.m*x6) + 9.81*(p.m*x9*x8)) + 4.905*(p.m*p.l*x9) + 4.905*(p.m*p.l*x5);
+  const double x6 = sin(q[1]);
+  const double x7 = cos(q[4]);
+  const double x8 = sin(q[4]);
+  const double x9 = 9.81*(x5*x7) - 9.81*(x6*x8);
+  g[1] = 4.905*(p.m*p.l*x5) + p.l*(p.m*(9.81*(x6*x7) + 9.81*(x5*x8))*x8 + p.m*x9*x7) + 0.5*(p.m*p.l*x9);
   g[2] = 4.905*p.m*p.l*cos(q[2]);
-  g[3] = -4.905*p.m*p.l*x4;
-  g[4] = 4.905*p.m*p.l*x9;
+  g[3] = -0.5*p.m*p.l*x4;
+  g[4] = 0.5*p.m*p.l*x9;
 }
 
 void constraints(const Params& p, const double* q, double* phi) {

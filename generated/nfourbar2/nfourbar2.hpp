@@ -11,8 +11,8 @@
 //   potential_energy: 40
 //   nonconservative_power: 9
 //   outputs: 15
-//   inverse_dynamics: 128 (recursive; M udot - f from M and f: 114)
-//   gravity: 62
+//   inverse_dynamics: 117 (recursive; M udot - f from M and f: 114)
+//   gravity: 66
 //   constraints: 42
 //   constraint_jacobian: 40
 //   constraint_bias: 88

@@ -11,8 +11,8 @@
 //   potential_energy: 724
 //   nonconservative_power: 161
 //   outputs: 4
-//   inverse_dynamics: 2395 (recursive; M udot - f from M and f: 2051)
-//   gravity: 1164
+//   inverse_dynamics: 2169 (recursive; M udot - f from M and f: 2051)
+//   gravity: 1244
 //   constraints: 764
 //   constraint_jacobian: 747
 //   constraint_bias: 1722

@@ -262,15 +262,15 @@ void outputs(const Params& p, double t, const double* q, const double* u, double
 void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
                       const double* udot, double* tau) {
   const double x0 = sin(q[1]);
-  const double x1 = u[1] + u[0];
+  const double x1 = u[0]*p.L1;
   const double x2 = cos(q[1]);
-  const double x3 = u[0]*u[0];
-  const double x4 = x2*udot[0]*p.L1;
+  const double x3 = udot[0]*p.L1;
+  const double x4 = u[0]*x0*x1 + x2*x3;
   const double x5 = udot[0] + udot[1];
-  const double x6 = x3*x0*p.L1;
-  const double x7 = x5*p.J2 + 0.5*(x4*p.m2*p.L2) + 0.5*(p.m2*x6*p.L2);
-  tau[0] = p.J1*udot[0] + p.L1*(((x0*udot[0]*p.L1)*p.m2 - (p.m2*(0.5*(x1*x1*p.L2) + x2*x3*p.L1)))*x0 + x2*(x4*p.m2 + 0.5*(x5*p.m2*p.L2) + p.m2*x6)) + x7;
-  tau[1] = x7;
+  const double x6 = 0.5*(p.m2*x4*p.L2) + x5*p.J2;
+  const double x7 = u[1] + u[0];
+  tau[0] = -(-x6 + (x0*(p.m2*(u[0]*x2*x1 - (x0*x3)) + 0.5*(p.m2*x7*x7*p.L2)) - ((p.m2*x4 + 0.5*(x5*p.m2*p.L2))*x2))*p.L1) + p.J1*udot[0];
+  tau[1] = x6;
   tau[2] = p.m3*udot[2];
 }
 

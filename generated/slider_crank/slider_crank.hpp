@@ -11,7 +11,7 @@
 //   potential_energy: 0
 //   nonconservative_power: 3
 //   outputs: 18
-//   inverse_dynamics: 44 (recursive; M udot - f from M and f: 41)
+//   inverse_dynamics: 38 (recursive; M udot - f from M and f: 41)
 //   gravity: 0
 //   constraints: 17
 //   constraint_jacobian: 17

@@ -195,26 +195,22 @@ Articulated own_terms(const TreeBody& body) {
   return s;
 }
 
-/// A rigid body's own terms in its working axes: its inertia carried there
-/// (numbers for a rigid body), its applied wrench turned and shifted, and
-/// the rate of its momentum about the working origin with the rest
-/// accelerations, (K alpha + h x a + w x K w, m a + alpha x h + w x (w x h)),
-/// formed there: the bias is minus the applied-plus-inertia wrench.
+/// A rigid body's own terms in its working axes (kane/working_motion.*): its
+/// inertia there (numbers), and as the bias minus its applied-plus-inertia
+/// wrench, the rate of its momentum with the rest accelerations less the
+/// applied forces.
 Articulated rigid_terms(Program& program, const TreeBody& body, const FrameStep& from_body,
                         const WorkingMotion& m) {
+  const WorkingInertia inertia = working_inertia(body.mass, body.moment, body.second, from_body);
+  const SpatialForce applied =
+      wrench_in_working({body.applied_moment, body.applied_force}, from_body, program);
+  const SpatialForce rate = momentum_rate(inertia, m.omega, m.alpha_rest, m.accel_rest, program);
   Articulated s;
-  s.a = body.second;
-  s.b = skew(body.moment);
+  s.a = inertia.second;
+  s.b = skew(inertia.moment);
   s.c = Mat3{body.mass, 0, 0, 0, body.mass, 0, 0, 0, body.mass};
-  s.bias_moment = zero_vec() - body.applied_moment;
-  s.bias_force = zero_vec() - body.applied_force;
-  s = carried(program, s, from_body);
-  s.c = Mat3{body.mass, 0, 0, 0, body.mass, 0, 0, 0, body.mass};  // m 1 in any axes, without round-off
-  const Vec3 h{s.b[7], s.b[2], s.b[3]};                           // s.b = [h]x
-  const Vec3 spin = named(program, mul(s.a, m.omega));
-  const Vec3 whirl = named(program, cross(m.omega, h));
-  s.bias_moment = s.bias_moment + mul(s.a, m.alpha_rest) + cross(h, m.accel_rest) + cross(m.omega, spin);
-  s.bias_force = s.bias_force + body.mass * m.accel_rest + cross(m.alpha_rest, h) + cross(m.omega, whirl);
+  s.bias_moment = rate.moment - applied.moment;
+  s.bias_force = rate.force - applied.force;
   return s;
 }
 

@@ -11,6 +11,7 @@
 #include "kane/flexible_body.hpp"
 #include "kane/force_elements.hpp"
 #include "kane/node_outputs.hpp"
+#include "kane/working_newton_euler.hpp"
 #include "kinematics/tree_kinematics.hpp"
 #include "model/model_error.hpp"
 #include "model/output_columns.hpp"
@@ -479,39 +480,41 @@ void sum_into_parents(Derivation& d, std::vector<Wrench>& sums) {
   }
 }
 
+std::vector<ex> as_ex(const std::vector<GiNaC::symbol>& symbols) { return {symbols.begin(), symbols.end()}; }
+
+/// The recursions' view of each body (TreeKinematics::bodies order): its own
+/// inertia, its applied-plus-inertia wrench and, apart, the applied part
+/// alone; a flexible body's floating-frame and elastic terms.
+std::vector<TreeBody> tree_bodies(const Derivation& d, const BodySums& own) {
+  std::vector<TreeBody> bodies;
+  for (std::size_t i = 0; i < own.inertia.size(); ++i) {
+    TreeBody& b = bodies.emplace_back();
+    b.mass = own.inertia[i].mass;
+    b.moment = own.inertia[i].moment;
+    b.second = own.inertia[i].second;
+    b.wrench_moment = own.wrench[i].moment;
+    b.wrench_force = own.wrench[i].force;
+    b.applied_moment = own.applied[i].moment;
+    b.applied_force = own.applied[i].force;
+    const auto elastic = own.elastic.find(i);
+    if (elastic == own.elastic.end()) continue;
+    b.elastic_first = d.vars.elastic_first[d.tree.bodies()[i].body];
+    b.elastic_angular = elastic->second.angular_momentum;
+    b.elastic_linear = elastic->second.linear_momentum;
+    b.elastic_mass = elastic->second.elastic_mass;
+    b.elastic_forcing = elastic->second.elastic_forcing;
+  }
+  return bodies;
+}
+
 /// Rigid trees: M u_dot - f (u_dot = Variables::udot, without the joints'
 /// own forces) and the gravity g(q) = dV_gravity/dq by Newton and Euler's
-/// recursion, without M. Outward, the accelerations that u_dot alone gives
-/// (the rest accelerations are the forcing's):
-///   alpha_i = E_i alpha_p + a_k udot_k (revolute),
-///   a_i = E_i (a_p + alpha_p x r_i) + a_k udot_k (prismatic);
-/// each body's rate of momentum about its origin, (K alpha + h x a, m a + alpha x h),
-/// and its weight (h x g, m g), g in its axes; inward, the subtree sums
-/// projected on each joint, the rate of momentum less the applied-plus-inertia
-/// wrench of the forcing, in one sum. `own`: each body's inertia and wrench
-/// before the composites.
+/// recursion, without M, in the working frames (kane/working_newton_euler.*).
 void newton_euler(Derivation& d, const BodySums& own) {
-  const auto& states = d.tree.bodies();
-  const std::size_t count = states.size();
-  const RateMotion motion = motion_of_rates(d, d.vars.udot);
-  std::vector<Wrench> inertial(count), weight(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    const SpatialInertia& m = own.inertia[i];
-    const Wrench rate = momentum_of(m, motion.angular[i], motion.linear[i]);
-    inertial[i] = {rate.moment - own.wrench[i].moment, rate.force - own.wrench[i].force};
-    const Vec3 g = named(d.program, mul_transposed(states[i].rotation, d.gravity));
-    weight[i] = {cross(m.moment, g), m.mass * g};
-  }
-  sum_into_parents(d, inertial);
-  sum_into_parents(d, weight);
-  d.eq.inverse_dynamics.assign(d.eq.nu, 0);
-  d.eq.gravity_forces.assign(d.eq.nu, 0);
-  for (std::size_t i = 0; i < count; ++i) {
-    const kinematics::JointFrame& joint = d.tree.joints()[states[i].joint];
-    if (joint.speed < 0) continue;
-    d.eq.inverse_dynamics[joint.speed] = project(joint, inertial[i].moment, inertial[i].force);
-    d.eq.gravity_forces[joint.speed] = -project(joint, weight[i].moment, weight[i].force);
-  }
+  const NewtonEuler ne = working_newton_euler(d.tree, tree_bodies(d, own), as_ex(d.vars.u),
+                                              as_ex(d.vars.udot), d.gravity, d.program);
+  d.eq.inverse_dynamics = ne.inertial;
+  d.eq.gravity_forces = ne.gravity;
 }
 
 /// Rigid trees: the generalized momentum h = M u by newton_euler's recursion
@@ -551,28 +554,10 @@ std::string recursive_unavailable(const Derivation& d) {
 void recursive_dynamics(Derivation& d, const BodySums& own, const std::vector<ex>& body_forcing) {
   d.eq.recursive_unavailable = recursive_unavailable(d);
   if (!d.eq.recursive_unavailable.empty()) return;
-  std::vector<TreeBody> bodies;
-  for (std::size_t i = 0; i < own.inertia.size(); ++i) {
-    TreeBody& b = bodies.emplace_back();
-    b.mass = own.inertia[i].mass;
-    b.moment = own.inertia[i].moment;
-    b.second = own.inertia[i].second;
-    b.wrench_moment = own.wrench[i].moment;
-    b.wrench_force = own.wrench[i].force;
-    b.applied_moment = own.applied[i].moment;
-    b.applied_force = own.applied[i].force;
-    const auto elastic = own.elastic.find(i);
-    if (elastic == own.elastic.end()) continue;
-    b.elastic_first = d.vars.elastic_first[d.tree.bodies()[i].body];
-    b.elastic_angular = elastic->second.angular_momentum;
-    b.elastic_linear = elastic->second.linear_momentum;
-    b.elastic_mass = elastic->second.elastic_mass;
-    b.elastic_forcing = elastic->second.elastic_forcing;
-  }
+  const std::vector<TreeBody> bodies = tree_bodies(d, own);
   std::vector<ex> joint_forces(d.eq.nu);
   for (int r = 0; r < d.eq.nu; ++r) joint_forces[r] = d.eq.forcing[r] - body_forcing[r];
-  RecursiveDynamics r = articulated_body_dynamics(
-      d.tree, bodies, joint_forces, std::vector<ex>(d.vars.u.begin(), d.vars.u.end()), d.program);
+  RecursiveDynamics r = articulated_body_dynamics(d.tree, bodies, joint_forces, as_ex(d.vars.u), d.program);
   if (r.zero_pivot >= 0) {
     d.eq.recursive_unavailable = "elastic coordinate '" + d.eq.coordinate_names[r.zero_pivot] +
                                  "' moves no inertia in any state (the recursion divides by it)";

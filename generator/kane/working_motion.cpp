@@ -22,6 +22,37 @@ WorkingMotion from_body(const kinematics::BodyState& b, const FrameStep& step, P
 
 }  // namespace
 
+WorkingInertia working_inertia(const GiNaC::ex& mass, const Vec3& moment, const Mat3& second,
+                               const FrameStep& from_body) {
+  const Mat3& t = from_body.turn;
+  const Vec3 h = mul(t, moment);
+  const Mat3 k = mul(t, mul(second, transpose(t)));
+  // About the working origin, from which the body origin is at r = s:
+  // sum of m (|r + x|^2 1 - (r + x)(r + x)^T) over the body's points x.
+  const Vec3& r = from_body.shift;
+  WorkingInertia w{mass, h + mass * r, Mat3{}};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      w.second[3 * i + j] = k[3 * i + j] + (i == j ? mass * dot(r, r) + 2 * dot(r, h) : GiNaC::ex(0)) -
+                            mass * r[i] * r[j] - r[i] * h[j] - h[i] * r[j];
+  return w;
+}
+
+SpatialForce wrench_in_working(const SpatialForce& body_wrench, const FrameStep& from_body,
+                               Program& program) {
+  const Vec3 force = named(program, mul(from_body.turn, body_wrench.force));
+  return {named(program, mul(from_body.turn, body_wrench.moment) + cross(from_body.shift, force)), force};
+}
+
+SpatialForce momentum_rate(const WorkingInertia& inertia, const Vec3& omega, const Vec3& alpha,
+                           const Vec3& accel, Program& program) {
+  const Vec3& h = inertia.moment;
+  const Vec3 spin = named(program, mul(inertia.second, omega));
+  const Vec3 whirl = named(program, cross(omega, h));
+  return {mul(inertia.second, alpha) + cross(h, accel) + cross(omega, spin),
+          inertia.mass * accel + cross(alpha, h) + cross(omega, whirl)};
+}
+
 std::vector<WorkingMotion> working_motion(const kinematics::TreeKinematics& tree,
                                           const std::vector<WorkingFrame>& frames,
                                           const std::vector<bool>& flexible,

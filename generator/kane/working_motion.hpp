@@ -34,4 +34,33 @@ std::vector<WorkingMotion> working_motion(const kinematics::TreeKinematics& tree
                                           const std::vector<bool>& flexible,
                                           const std::vector<GiNaC::ex>& speeds, symbolic::Program& program);
 
+/// A rigid body's inertia about its working origin, in working axes: mass,
+/// first moment h = m c and second moment K.
+struct WorkingInertia {
+  GiNaC::ex mass;
+  symbolic::Vec3 moment;
+  symbolic::Mat3 second;
+};
+
+/// The inertia about the body origin in body axes (mass, h, K) moved to the
+/// working frame (x_working = T x_body + s): numbers for a rigid body.
+WorkingInertia working_inertia(const GiNaC::ex& mass, const symbolic::Vec3& moment,
+                               const symbolic::Mat3& second, const FrameStep& from_body);
+
+/// A wrench: a moment about a frame's origin and a force, in its axes.
+struct SpatialForce {
+  symbolic::Vec3 moment = symbolic::zero_vec(), force = symbolic::zero_vec();
+};
+
+/// A wrench about the body origin in body axes, about the working origin in working axes.
+SpatialForce wrench_in_working(const SpatialForce& body_wrench, const FrameStep& from_body,
+                               symbolic::Program& program);
+
+/// The rate of momentum about the working origin of a rigid body with
+/// angular velocity w, angular acceleration alpha and origin acceleration a:
+/// (K alpha + h x a + w x K w, m a + alpha x h + w x (w x h)).
+SpatialForce momentum_rate(const WorkingInertia& inertia, const symbolic::Vec3& omega,
+                           const symbolic::Vec3& alpha, const symbolic::Vec3& accel,
+                           symbolic::Program& program);
+
 }  // namespace kanegen::kane

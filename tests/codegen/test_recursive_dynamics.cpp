@@ -6,6 +6,8 @@
 // rotated joint frames, fixed joints, gravity in any direction, joint
 // springs, dampers, inputs and efforts, body-fixed and world-fixed forces and a spring between two bodies.
 // Both are evaluated from the expression graph the kernels are printed from.
+// On the rigid trees also inverse_dynamics (Newton and Euler's recursion in
+// the working frames, kane/working_newton_euler.*) against M u_dot - f.
 // Flexible models too: the shipped ones (bodies on beam nodes, geometric
 // stiffening, modal and nodal coordinates) and a random flexible tree with
 // rigid and flexible children on a node, elastic speeds in the recursion.
@@ -155,6 +157,9 @@ std::string random_tree(std::mt19937& rng, int bodies) {
 struct Comparison {
   double worst = 0;  ///< largest |recursive - composite| / (1 + |composite|)
   int nu = 0;
+  /// Rigid trees: inverse_dynamics (Newton and Euler's recursion) against M
+  /// u_dot - f at random u_dot, the same measure; -1 where there is none.
+  double worst_inverse = -1;
 };
 
 /// q and u drawn in [-2, 2] (`joints` of them, the joints'), elastic ones in
@@ -183,17 +188,20 @@ Comparison compare(const std::string& path, std::mt19937& rng, double elastic_sc
   for (const GiNaC::ex& e : eq.mass_matrix) mass.push_back(graph.add(e));
   for (const GiNaC::ex& e : eq.forcing) forcing.push_back(graph.add(e));
   for (const GiNaC::ex& e : eq.recursive_accelerations) recursive.push_back(graph.add(e));
+  std::vector<int> inverse;
+  for (const GiNaC::ex& e : eq.inverse_dynamics) inverse.push_back(graph.add(e));
 
   Comparison c;
   c.nu = n;
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   for (int state = 0; state < 5; ++state) {
-    std::vector<double> q(n), u(n), tau(n);
+    std::vector<double> q(n), u(n), tau(n), accelerations(n);
     for (int i = 0; i < n; ++i) {
       const double scale = i < vars.joint_coordinates ? 2.0 : elastic_scale;
       q[i] = scale * unit(rng);
       u[i] = scale * unit(rng);
       tau[i] = unit(rng);
+      accelerations[i] = 3 * unit(rng);
     }
     const double t = 1 + unit(rng);
     const auto input = [&](const std::string& name) {
@@ -206,6 +214,7 @@ Comparison compare(const std::string& path, std::mt19937& rng, double elastic_sc
       if (array == "q") return q.at(i);
       if (array == "u") return u.at(i);
       if (array == "tau") return tau.at(i);
+      if (array == "udot") return accelerations.at(i);
       FAIL("unexpected input " << name);
       return 0.0;
     };
@@ -220,6 +229,13 @@ Comparison compare(const std::string& path, std::mt19937& rng, double elastic_sc
     const Eigen::VectorXd reference = M.ldlt().solve(f);
     for (int i = 0; i < n; ++i)
       c.worst = std::max(c.worst, std::abs(udot[i] - reference[i]) / (1 + std::abs(reference[i])));
+    if (inverse.empty()) continue;
+    const Eigen::VectorXd given = Eigen::Map<const Eigen::VectorXd>(accelerations.data(), n);
+    const Eigen::VectorXd balance = M * given - f;
+    c.worst_inverse = std::max(c.worst_inverse, 0.0);
+    for (int i = 0; i < n; ++i)
+      c.worst_inverse =
+          std::max(c.worst_inverse, std::abs(v[inverse[i]] - balance[i]) / (1 + std::abs(balance[i])));
   }
   return c;
 }
@@ -247,7 +263,7 @@ TEST_CASE("recursive forward dynamics equals the composite solve on random trees
   const std::string path = (std::filesystem::temp_directory_path() /
                             ("kanegen_random_tree_" + std::to_string(::getpid()) + ".json"))
                                .string();
-  double worst = 0;
+  double worst = 0, worst_inverse = 0;
   for (int tree = 0; tree < 12; ++tree) {
     const int bodies = 2 + tree % 6;
     {
@@ -257,10 +273,14 @@ TEST_CASE("recursive forward dynamics equals the composite solve on random trees
     INFO("tree " << tree << ", model file:\n" << std::ifstream(path).rdbuf());
     const Comparison c = compare(path, rng);
     CHECK(c.worst < 1e-10);
+    CHECK(c.worst_inverse >= 0);  // a rigid tree has the recursive inverse dynamics
+    CHECK(c.worst_inverse < 1e-10);
     worst = std::max(worst, c.worst);
+    worst_inverse = std::max(worst_inverse, c.worst_inverse);
   }
   std::filesystem::remove(path);
   std::printf("recursive vs composite on 12 random trees: max rel. difference of u_dot %.2e\n", worst);
+  std::printf("inverse_dynamics vs M u_dot - f on the same trees: max rel. difference %.2e\n", worst_inverse);
 }
 
 TEST_CASE("recursive forward dynamics equals the composite solve on the flexible models",
@@ -421,6 +441,8 @@ TEST_CASE("recursive forward dynamics equals the composite solve where the worki
   const Comparison c = compare_text("special_frames", m.str(), rng);
   CHECK(c.nu == count - 1);
   CHECK(c.worst < 1e-10);
+  CHECK(c.worst_inverse >= 0);
+  CHECK(c.worst_inverse < 1e-10);
   std::printf("recursive vs composite where the working frames are special: max rel. difference %.2e\n",
               c.worst);
 }
