@@ -648,6 +648,21 @@ TEST_CASE("simulate --stats ends with a summary: steps, final time, energy drift
   CHECK(r.err.find('\r') == std::string::npos);
 }
 
+TEST_CASE("simulate keeps stdout for the CSV, and --help says the --stats summary goes to stderr", "[cli]") {
+  // A user piping the CSV (| cat, > file) gets the summary on stderr, as on a terminal: --help says so.
+  const std::string help = kanegen("simulate --help").out;
+  CHECK(help.find("CSV on stdout") != std::string::npos);
+  CHECK(help.find("summary line") != std::string::npos);
+  CHECK(help.find("2>&1") != std::string::npos);
+  // Here stdout and stderr are pipes: stdout is the CSV alone, the stats and summary are on stderr.
+  const Result r = kanegen("simulate " + model("simple_pendulum.json") + " --t-end 0.1 --stats --quiet");
+  REQUIRE(r.status == 0);
+  const auto [header, rows] = read_csv(r.out);
+  CHECK(rows.size() == 11);
+  CHECK(r.out.find("summary") == std::string::npos);
+  CHECK(lines_of(r.err).back().rfind("summary: ", 0) == 0);
+}
+
 namespace {
 
 /// The width and height of a PNG from its IHDR chunk, after checking the
