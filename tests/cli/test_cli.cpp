@@ -829,6 +829,21 @@ TEST_CASE("a number out of range is refused without the range's 309 digits", "[c
   CHECK(negative.err.rfind("--trajectories: needs a number >= 0, got '-1'\n", 0) == 0);
 }
 
+TEST_CASE("a loop model's header compares its saddle-point solve with the other solve alone", "[cli]") {
+  // The count in parentheses is the solve's share of forward_dynamics, and the other method's is the
+  // other solve's alone (the rest of the kernel is the same): "dense: N" read as a total looked smaller.
+  const fs::path dir = scratch() / "gen_saddle";
+  REQUIRE(kanegen("generate " + model("four_bar.json") + " -o " + dir.string()).status == 0);
+  std::smatch match;
+  const std::string header = slurp(dir / "four_bar.hpp");
+  REQUIRE(std::regex_search(
+      header, match,
+      std::regex("forward_dynamics: ([0-9]+) \\(([0-9]+) of them in the saddle-point solve, "
+                 "a sparse LDL\\^T; the dense solve would take ([0-9]+) in their place\\)")));
+  CHECK(std::stol(match[2]) < std::stol(match[3]));
+  CHECK(std::stol(match[2]) < std::stol(match[1]));
+}
+
 TEST_CASE("generate --dynamics picks forward_dynamics's method, states it and refuses what it cannot solve",
           "[cli][recursive]") {
   const fs::path dir = scratch() / "gen_dynamics";
@@ -887,10 +902,11 @@ TEST_CASE("generate --dynamics picks forward_dynamics's method, states it and re
   const Result zero =
       kanegen("generate " + point.string() + " -o " + (dir / "point").string() + " --dynamics recursive");
   CHECK(zero.status == 2);
-  CHECK(zero.err.find(
-            "point_on_axis.json: /joints/1: --dynamics recursive cannot solve this model: joint 'j2' moves no "
-            "inertia about or along its axis in any state (the recursion divides by it); use "
-            "--dynamics composite, or auto (the default)") != std::string::npos);
+  CHECK(
+      zero.err.find(
+          "point_on_axis.json: /joints/1: --dynamics recursive cannot solve this model: joint 'j2' moves no "
+          "inertia about or along its axis in any state (the recursion divides by it); use "
+          "--dynamics composite, or auto (the default)") != std::string::npos);
   CHECK(!fs::exists(dir / "point"));
   CHECK(kanegen("generate " + point.string() + " -o " + (dir / "point").string()).status == 0);
   CHECK(kanegen("generate " + model("arm7.urdf") + " -o " + dir.string() + " --dynamics fast").status != 0);
