@@ -6,7 +6,7 @@
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 21
 //   forcing: 43
-//   forward_dynamics: 182 (78 of them in the sparse saddle-point LDL^T; dense: 105)
+//   forward_dynamics: 182 (78 of them in the saddle-point solve, a sparse LDL^T; the dense solve would take 105 in their place)
 //   kinetic_energy: 43
 //   potential_energy: 22
 //   nonconservative_power: 5

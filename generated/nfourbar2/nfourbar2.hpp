@@ -6,7 +6,7 @@
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 20
 //   forcing: 79
-//   forward_dynamics: 375 (198 of them in the sparse saddle-point LDL^T; dense: 447)
+//   forward_dynamics: 375 (198 of them in the saddle-point solve, a sparse LDL^T; the dense solve would take 447 in their place)
 //   kinetic_energy: 72
 //   potential_energy: 40
 //   nonconservative_power: 9

@@ -6,7 +6,7 @@
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 60
 //   forcing: 101
-//   forward_dynamics: 339 (125 of them in the sparse saddle-point LDL^T; dense: 332)
+//   forward_dynamics: 339 (125 of them in the saddle-point solve, a sparse LDL^T; the dense solve would take 332 in their place)
 //   kinetic_energy: 112
 //   potential_energy: 17
 //   nonconservative_power: 3

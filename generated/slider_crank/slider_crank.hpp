@@ -6,7 +6,7 @@
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 11
 //   forcing: 24
-//   forward_dynamics: 95 (40 of them in the sparse saddle-point LDL^T; dense: 62)
+//   forward_dynamics: 95 (40 of them in the saddle-point solve, a sparse LDL^T; the dense solve would take 62 in their place)
 //   kinetic_energy: 40
 //   potential_energy: 0
 //   nonconservative_power: 3

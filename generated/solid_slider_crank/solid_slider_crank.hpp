@@ -6,7 +6,7 @@
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 1234
 //   forcing: 1785
-//   forward_dynamics: 3650 (1153 of them in the sparse saddle-point LDL^T; dense: 2757)
+//   forward_dynamics: 3650 (1153 of them in the saddle-point solve, a sparse LDL^T; the dense solve would take 2757 in their place)
 //   kinetic_energy: 1580
 //   potential_energy: 253
 //   nonconservative_power: 3

@@ -237,7 +237,10 @@ struct SimulateCommand {
 };
 
 void add_simulate(CLI::App& app, SimulateCommand& c) {
-  c.command = app.add_subcommand("simulate", "generate (cached), compile and integrate the model; write CSV");
+  c.command = app.add_subcommand(
+      "simulate",
+      "generate (cached), compile and integrate the model: the CSV on stdout (or -o FILE), every message "
+      "on stderr (progress, --stats and its summary line, errors; 2>&1 to pipe them along)");
   add_common(c.command, c.run);
   add_forwarded(c.command, "simulate", c.forwarded);
   c.command

@@ -427,13 +427,14 @@ KernelCode constrained_dynamics_kernel(const Derivation& d) {
   const long dense = dense_saddle_operations(ns, nc);
   if (sparse.operations < dense) {
     KernelCode code = sparse_constrained_dynamics_kernel(d, nodes, structure, order, sparse);
-    code.count_note = " (" + str(sparse.operations) + " of them in the sparse saddle-point LDL^T; dense: " +
-                      str(dense) + ")" + code.count_note;
+    // Solve against solve: the rest of the kernel is the same either way.
+    code.count_note = " (" + str(sparse.operations) + " of them in the saddle-point solve, a sparse LDL^T; " +
+                      "the dense solve would take " + str(dense) + " in their place)" + code.count_note;
     return code;
   }
   KernelCode code = dense_constrained_dynamics_kernel(d, nodes);
-  code.count_note = " (" + str(dense) + " of them in the dense saddle-point solve; sparse: " +
-                    str(sparse.operations) + ")" + code.count_note;
+  code.count_note = " (" + str(dense) + " of them in the saddle-point solve, dense; the sparse LDL^T would " +
+                    "take " + str(sparse.operations) + " in their place)" + code.count_note;
   return code;
 }
 
@@ -621,8 +622,8 @@ KernelCode inverse_dynamics_kernel(const Derivation& d) {
     return from_m;
   }
   KernelCode code = printed(Kernel::inverse_dynamics, d, recursive);
-  code.count_note =
-      " (recursive; M udot - f from M and f: " + str(count_operations(d.graph, formed)) + ")" + code.count_note;
+  code.count_note = " (recursive; M udot - f from M and f: " + str(count_operations(d.graph, formed)) + ")" +
+                    code.count_note;
   return code;
 }
 

@@ -8,6 +8,7 @@
 
 #include "fem/continuum_element.hpp"
 #include "fem/invariants.hpp"
+#include "fem/rigid_motions.hpp"
 #include "fem/rotating.hpp"
 
 namespace kanegen::fem {
@@ -47,15 +48,16 @@ Eigen::MatrixXd static_displacements(const Body& body, const Constraint& held, c
                                 " body dofs, got " + std::to_string(loads.rows()));
   if (held.num_dofs() != body.num_dofs())
     throw std::invalid_argument("static_displacement: the constraint is for another body");
-  const Eigen::MatrixXd k = held.reduce(body.stiffness());
-  const Eigen::LLT<Eigen::MatrixXd> llt(k);
-  // LLT succeeds on a singular K through round-off; a rigid motion shows as a pivot near zero.
-  const double smallest =
-      llt.info() == Eigen::Success ? llt.matrixL().toDenseMatrix().diagonal().minCoeff() : 0.0;
-  if (!(smallest > 1e-6 * std::sqrt(k.diagonal().maxCoeff())))
+  // From the geometry: K's pivots cannot tell a thin body from a free one (rigid_motions.hpp).
+  const std::string free_motion = unheld_rigid_motion(body, held);
+  if (!free_motion.empty())
+    throw std::invalid_argument("static_displacement: the held dofs leave the body free to move rigidly (" +
+                                free_motion + "); hold a face or enough nodes to stop every rigid motion");
+  const Eigen::LLT<Eigen::MatrixXd> llt(held.reduce(body.stiffness()));
+  if (llt.info() != Eigen::Success)
     throw std::invalid_argument(
-        "static_displacement: the held dofs leave the body free to move rigidly; hold a face or enough "
-        "nodes to stop every rigid motion");
+        "static_displacement: K is not positive definite on the free dofs although every rigid motion is "
+        "held: parts of the body joined at one node or along an edge turn as a mechanism; mesh them as one");
   return held.expand(llt.solve(loads(held.free(), Eigen::all)));
 }
 

@@ -260,16 +260,36 @@ std::vector<S> second_order_displacement(const FlexibleData& f, const std::vecto
   return u2;
 }
 
-/// A node's displaced position, link frame: undeformed + translation + foreshortening.
+/// A flexible body's second-order displacement at one state (geometric
+/// stiffening), computed once per state and then read at every node placed:
+/// a beam's foreshortening of each node (node_shortening), or a mesh body's
+/// u2 over its dofs (second_order_displacement); empty without stiffening.
 template <class S>
-Vec<S> displaced_node(const FlexibleData& f, const std::vector<S>& dofs, int node) {
+struct SecondOrder {
+  std::vector<Vec<S>> beam_nodes;
+  std::vector<S> mesh_dofs;
+};
+template <class S>
+SecondOrder<S> second_order(const FlexibleData& f, const std::vector<S>& dofs) {
+  SecondOrder<S> out;
+  if (f.mesh)
+    out.mesh_dofs = second_order_displacement(f, dofs);
+  else if (f.shortens())
+    out.beam_nodes = node_shortening(f, dofs);
+  return out;
+}
+
+/// A node's displaced position, link frame: undeformed + translation +
+/// foreshortening (`second`: second_order of the same dofs).
+template <class S>
+Vec<S> displaced_node(const FlexibleData& f, const std::vector<S>& dofs, const SecondOrder<S>& second,
+                      int node) {
   if (f.mesh) {
     const Vec<S> moved = add(rest_node(f, node), interface_translation(f, dofs, node));
-    const std::vector<S> u2 = second_order_displacement(f, dofs);
-    return u2.empty() ? moved : add(moved, interface_translation(f, u2, node));
+    return second.mesh_dofs.empty() ? moved : add(moved, interface_translation(f, second.mesh_dofs, node));
   }
   const Vec<S> moved = add(f.nodes[node], node_translation(f, dofs, node));
-  return f.shortens() ? add(moved, node_shortening(f, dofs)[node]) : moved;
+  return second.beam_nodes.empty() ? moved : add(moved, second.beam_nodes[node]);
 }
 
 }  // namespace kanegen::numeric

@@ -174,10 +174,10 @@ void visit_masses(const Instance& m, const std::vector<Pose<S>>& poses,
 /// The world position of a force's point (a body point, or a displaced node).
 template <class S>
 Vec<S> force_point(const Instance& m, const ForceData& force, const std::vector<Pose<S>>& poses,
-                   const std::vector<std::vector<S>>& dofs) {
+                   const std::vector<std::vector<S>>& dofs, const std::vector<SecondOrder<S>>& second) {
   if (force.node < 0) return to_world(poses[force.body], cast<S>(force.point));
   const FlexibleData& f = *m.bodies[force.body].beam;
-  return to_world(poses[force.body], displaced_node(f, dofs[force.body], force.node));
+  return to_world(poses[force.body], displaced_node(f, dofs[force.body], second[force.body], force.node));
 }
 
 /// A spring's vector from its second end to its first, world axes.
@@ -252,7 +252,7 @@ std::array<double, 4> resultants(const FlexibleData& f, const std::vector<double
 /// loop forces at inputs of zero, every loop's rows in order.
 double output_value(const Instance& m, const model::OutputColumn& column, const State& s,
                     const std::vector<Pose<double>>& poses, const std::vector<std::vector<double>>& dofs,
-                    const std::vector<double>& reaction) {
+                    const std::vector<SecondOrder<double>>& second, const std::vector<double>& reaction) {
   const OutputData& o = m.outputs[column.output];
   switch (o.kind) {
     case model::OutputKind::point_position:
@@ -268,7 +268,8 @@ double output_value(const Instance& m, const model::OutputColumn& column, const 
     }
     case model::OutputKind::node_displacement: {
       const FlexibleData& f = *m.bodies[o.body].beam;
-      return sub(displaced_node(f, dofs[o.body], o.node), rest_node(f, o.node))[column.component];
+      return sub(displaced_node(f, dofs[o.body], second[o.body], o.node),
+                 rest_node(f, o.node))[column.component];
     }
     default:
       break;
@@ -350,6 +351,7 @@ struct ElementMotion {
 };
 struct PathMotion {
   std::vector<std::vector<D2>> dofs;
+  std::vector<SecondOrder<D2>> second;  ///< of dofs
   std::vector<Pose<D2>> poses;
   std::vector<BodyMotion> body;
   std::vector<ElementMotion> element;  ///< when asked for
@@ -365,7 +367,8 @@ PathMotion motion_along(const Instance& m, const State& s, const std::vector<dou
   for (int k = 0; k < n; ++k) x[k] = D2(D1(s.q[k], s.u[k]), D1(s.u[k], udot ? (*udot)[k] : 0.0));
   PathMotion out;
   out.dofs = all_beam_dofs(m, x.data());
-  out.poses = body_poses(m, x.data(), out.dofs);
+  out.second = all_second_order(m, out.dofs);
+  out.poses = body_poses(m, x.data(), out.dofs, out.second);
   out.body.resize(nb);
   for (int b = 0; b < nb; ++b) {
     BodyMotion& k = out.body[b];
@@ -442,6 +445,7 @@ struct Partial {
 };
 struct Pass {
   std::vector<std::vector<D1>> dofs;
+  std::vector<SecondOrder<D1>> second;  ///< of dofs
   Touched touched;
   /// Per spring: dl/dq_r (the spring's generalized force is -tension dl/dq_r),
   /// and |v_r| of its two ends summed (the scale of that term's round-off).
@@ -457,7 +461,8 @@ Pass partial_pass(const Instance& m, const State& s, int r, const std::vector<Bo
   for (int k = 0; k < n; ++k) x[k] = D1(s.q[k], k == r ? 1.0 : 0.0);
   Pass pass;
   pass.dofs = all_beam_dofs(m, x.data());
-  const std::vector<Pose<D1>> poses = body_poses(m, x.data(), pass.dofs);
+  pass.second = all_second_order(m, pass.dofs);
+  const std::vector<Pose<D1>> poses = body_poses(m, x.data(), pass.dofs, pass.second);
   pass.touched = touched_by(m, poses, pass.dofs);
   const Touched& touched = pass.touched;
   std::vector<Vec<double>> link_rate(nb);  // w_r of each link
@@ -474,7 +479,7 @@ Pass partial_pass(const Instance& m, const State& s, int r, const std::vector<Bo
         },
         scale);
   for (std::size_t f = 0; f < m.forces.size(); ++f)
-    forces[f][r] = derivative(force_point(m, m.forces[f], poses, pass.dofs));
+    forces[f][r] = derivative(force_point(m, m.forces[f], poses, pass.dofs, pass.second));
   for (const SpringData& spring : m.springs) {
     const Vec<D1> d = spring_vector(spring, poses);
     pass.spring_slope.push_back(sqrt(dot(d, d)).d);
@@ -788,7 +793,7 @@ void add_point_forces(const Instance& m, const PathMotion& motion, const Coordin
       e.forcing[r] += dot(force, partial[r]);
       e.forcing_magnitude[r] += std::sqrt(dot(force, force) * dot(partial[r], partial[r]));
     }
-    const Vec<D2> at = force_point(m, f, motion.poses, motion.dofs);
+    const Vec<D2> at = force_point(m, f, motion.poses, motion.dofs, motion.second);
     if (f.body_frame) {
       e.nonconservative_power += dot(force, Vec<double>{at[0].d.v, at[1].d.v, at[2].d.v});
     } else {
@@ -935,8 +940,9 @@ Evaluation evaluate(const Instance& m, const State& s) {
 
   std::vector<Pose<double>> poses(m.bodies.size());
   for (std::size_t b = 0; b < poses.size(); ++b) poses[b] = {motion.body[b].r, motion.body[b].p};
+  const std::vector<SecondOrder<double>> second = all_second_order(m, dofs);
   for (const model::OutputColumn& column : m.output_columns)
-    e.outputs.push_back(output_value(m, column, s, poses, dofs, reaction));
+    e.outputs.push_back(output_value(m, column, s, poses, dofs, second, reaction));
   return e;
 }
 
@@ -951,7 +957,7 @@ double applied_power(const Instance& m, const State& s, const PathMotion& motion
   if (m.has_flexible()) power += beam_power(m, s);
   for (const ForceData& f : m.forces) {
     if (!f.body_frame) continue;
-    const Vec<D2> at = force_point(m, f, motion.poses, motion.dofs);
+    const Vec<D2> at = force_point(m, f, motion.poses, motion.dofs, motion.second);
     power += dot(mul(motion.body[f.body].r, f.force), Vec<double>{at[0].d.v, at[1].d.v, at[2].d.v});
   }
   for (const SpringData& spring : m.springs) {

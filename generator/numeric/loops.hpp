@@ -37,11 +37,12 @@ inline std::array<Vec<double>, 2> across(const Vec<double>& n) {
 /// flexible body (moving with its deformation) or a ground point.
 template <class S>
 Vec<S> loop_point(const Instance& m, const std::vector<Pose<S>>& poses,
-                  const std::vector<std::vector<S>>& dofs, int body, int node, const Vec<double>& point) {
+                  const std::vector<std::vector<S>>& dofs, const std::vector<SecondOrder<S>>& second,
+                  int body, int node, const Vec<double>& point) {
   if (body < 0) return cast<S>(point);
   if (node < 0) return point_position(poses, body, point);
   const FlexibleData& f = *m.bodies[body].beam;
-  const Vec<S> local = displaced_node(f, dofs[body], node);
+  const Vec<S> local = displaced_node(f, dofs[body], second[body], node);
   return add(poses[body].origin, mul(poses[body].rotation, local));
 }
 
@@ -49,7 +50,8 @@ Vec<S> loop_point(const Instance& m, const std::vector<Pose<S>>& poses,
 template <class S>
 std::vector<S> loop_residuals(const Instance& m, const S* q) {
   const std::vector<std::vector<S>> dofs = all_beam_dofs(m, q);
-  const std::vector<Pose<S>> poses = body_poses(m, q, dofs);
+  const std::vector<SecondOrder<S>> second = all_second_order(m, dofs);
+  const std::vector<Pose<S>> poses = body_poses(m, q, dofs, second);
   // A side's frame: the ground, a body, or a node of a flexible body (turned by its rotation).
   const auto rotation = [&](int body, int node) {
     if (body < 0) return identity<S>();
@@ -59,8 +61,8 @@ std::vector<S> loop_residuals(const Instance& m, const S* q) {
   };
   std::vector<S> phi;
   for (const LoopData& l : m.loops) {
-    const Vec<S> gap = sub(loop_point(m, poses, dofs, l.body, l.node, l.point),
-                           loop_point(m, poses, dofs, l.body2, l.node2, l.point2));
+    const Vec<S> gap = sub(loop_point(m, poses, dofs, second, l.body, l.node, l.point),
+                           loop_point(m, poses, dofs, second, l.body2, l.node2, l.point2));
     const std::array<Vec<double>, 2> plane = across(l.axis);
     switch (l.type) {
       case model::LoopType::spherical:

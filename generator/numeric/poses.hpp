@@ -53,14 +53,25 @@ std::vector<std::vector<S>> all_beam_dofs(const Instance& m, const S* q) {
   return dofs;
 }
 
+/// second_order of every flexible body's dofs (all_beam_dofs), once per state
+/// (empty for rigid bodies).
+template <class S>
+std::vector<SecondOrder<S>> all_second_order(const Instance& m, const std::vector<std::vector<S>>& dofs) {
+  std::vector<SecondOrder<S>> second(m.bodies.size());
+  for (std::size_t b = 0; b < m.bodies.size(); ++b)
+    if (m.bodies[b].beam) second[b] = second_order(*m.bodies[b].beam, dofs[b]);
+  return second;
+}
+
 /// World poses of all bodies (indexed like Instance::bodies) at coordinates q
-/// (`dofs`: all_beam_dofs at q). Child frame = parent frame, moved by the
+/// (`dofs`: all_beam_dofs at q, `second`: all_second_order of them). Child frame = parent frame, moved by the
 /// joint origin (xyz, then rpy), then by the joint motion about or along the
 /// axis in that joint frame. A joint on a node of a flexible parent starts
 /// from the node's frame instead: the parent frame moved to the displaced
 /// node and turned by the node's rotation (exactly, node_turn).
 template <class S>
-std::vector<Pose<S>> body_poses(const Instance& m, const S* q, const std::vector<std::vector<S>>& dofs) {
+std::vector<Pose<S>> body_poses(const Instance& m, const S* q, const std::vector<std::vector<S>>& dofs,
+                                const std::vector<SecondOrder<S>>& second) {
   std::vector<Pose<S>> poses(m.bodies.size());
   const Pose<S> ground{identity<S>(), Vec<S>{S(0.0), S(0.0), S(0.0)}};
   for (const int b : m.order) {
@@ -69,7 +80,8 @@ std::vector<Pose<S>> body_poses(const Instance& m, const S* q, const std::vector
     if (j.parent_node >= 0) {
       const FlexibleData& beam = *m.bodies[j.parent].beam;
       parent.origin =
-          add(parent.origin, mul(parent.rotation, displaced_node(beam, dofs[j.parent], j.parent_node)));
+          add(parent.origin,
+              mul(parent.rotation, displaced_node(beam, dofs[j.parent], second[j.parent], j.parent_node)));
       parent.rotation = mul(parent.rotation, node_turn(node_rotation(beam, dofs[j.parent], j.parent_node)));
     }
     Pose<S>& pose = poses[b];
@@ -89,7 +101,8 @@ std::vector<Pose<S>> body_poses(const Instance& m, const S* q, const std::vector
 /// The same, for a model without node attachments or when the dofs are not needed elsewhere.
 template <class S>
 std::vector<Pose<S>> body_poses(const Instance& m, const S* q) {
-  return body_poses(m, q, all_beam_dofs(m, q));
+  const std::vector<std::vector<S>> dofs = all_beam_dofs(m, q);
+  return body_poses(m, q, dofs, all_second_order(m, dofs));
 }
 
 /// World position of a point given in body axes (body -1: the ground).

@@ -43,8 +43,9 @@ const std::vector<OptionSpec> kSimulate = {
     {"--u0", "", "NAME=VALUE", "", "the model's u0", "initial speed", K::kAssignment, false, true},
     {"--output", "-o", "FILE", "-", "", "write the CSV to FILE instead of stdout", K::kText},
     {"--stats", "", "", "", nullptr,
-     "print step statistics on stderr (and Newton iterations, Jacobian evaluations and LU factorizations "
-     "for implicit, radau, bdf and genalpha)",
+     "after the run, print on stderr the step statistics (and Newton iterations, Jacobian evaluations and "
+     "LU factorizations for implicit, radau, bdf and genalpha) and a summary line: steps, final time, the "
+     "largest change of T+V and, with loops, the largest loop residual",
      K::kFlag},
     {"--energies", "", "", "", nullptr,
      "add kinetic_energy, potential_energy and total_energy columns, and nonconservative_work (the work "

@@ -648,6 +648,21 @@ TEST_CASE("simulate --stats ends with a summary: steps, final time, energy drift
   CHECK(r.err.find('\r') == std::string::npos);
 }
 
+TEST_CASE("simulate keeps stdout for the CSV, and --help says the --stats summary goes to stderr", "[cli]") {
+  // A user piping the CSV (| cat, > file) gets the summary on stderr, as on a terminal: --help says so.
+  const std::string help = kanegen("simulate --help").out;
+  CHECK(help.find("CSV on stdout") != std::string::npos);
+  CHECK(help.find("summary line") != std::string::npos);
+  CHECK(help.find("2>&1") != std::string::npos);
+  // Here stdout and stderr are pipes: stdout is the CSV alone, the stats and summary are on stderr.
+  const Result r = kanegen("simulate " + model("simple_pendulum.json") + " --t-end 0.1 --stats --quiet");
+  REQUIRE(r.status == 0);
+  const auto [header, rows] = read_csv(r.out);
+  CHECK(rows.size() == 11);
+  CHECK(r.out.find("summary") == std::string::npos);
+  CHECK(lines_of(r.err).back().rfind("summary: ", 0) == 0);
+}
+
 namespace {
 
 /// The width and height of a PNG from its IHDR chunk, after checking the
@@ -779,8 +794,12 @@ TEST_CASE("a long run shows one updating progress line on a terminal and nothing
                                 "/cache' script -qec '" +
                                 run + "' " + typescript.string() + " >/dev/null 2>&1";
     INFO(integrator);
-    REQUIRE(std::system(command.c_str()) == 0);
+    const int status = std::system(command.c_str());
     const std::string shown = slurp(typescript);
+    // A failure shows what the terminal got (it failed once under load, cause unknown; not reproduced in
+    // 36 runs at load 7-8.5, alone, niced, and among the cli tests with a cold cache).
+    INFO("exit status " << status << "; the terminal got:\n" << shown);
+    REQUIRE(status == 0);
     const auto first = shown.find("\r\033[Ksimulate: t = ");
     REQUIRE(first != std::string::npos);
     CHECK(shown.find('\n', first) > shown.rfind("\r\033[K"));  // one line, erased at the end
@@ -812,6 +831,21 @@ TEST_CASE("a number out of range is refused without the range's 309 digits", "[c
   const Result negative = kanegen("verify " + model("simple_pendulum.json") + " --trajectories -1");
   CHECK(negative.status != 0);
   CHECK(negative.err.rfind("--trajectories: needs a number >= 0, got '-1'\n", 0) == 0);
+}
+
+TEST_CASE("a loop model's header compares its saddle-point solve with the other solve alone", "[cli]") {
+  // The count in parentheses is the solve's share of forward_dynamics, and the other method's is the
+  // other solve's alone (the rest of the kernel is the same): "dense: N" read as a total looked smaller.
+  const fs::path dir = scratch() / "gen_saddle";
+  REQUIRE(kanegen("generate " + model("four_bar.json") + " -o " + dir.string()).status == 0);
+  std::smatch match;
+  const std::string header = slurp(dir / "four_bar.hpp");
+  REQUIRE(std::regex_search(
+      header, match,
+      std::regex("forward_dynamics: ([0-9]+) \\(([0-9]+) of them in the saddle-point solve, "
+                 "a sparse LDL\\^T; the dense solve would take ([0-9]+) in their place\\)")));
+  CHECK(std::stol(match[2]) < std::stol(match[3]));
+  CHECK(std::stol(match[2]) < std::stol(match[1]));
 }
 
 TEST_CASE("generate --dynamics picks forward_dynamics's method, states it and refuses what it cannot solve",
@@ -874,10 +908,11 @@ TEST_CASE("generate --dynamics picks forward_dynamics's method, states it and re
   const Result zero =
       kanegen("generate " + point.string() + " -o " + (dir / "point").string() + " --dynamics recursive");
   CHECK(zero.status == 2);
-  CHECK(zero.err.find(
-            "point_on_axis.json: /joints/1: --dynamics recursive cannot solve this model: joint 'j2' moves no "
-            "inertia about or along its axis in any state (the recursion divides by it); use "
-            "--dynamics composite, or auto (the default)") != std::string::npos);
+  CHECK(
+      zero.err.find(
+          "point_on_axis.json: /joints/1: --dynamics recursive cannot solve this model: joint 'j2' moves no "
+          "inertia about or along its axis in any state (the recursion divides by it); use "
+          "--dynamics composite, or auto (the default)") != std::string::npos);
   CHECK(!fs::exists(dir / "point"));
   CHECK(kanegen("generate " + point.string() + " -o " + (dir / "point").string()).status == 0);
   CHECK(kanegen("generate " + model("arm7.urdf") + " -o " + dir.string() + " --dynamics fast").status != 0);

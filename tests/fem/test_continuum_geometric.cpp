@@ -9,11 +9,15 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <memory>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "fem/continuum_element.hpp"
+#include "fem/continuum_foreshortening.hpp"
 #include "fem/continuum_prestress.hpp"
 #include "fem/mesh_body.hpp"
+#include "fem/reduction.hpp"
 
 using namespace kanegen::fem;
 
@@ -219,4 +223,72 @@ TEST_CASE("geometric: the centrifugal load's resultant is m Omega^2 r_c", "[geom
   const Eigen::MatrixXd unit = kg(Eigen::Vector3d::UnitZ()), spun = kg(Eigen::Vector3d(0.0, 0.0, omega));
   CHECK((spun - omega * omega * unit).norm() < 1e-9 * spun.norm());
   CHECK(spun.norm() > 0.0);
+}
+
+TEST_CASE(
+    "geometric: a thin solid held at its root face is held, however thin (the spin-up beam as a rectangle)",
+    "[geometric]") {
+  // thin_bar_c3d20.inp: 10 m x 77.5 mm x 5.16 mm, 20 x 1 x 1 C3D20, the beam's A = 4e-4 m^2 and
+  // Iz = 2e-7 m^4. Its pivots reach 1e-15 of K's largest diagonal: a pivot ratio of 1e-6 refused it.
+  const InpMesh mesh = read_inp_mesh_file(std::string(KANEGEN_FEM_DATA_DIR) + "/thin_bar_c3d20.inp");
+  const ContinuumMaterial aluminium{7e10, 0.3, 3000.0};
+  const MeshBody mb = build_mesh_body(mesh, aluminium, 1.0, "BAR");
+  const Constraint root = mb.clamped(mesh, "ROOT");
+  // 1 N across the tip face, in the plane of Iz: Euler-Bernoulli's P L^3 / 3 E Iz (shear: 5e-5 of it).
+  const std::vector<int> tip = mb.node_set_dofs(mesh, "TIP");
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(mb.body.num_dofs());
+  const int nodes = static_cast<int>(tip.size()) / 3;
+  for (int dof : tip)
+    if (dof % 3 == 1) f[dof] = 1.0 / nodes;
+  const Eigen::VectorXd u = static_displacement(mb.body, root, f);
+  double deflection = 0.0;
+  for (int dof : tip)
+    if (dof % 3 == 1) deflection += u[dof] / nodes;
+  CHECK(deflection == Approx(1000.0 / (3.0 * 7e10 * 2e-7)).epsilon(0.02));
+  // The fields of geometric stiffening, which the generator solves for its clamped modes.
+  const Eigen::MatrixXd d = second_order_fields(mb.body, root, reduce_modal(mb.body, root, 4).basis);
+  CHECK(d.allFinite());
+  CHECK(d.norm() > 0.0);
+}
+
+TEST_CASE("geometric: held dofs that leave a rigid motion free are refused, naming the motion",
+          "[geometric]") {
+  const InpMesh mesh = read_inp_mesh_file(std::string(KANEGEN_FEM_DATA_DIR) + "/thin_bar_c3d20.inp");
+  const MeshBody mb = build_mesh_body(mesh, kSteel, 1.0, "BAR");
+  const Eigen::VectorXd f = Eigen::VectorXd::Ones(mb.body.num_dofs());
+  // The root face held in x and y only: the bar slides along z.
+  std::vector<int> held;
+  for (int dof : mb.node_set_dofs(mesh, "ROOT"))
+    if (dof % 3 != 2) held.push_back(dof);
+  CHECK_THROWS_WITH(
+      static_displacement(mb.body, Constraint(mb.body.num_dofs(), held), f),
+      Catch::Contains("free to move rigidly (a translation along (0, 0, 1) of the part with node 0)"));
+  // Only the root face's lower edge (z = -2.58 mm) held: the bar turns about it.
+  held.clear();
+  for (int node = 0; node < mb.body.num_nodes(); ++node) {
+    const Eigen::Vector3d& x = mb.body.node_position(node);
+    if (x.x() == 0.0 && x.z() < -0.002)
+      for (int k = 0; k < 3; ++k) held.push_back(mb.body.dof(node, k));
+  }
+  REQUIRE(held.size() == 9);
+  CHECK_THROWS_WITH(
+      static_displacement(mb.body, Constraint(mb.body.num_dofs(), held), f),
+      Catch::Contains("free to move rigidly (a rotation about the axis (0, 1, 0) through (0, 0, -0.00258) "
+                      "of the part with node 0)"));
+  // Nothing held: refused as before.
+  CHECK_THROWS_WITH(static_displacement(mb.body, Constraint(mb.body.num_dofs(), {}), f),
+                    Catch::Contains("free to move rigidly"));
+}
+
+TEST_CASE("geometric: a second, unconnected part of a mesh must be held too", "[geometric]") {
+  // Two CPS4 squares side by side that share no node; only the first is clamped.
+  std::istringstream in(
+      "*NODE\n1, 0, 0\n2, 1, 0\n3, 1, 1\n4, 0, 1\n5, 1, 0\n6, 2, 0\n7, 2, 1\n8, 1, 1\n"
+      "*ELEMENT, type=CPS4, ELSET=PLATE\n1, 1, 2, 3, 4\n2, 5, 6, 7, 8\n*NSET, NSET=LEFT\n1, 4\n");
+  const InpMesh mesh = read_inp_mesh(in, "two_parts.inp");
+  const MeshBody mb = build_mesh_body(mesh, kSteel, 0.01);
+  const Constraint left = mb.clamped(mesh, "LEFT");
+  const Eigen::VectorXd f = Eigen::VectorXd::Ones(mb.body.num_dofs());
+  CHECK_THROWS_WITH(static_displacement(mb.body, left, f), Catch::Contains("free to move rigidly (a ") &&
+                                                               Catch::Contains("of the part with node 4)"));
 }
