@@ -325,14 +325,14 @@ class FlexibleBuilder {
     const Eigen::MatrixXd A = cleaned(beam_.foreshortening->mode_pair);
     const int pairs = fem::pair_count(n_);
     const auto pair = [&](int i, int j) { return fem::pair_index(i, j, n_); };
-    std::vector<ex> rates(
-        pairs);  // (2 - delta_ij) eta_dot_i eta_dot_j: sum_ij x_ij eta_dot_i eta_dot_j = rates . x
+    // rates_p = (2 - delta_ij) eta_dot_i eta_dot_j, so that sum_ij x_ij eta_dot_i eta_dot_j = rates . x.
+    std::vector<ex> rates(pairs);
     for (int i = 0; i < n_; ++i)
       for (int j = i; j < n_; ++j)
         rates[pair(i, j)] = program_.define((i == j ? 1 : 2) * eta_dot_[i] * eta_dot_[j]);
     // int rho d_p . d_q = sum_s c_s,p c_s,q over the eigenpairs of the (positive semidefinite) pair_pair
-    // above round-off: D_k . D_l = sum_s y_s,k y_s,l with y_s,k = sum_i eta_i c_s,(ik), a handful of
-    // products per entry where the pairs' own sum has pairs^2.
+    // above round-off: D_k . D_l = sum_s y_s,k y_s,l with y_s,k = sum_i eta_i c_s,(ik), a sum of
+    // outer products y_s y_s^T, positive semidefinite term by term.
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(beam_.foreshortening->pair_pair);
     const double largest = eigen.eigenvalues().cwiseAbs().maxCoeff();
     std::vector<std::vector<ex>> y;  // [s][k]
