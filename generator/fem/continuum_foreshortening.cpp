@@ -62,4 +62,22 @@ Foreshortening continuum_foreshortening(const Body& body, const Eigen::MatrixXd&
   return f;
 }
 
+void add_second_order_mass(const Body& body, const Eigen::MatrixXd& basis, const Eigen::MatrixXd& d,
+                           Foreshortening& f) {
+  const auto n = basis.cols();
+  if (basis.rows() != body.num_dofs() || d.rows() != body.num_dofs() ||
+      d.cols() != pair_count(static_cast<int>(n)))
+    throw std::invalid_argument("add_second_order_mass: the basis and fields must have num_dofs rows");
+  f.mode_pair = Eigen::MatrixXd::Zero(n, d.cols());
+  f.pair_pair = Eigen::MatrixXd::Zero(d.cols(), d.cols());
+  for (const MassPointGroup& group : body.mass_point_groups()) {
+    const Eigen::MatrixXd modes = basis(group.dofs, Eigen::all), fields = d(group.dofs, Eigen::all);
+    for (const MassPoint& p : group.points) {
+      const Eigen::MatrixXd first = p.N * modes, second = p.N * fields;  // 3 x n, 3 x pairs
+      f.mode_pair.noalias() += p.mass * first.transpose() * second;
+      f.pair_pair.noalias() += p.mass * second.transpose() * second;
+    }
+  }
+}
+
 }  // namespace kanegen::fem

@@ -41,4 +41,12 @@ Eigen::MatrixXd second_order_fields(const Body& body, const Constraint& held, co
 Foreshortening continuum_foreshortening(const Body& body, const Eigen::MatrixXd& d, int n,
                                         const std::vector<Eigen::MatrixXd>& points);
 
+/// The integrals of the elastic mass to second order in eta (mode_pair,
+/// pair_pair) over the body's mass points, of the modes `basis` and their
+/// fields d: the elastic block int rho (N + D)^T (N + D) that keeps the mass
+/// matrix positive definite when a mode moves points along u2 (a
+/// Craig-Bampton interface's axial shape).
+void add_second_order_mass(const Body& body, const Eigen::MatrixXd& basis, const Eigen::MatrixXd& d,
+                           Foreshortening& f);
+
 }  // namespace kanegen::fem

@@ -34,6 +34,12 @@ struct Foreshortening {
   std::array<Eigen::MatrixXd, 3> mass;
   /// [3a+b]: sum_p m_p r_b H_a(p), r the undeformed position.
   std::array<Eigen::MatrixXd, 9> moment;
+  /// Mesh bodies (add_second_order_mass): the elastic mass's terms of first
+  /// and second order in eta, int rho (N + D)^T (N + D) - int rho N^T N, by
+  /// the fields d_p of the pairs p = (i, j) (u2 = 1/2 sum_ij eta_i eta_j d_ij,
+  /// D_k = sum_i eta_i d_ik). Empty for beams.
+  Eigen::MatrixXd mode_pair;  ///< n x pairs: int rho (N phi_k) . (N d_p)
+  Eigen::MatrixXd pair_pair;  ///< pairs x pairs: int rho (N d_p) . (N d_q)
 };
 
 /// The foreshortening in the coordinates eta of u = B eta (B: num_dofs x n).

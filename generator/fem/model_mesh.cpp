@@ -48,6 +48,7 @@ void add_foreshortening(const model::Body& body, const Constraint& held,
   }
   out.foreshortening = continuum_foreshortening(out.body, out.second_order,
                                                 static_cast<int>(out.reduced.basis.cols()), points);
+  add_second_order_mass(out.body, out.reduced.basis, out.second_order, *out.foreshortening);
 }
 
 }  // namespace

@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "kane/flexible_body.hpp"
 
+#include <Eigen/Eigenvalues>
+
+#include "fem/continuum_element.hpp"
 #include "fem/invariants.hpp"
 #include "symbolic/variables.hpp"
 
@@ -136,7 +139,8 @@ class FlexibleBuilder {
         eta_dot_(eta_dot),
         program_(program),
         n_(inv_.n),
-        shortens_(beam.foreshortening.has_value()) {
+        shortens_(beam.foreshortening.has_value()),
+        second_order_mass_(shortens_ && beam.foreshortening->mode_pair.size() > 0) {
     if (shortens_) fs_ = shortening_terms(*beam.foreshortening, eta, program);
     S_ = cleaned(inv_.S);
     S_r_ = cleaned(inv_.S_r);
@@ -304,7 +308,65 @@ class FlexibleBuilder {
     M_ = cleaned(inv_.elastic_mass());
     for (int k = 0; k < n_; ++k)
       for (int l = 0; l < n_; ++l) out_.elastic_mass.push_back(number(M_(k, l)));
+    if (second_order_mass_) add_second_order_mass();
     nonlinear_strain_ = add_axial_strain(beam_.axial_strain, eta_, out_.elastic_forcing, program_);
+  }
+
+  /// A mesh body's elastic mass to second order (fem::add_second_order_mass):
+  /// int rho (N + D)^T (N + D), D_k = sum_i eta_i d_ik, positive definite
+  /// whatever the basis. The kinetic energy of the points' motion relative to
+  /// the link, 1/2 int rho |(N + D) eta_dot|^2, depends on eta and eta_dot
+  /// alone, so Lagrange's equations of it are int rho (N_k + D_k) . ((N + D)
+  /// eta_ddot + D' eta_dot), D' eta_dot = sum_ij eta_dot_i eta_dot_j d_ij: the
+  /// block's change dM and the forcing -int rho (N_k + D_k) . D' eta_dot. The
+  /// rest stays at the linear model's order; the equations stay Lagrange's of
+  /// the kinetic energy energies() reports, so the model stays conservative.
+  void add_second_order_mass() {
+    const Eigen::MatrixXd A = cleaned(beam_.foreshortening->mode_pair);
+    const int pairs = fem::pair_count(n_);
+    const auto pair = [&](int i, int j) { return fem::pair_index(i, j, n_); };
+    // rates_p = (2 - delta_ij) eta_dot_i eta_dot_j, so that sum_ij x_ij eta_dot_i eta_dot_j = rates . x.
+    std::vector<ex> rates(pairs);
+    for (int i = 0; i < n_; ++i)
+      for (int j = i; j < n_; ++j)
+        rates[pair(i, j)] = program_.define((i == j ? 1 : 2) * eta_dot_[i] * eta_dot_[j]);
+    // int rho d_p . d_q = sum_s c_s,p c_s,q over the eigenpairs of the (positive semidefinite) pair_pair
+    // above round-off: D_k . D_l = sum_s y_s,k y_s,l with y_s,k = sum_i eta_i c_s,(ik), a sum of
+    // outer products y_s y_s^T, positive semidefinite term by term.
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(beam_.foreshortening->pair_pair);
+    const double largest = eigen.eigenvalues().cwiseAbs().maxCoeff();
+    std::vector<std::vector<ex>> y;  // [s][k]
+    std::vector<ex> z;               // [s]: sum_p c_s,p rates_p
+    for (Eigen::Index s = 0; s < eigen.eigenvalues().size(); ++s) {
+      if (eigen.eigenvalues()[s] <= 1e-12 * largest) continue;
+      const Eigen::VectorXd c = cleaned(std::sqrt(eigen.eigenvalues()[s]) * eigen.eigenvectors().col(s));
+      Eigen::MatrixXd per_mode(n_, n_);  // column k: c_s,(ik) over i
+      for (int k = 0; k < n_; ++k)
+        for (int i = 0; i < n_; ++i) per_mode(i, k) = c[pair(i, k)];
+      y.emplace_back();
+      for (int k = 0; k < n_; ++k)
+        y.back().push_back(program_.define(linear_combination(per_mode.col(k), eta_)));
+      z.push_back(program_.define(linear_combination(c, rates)));
+    }
+    // dM_kl = sum_i eta_i (A_k,(il) + A_l,(ik)) + D_k . D_l.
+    dM_.assign(static_cast<std::size_t>(n_ * n_), ex(0));
+    for (int k = 0; k < n_; ++k)
+      for (int l = k; l < n_; ++l) {
+        Eigen::VectorXd linear(n_);
+        for (int i = 0; i < n_; ++i) linear[i] = A(k, pair(i, l)) + A(l, pair(i, k));
+        ex change = linear_combination(cleaned(linear), eta_);
+        for (const std::vector<ex>& ys : y) change += ys[k] * ys[l];
+        change = program_.define(change);
+        dM_[k * n_ + l] = dM_[l * n_ + k] = change;
+        out_.elastic_mass[k * n_ + l] += change;
+        if (l != k) out_.elastic_mass[l * n_ + k] += change;
+      }
+    // int rho (N_k + D_k) . D' eta_dot = sum_p rates_p (A_k,p + int rho D_k . d_p), the last sum_s y_s,k z_s.
+    for (int k = 0; k < n_; ++k) {
+      ex inertia = linear_combination(A.row(k).transpose(), rates);
+      for (std::size_t s = 0; s < y.size(); ++s) inertia += y[s][k] * z[s];
+      out_.elastic_forcing[k] = program_.define(out_.elastic_forcing[k] - inertia);
+    }
   }
 
   /// T = 1/2 (m v0^2 + 2 v0.(w x s_p) + w.I w) + v0.(int rho p') + w.(L eta_dot) + 1/2 eta_dot^T M eta_dot:
@@ -315,6 +377,9 @@ class FlexibleBuilder {
     ex elastic_kinetic = 0;
     for (int k = 0; k < n_; ++k)
       elastic_kinetic += eta_dot_[k] * linear_combination(M_.row(k).transpose(), eta_dot_);
+    if (!dM_.empty())
+      for (int k = 0; k < n_; ++k)
+        for (int l = 0; l < n_; ++l) elastic_kinetic += eta_dot_[k] * dM_[k * n_ + l] * eta_dot_[l];
     Vec3 l_rate = zero_vec();
     for (int k = 0; k < n_; ++k) l_rate = l_rate + eta_dot_[k] * out_.angular_momentum[k];
     out_.kinetic_energy =
@@ -333,11 +398,13 @@ class FlexibleBuilder {
   Program& program_;
   const int n_;
   const bool shortens_;
+  const bool second_order_mass_;  ///< a mesh body's elastic mass to second order
   Shortening fs_;
   Eigen::MatrixXd S_, S_r_, J_Nrot_, K_, M_;
   std::array<Eigen::MatrixXd, 9> S_nn_;
   Mat3 J_;
   std::array<std::vector<ex>, 9> D_;  ///< int rho p_a N_bk, [3a+b][k]
+  std::vector<ex> dM_;                ///< n x n: the elastic mass's second-order change, or empty
   Mat3 P_;                            ///< int rho p_a p_b, [3a+b]
   Vec3 s_rate_, spin_;                ///< int rho p', and I w
   ex nonlinear_strain_;

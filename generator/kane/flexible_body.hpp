@@ -39,7 +39,8 @@ struct FlexibleTerms {
   std::vector<Vec3> linear_momentum, angular_momentum;
   /// n: the elastic equations' forcing: -int rho (N + D)^T a (u_dot = 0) - K eta - C eta_dot.
   std::vector<GiNaC::ex> elastic_forcing;
-  /// n x n, row-major: int rho N^T N + Nrot^T J Nrot (constant).
+  /// n x n, row-major: int rho N^T N + Nrot^T J Nrot; a mesh body with
+  /// stiffening adds the terms of u2 (int rho (N + D)^T (N + D) - N^T N).
   std::vector<GiNaC::ex> elastic_mass;
   /// Kinetic energy of the body, and its strain energy 1/2 eta^T K eta.
   GiNaC::ex kinetic_energy, strain_energy;

@@ -263,11 +263,6 @@ class JsonReader {
               "\"geometric_stiffening\": false (or leave it out)");
       f.geometric_stiffening = false;
     }
-    // With Craig-Bampton, the interface shapes move points along the
-    // second-order field, and the mass matrix, kept to first order in the
-    // elastic coordinates, loses definiteness at elastic displacements of
-    // 1e-4 (verify finds it on models/solid_slider_crank.json): off unless asked for.
-    if (f.mesh.craig_bampton && !j.contains("geometric_stiffening")) f.geometric_stiffening = false;
     if (f.mesh.craig_bampton && f.modal_damping > 0)
       error(place + "/damping",
             "modal damping does not apply to Craig-Bampton coordinates (they are not modes)",

@@ -750,6 +750,70 @@ std::vector<Eigen::MatrixXd> add_mass_elements(const Instance& m, const State& s
   return std::move(sums.own_mass);
 }
 
+/// The solid points of a mesh body at its coordinates `eta`, link frame:
+/// p(eta) = X + N (B eta + u2) (dual numbers carry derivatives along eta).
+template <class S>
+std::vector<Vec<S>> solid_points(const FlexibleData& f, const std::vector<S>& eta) {
+  const std::vector<S> dofs = beam_dofs(f, eta.data());
+  const std::vector<S> u2 = second_order_displacement(f, dofs);
+  std::vector<Vec<S>> out;
+  for (const SolidElementData& e : f.solids)
+    for (const SolidElementData::Point& p : e.points) out.push_back(solid_point(f, e, p, dofs, u2));
+  return out;
+}
+
+/// A mesh body's points moving relative to its link, past the second order
+/// in (eta, eta_dot) that element_sums keeps. Their kinetic energy
+/// T_rel = 1/2 sum m |dp/dt|^2 depends on eta and eta_dot alone; its
+/// Lagrange equations are sum m p_k . (sum_l p_l eta_ddot_l + p''), p_k =
+/// dp/deta_k and p'' the second derivative of p along eta_dot. element_sums
+/// has its share of second order, sum m p_k(0) . p_l(0) in M and nothing
+/// in f; this adds the rest: M_kl += sum m (p_k . p_l - p_k(0) . p_l(0)),
+/// f_k -= sum m p_k . p'', T += 1/2 eta_dot^T (that change of M) eta_dot.
+void add_relative_inertia(const Instance& m, const State& s, Evaluation& e) {
+  const int n_all = m.coordinates();
+  for (const BodyData& body : m.bodies) {
+    if (!body.beam || !body.beam->mesh || !body.beam->shortens()) continue;
+    const FlexibleData& f = *body.beam;
+    const int n = f.count(), first = body.elastic_first;
+    std::vector<double> masses;
+    for (const SolidElementData& el : f.solids)
+      for (const SolidElementData::Point& p : el.points) masses.push_back(f.density * p.weight);
+    // p_k at eta and at 0, per point: [k][point].
+    const auto partials = [&](bool at_rest) {
+      std::vector<std::vector<Vec<double>>> out;
+      for (int k = 0; k < n; ++k) {
+        std::vector<D1> eta(n);
+        for (int i = 0; i < n; ++i) eta[i] = D1(at_rest ? 0.0 : s.q[first + i], i == k ? 1.0 : 0.0);
+        std::vector<Vec<double>> column;
+        for (const Vec<D1>& x : solid_points(f, eta)) column.push_back(derivative(x));
+        out.push_back(std::move(column));
+      }
+      return out;
+    };
+    const auto moving = partials(false), rest = partials(true);
+    std::vector<D2> along(n);  // eta + t eta_dot, twice differentiated in t
+    for (int i = 0; i < n; ++i) along[i] = D2(D1(s.q[first + i], s.u[first + i]), D1(s.u[first + i], 0.0));
+    std::vector<Vec<double>> accel;
+    for (const Vec<D2>& x : solid_points(f, along)) accel.push_back({x[0].d.d, x[1].d.d, x[2].d.d});
+    Eigen::MatrixXd change = Eigen::MatrixXd::Zero(n, n);
+    for (std::size_t p = 0; p < masses.size(); ++p) {
+      for (int k = 0; k < n; ++k) {
+        for (int l = 0; l < n; ++l)
+          change(k, l) += masses[p] * (dot(moving[k][p], moving[l][p]) - dot(rest[k][p], rest[l][p]));
+        const double term = masses[p] * dot(moving[k][p], accel[p]);
+        e.forcing[first + k] -= term;
+        e.forcing_magnitude[first + k] += std::abs(term);
+      }
+    }
+    for (int k = 0; k < n; ++k)
+      for (int l = 0; l < n; ++l) {
+        e.mass_matrix[static_cast<std::size_t>(first + k) * n_all + first + l] += change(k, l);
+        e.kinetic_energy += 0.5 * s.u[first + k] * change(k, l) * s.u[first + l];
+      }
+  }
+}
+
 /// The beams: strain energy into V; Rayleigh alpha M or modal damping into `nonconservative`.
 void add_beams(const Instance& m, const State& s, const std::vector<std::vector<double>>& dofs,
                const std::vector<Eigen::MatrixXd>& own_mass, Evaluation& e,
@@ -925,6 +989,7 @@ Evaluation evaluate(const Instance& m, const State& s) {
   std::vector<double> nonconservative(n, 0.0);  // the beams' damping forces
   const CoordinatePartials partials = coordinate_passes(m, s, motion, e, nonconservative);
   const std::vector<Eigen::MatrixXd> own_mass = add_mass_elements(m, s, e);
+  add_relative_inertia(m, s, e);
   add_beams(m, s, dofs, own_mass, e, nonconservative);
   add_beam_damping(s, nonconservative, e);
   add_point_forces(m, motion, partials, e);

@@ -8,7 +8,9 @@
 // pair by pair (f . d_ij against -(Phi^T K_sigma Phi)_ij), and through the
 // Foreshortening's mass and moment integrals, for a centrifugal and a uniform
 // acceleration load on clamped CPS4 and CPS8 plates and a C3D8 bar.
+#include <Eigen/Dense>
 #include <catch2/catch.hpp>
+#include <stdexcept>
 #include <string>
 
 #include "fem/continuum_foreshortening.hpp"
@@ -109,4 +111,36 @@ TEST_CASE("mesh foreshortening: a body free to move rigidly has no held referenc
   const Constraint free(mb.body.num_dofs(), {});
   const Eigen::MatrixXd phi = Eigen::MatrixXd::Random(mb.body.num_dofs(), 2);
   CHECK_THROWS_WITH(second_order_fields(mb.body, free, phi), Catch::Contains("free to move rigidly"));
+}
+
+TEST_CASE("mesh foreshortening: the elastic mass's second-order integrals are Phi^T M d and d^T M d",
+          "[mesh_foreshortening]") {
+  // add_second_order_mass sums over the mass points; the body's consistent
+  // mass matrix (element by element, with its own scatter) gives the same
+  // integrals as matrix products, and d^T M d is positive semidefinite.
+  for (const char* file : {"plate_cps8.inp", "bar_c3d8.inp"}) {
+    INFO(file);
+    const InpMesh mesh = read_inp_mesh_file(std::string(KANEGEN_FEM_DATA_DIR) + "/" + file);
+    const MeshBody mb = build_mesh_body(mesh, kSteel, 0.002);
+    const Constraint root = mb.clamped(mesh, "ROOT");
+    const int n = 3;
+    const Eigen::MatrixXd phi = reduce_modal(mb.body, root, n).basis;
+    const Eigen::MatrixXd d = second_order_fields(mb.body, root, phi);
+    Foreshortening fs = continuum_foreshortening(mb.body, d, n, {});
+    add_second_order_mass(mb.body, phi, d, fs);
+    const Eigen::MatrixXd m = mb.body.mass();
+    // Entry by entry against the Cauchy-Schwarz bound sqrt(phi_k^T M phi_k d_p^T M d_p): the modes
+    // and the fields are nearly M-orthogonal, so the largest entry is no scale for the round-off.
+    const Eigen::MatrixXd cross = phi.transpose() * m * d, squares = d.transpose() * m * d;
+    const Eigen::VectorXd mode_norm = (phi.transpose() * m * phi).diagonal().cwiseSqrt(),
+                          field_norm = squares.diagonal().cwiseSqrt();
+    CHECK(((fs.mode_pair - cross).array() / (mode_norm * field_norm.transpose()).array()).abs().maxCoeff() <
+          1e-12);
+    CHECK(
+        ((fs.pair_pair - squares).array() / (field_norm * field_norm.transpose()).array()).abs().maxCoeff() <
+        1e-12);
+    const Eigen::VectorXd lambda = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(fs.pair_pair).eigenvalues();
+    CHECK(lambda.minCoeff() > -1e-12 * lambda.maxCoeff());
+    CHECK_THROWS_AS(add_second_order_mass(mb.body, phi, d.leftCols(2), fs), std::invalid_argument);
+  }
 }
