@@ -495,12 +495,7 @@ RecursiveDynamics articulated_body_dynamics(const kinematics::TreeKinematics& tr
       }
       angular = named(program, parent_alpha);
       linear = named(program, parent_accel);
-      for (const FrameStep& step : frames[i].to_parent) {
-        if (step.shifts()) linear = named(program, linear + cross(angular, step.shift));
-        if (!step.turns()) continue;
-        angular = named(program, mul_transposed(step.turn, angular));
-        linear = named(program, mul_transposed(step.turn, linear));
-      }
+      carry_outward(frames[i].to_parent, angular, linear, program);
     }
     if (!blocks[i].speeds.empty()) {
       const std::vector<ex> x = block_accelerations(program, blocks[i], angular, linear);

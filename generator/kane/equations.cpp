@@ -517,7 +517,7 @@ void newton_euler(Derivation& d, const BodySums& own) {
   d.eq.gravity_forces = ne.gravity;
 }
 
-/// Rigid trees: the generalized momentum h = M u by newton_euler's recursion
+/// Rigid trees: the generalized momentum h = M u by Newton and Euler's recursion in body frames
 /// with velocities for accelerations. Outward, each body's angular velocity
 /// and its origin's velocity w_i = E_i w_p + a_k u_k, v_i = E_i (v_p + w_p x r_i)
 /// (+ a_k u_k if prismatic); its momentum about its origin (K w + h x v, m v + w x h);

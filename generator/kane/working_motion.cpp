@@ -22,6 +22,15 @@ WorkingMotion from_body(const kinematics::BodyState& b, const FrameStep& step, P
 
 }  // namespace
 
+void carry_outward(const std::vector<FrameStep>& steps, Vec3& angular, Vec3& linear, Program& program) {
+  for (const FrameStep& step : steps) {
+    if (step.shifts()) linear = named(program, linear + cross(angular, step.shift));
+    if (!step.turns()) continue;
+    angular = named(program, mul_transposed(step.turn, angular));
+    linear = named(program, mul_transposed(step.turn, linear));
+  }
+}
+
 WorkingInertia working_inertia(const GiNaC::ex& mass, const Vec3& moment, const Mat3& second,
                                const FrameStep& from_body) {
   const Mat3& t = from_body.turn;

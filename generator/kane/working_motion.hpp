@@ -34,6 +34,13 @@ std::vector<WorkingMotion> working_motion(const kinematics::TreeKinematics& tree
                                           const std::vector<bool>& flexible,
                                           const std::vector<GiNaC::ex>& speeds, symbolic::Program& program);
 
+/// Accelerations without velocity terms (angular, and linear at the origin),
+/// carried from a parent's working frame to a child's through its steps
+/// (`WorkingFrame::to_parent`, parent's side first): a shift adds angular x
+/// shift to the linear part, a turn turns both.
+void carry_outward(const std::vector<FrameStep>& steps, symbolic::Vec3& angular, symbolic::Vec3& linear,
+                   symbolic::Program& program);
+
 /// A rigid body's inertia about its working origin, in working axes: mass,
 /// first moment h = m c and second moment K.
 struct WorkingInertia {

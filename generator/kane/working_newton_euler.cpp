@@ -49,13 +49,9 @@ NewtonEuler working_newton_euler(const kinematics::TreeKinematics& tree, const s
       angular = alpha[state.parent_state];
       linear = accel[state.parent_state];
       g = weight_field[state.parent_state];
-      for (const FrameStep& step : frame.to_parent) {
-        if (step.shifts()) linear = named(program, linear + cross(angular, step.shift));
-        if (!step.turns()) continue;
-        angular = named(program, mul_transposed(step.turn, angular));
-        linear = named(program, mul_transposed(step.turn, linear));
-        g = named(program, mul_transposed(step.turn, g));
-      }
+      carry_outward(frame.to_parent, angular, linear, program);
+      for (const FrameStep& step : frame.to_parent)
+        if (step.turns()) g = named(program, mul_transposed(step.turn, g));
     }
     if (joint.speed >= 0) {
       const ex& udot = accelerations[joint.speed];
