@@ -6,7 +6,7 @@
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 6999 (a loop over 210 pairs of world axes and momenta; entry by entry: 6999)
 //   forcing: 4516
-//   forward_dynamics: 8653 (recursive; composite inertias and LDL^T: 14967) [split in 9 functions, 3,280 bytes of stack between them]
+//   forward_dynamics: 8653 (recursive; composite inertias and LDL^T: 14967) [split in 9 functions, 3,272 bytes of stack between them]
 //   kinetic_energy: 2029
 //   potential_energy: 941
 //   nonconservative_power: 39

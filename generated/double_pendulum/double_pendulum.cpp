@@ -77,12 +77,12 @@ void mass_matrix(const Params& p, const double* q, double* M) {
   const double x0 = p.l1*p.l1;
   const double x1 = p.m2*p.l1*p.l2*cos(q[1]);
   const double x2 = p.l2*p.l2;
+  M[3] = 0.3333333333333333*p.m2*x2;
   const double x3 = 0.3333333333333333*(p.m2*x2);
   M[0] = p.m2*x0 + x1 + x3 + 0.3333333333333333*(p.m1*x0);
   const double x4 = x3 + 0.5*x1;
   M[1] = x4;
   M[2] = x4;
-  M[3] = 0.3333333333333333*p.m2*x2;
 }
 
 void forcing(const Params& p, [[maybe_unused]] double t, const double* q, const double* u, const double* tau,
@@ -104,10 +104,10 @@ int forward_dynamics(const Params& p, [[maybe_unused]] double t, const double* q
   const double x1 = cos(q[1]);
   const double x2 = p.m2*p.l1*p.l2*x1;
   const double x3 = p.l2*p.l2;
+  const double m1_1 = 0.3333333333333333*p.m2*x3;
   const double x4 = 0.3333333333333333*(p.m2*x3);
   const double m0_0 = p.m2*x0 + x2 + x4 + 0.3333333333333333*(p.m1*x0);
   const double m1_0 = x4 + 0.5*x2;
-  const double m1_1 = 0.3333333333333333*p.m2*x3;
   const double x5 = cos(q[0]);
   const double x6 = sin(q[1]);
   const double x7 = 9.81*sin(q[0]) + p.l1*u[0]*u[0];
@@ -174,15 +174,15 @@ void generalized_momentum(const Params& p, const double* q, const double* u, dou
 
 void outputs(const Params& p, [[maybe_unused]] double t, const double* q, [[maybe_unused]] const double* u,
              double* y) {
+  y[1] = 0.0;
+  y[3] = q[0];
+  y[4] = q[1];
   const double x0 = cos(q[0]);
   const double x1 = cos(q[1]);
   const double x2 = sin(q[0]);
   const double x3 = sin(q[1]);
   y[0] = p.l2*(x0*x1 - (x2*x3)) + x0*p.l1;
-  y[1] = 0.0;
   y[2] = -(p.l2*(x0*x3 + x2*x1) + p.l1*x2);
-  y[3] = q[0];
-  y[4] = q[1];
 }
 
 void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
@@ -195,9 +195,9 @@ void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* 
   const double x5 = p.l1*udot[0];
   const double x6 = 9.81*(x0*x2) - (x3*x4) - (x5*x2);
   const double x7 = 0.3333333333333333*(x1*p.m2*p.l2*p.l2) - 0.5*(p.m2*p.l2*x6);
+  tau[1] = u[1]*p.c2 + x7;
   const double x8 = u[1] + u[0];
   tau[0] = u[0]*p.c1 - (-0.3333333333333333*(p.m1*p.l1*p.l1*udot[0]) + 4.905*(p.m1*x0*p.l1) + -x7 + p.l1*((0.5*(p.m2*p.l2*x8*x8) - (p.m2*(-(9.81*(x0*x3) + x2*x4) + x5*x3)))*x3 - ((-(p.m2*x6) + 0.5*(x1*p.m2*p.l2))*x2)));
-  tau[1] = u[1]*p.c2 + x7;
 }
 
 void gravity(const Params& p, const double* q, double* g) {

@@ -156,34 +156,34 @@ void initial_state([[maybe_unused]] const Params& p, double* q, double* u) {
 }
 
 void mass_matrix(const Params& p, const double* q, double* M) {
+  M[2] = 0.0;
+  M[5] = 0.0;
+  M[6] = 0.0;
+  M[7] = 0.0;
+  M[8] = 0.3333333333333333*p.m_c*p.c*p.c;
   const double x0 = p.b*p.b;
+  M[4] = 0.3333333333333333*p.m_b*x0;
   const double x1 = 0.3333333333333333*(p.m_b*x0);
   const double x2 = p.a*p.a;
   const double x3 = p.b*p.a*p.m_b*cos(q[1]);
   M[0] = x1 + p.m_b*x2 + x3 + 0.3333333333333333*(p.m_a*x2);
   const double x4 = x1 + 0.5*x3;
   M[1] = x4;
-  M[2] = 0.0;
   M[3] = x4;
-  M[4] = 0.3333333333333333*p.m_b*x0;
-  M[5] = 0.0;
-  M[6] = 0.0;
-  M[7] = 0.0;
-  M[8] = 0.3333333333333333*p.m_c*p.c*p.c;
 }
 
 void forcing(const Params& p, [[maybe_unused]] double t, const double* q, const double* u, const double* tau,
              double* f) {
+  f[2] = tau[2] - 4.905*(p.c*p.m_c*cos(q[2]));
   const double x0 = cos(q[0]);
   const double x1 = cos(q[1]);
   const double x2 = sin(q[1]);
   const double x3 = -9.81*sin(q[0]) + p.a*u[0]*u[0];
   const double x4 = 9.81*(x0*x1) + x2*x3;
   const double x5 = p.b*x4*p.m_b;
+  f[1] = tau[1] - 0.5*x5;
   const double x6 = u[1] + u[0];
   f[0] = -(0.5*x5 + (p.m_b*x2*(9.81*(x0*x2) - (x1*x3) - 0.5*(p.b*x6*x6)) + x4*p.m_b*x1)*p.a + 4.905*(x0*p.a*p.m_a)) + tau[0];
-  f[1] = tau[1] - 0.5*x5;
-  f[2] = tau[2] - 4.905*(p.c*p.m_c*cos(q[2]));
 }
 
 int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
@@ -225,28 +225,18 @@ double nonconservative_power([[maybe_unused]] const Params& p, [[maybe_unused]] 
 
 void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
   // M u: 28 operations; recursive: 35.
+  h[2] = 0.3333333333333333*u[2]*p.m_c*p.c*p.c;
   const double x0 = p.b*p.b;
   const double x1 = 0.3333333333333333*(p.m_b*x0);
   const double x2 = p.b*p.a*p.m_b*cos(q[1]);
   const double x3 = x1 + 0.5*x2;
+  h[1] = u[0]*x3 + 0.3333333333333333*(u[1]*p.m_b*x0);
   const double x4 = p.a*p.a;
   h[0] = u[1]*x3 + u[0]*(x1 + p.m_b*x4 + x2 + 0.3333333333333333*(p.m_a*x4));
-  h[1] = u[0]*x3 + 0.3333333333333333*(u[1]*p.m_b*x0);
-  h[2] = 0.3333333333333333*u[2]*p.m_c*p.c*p.c;
 }
 
 void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
-  const double x0 = cos(q[0]);
-  const double x1 = x0*p.a;
-  y[0] = x1;
-  const double x2 = sin(q[0]);
-  const double x3 = p.a*x2;
-  y[1] = x3;
   y[2] = 0.0;
-  const double x4 = cos(q[1]);
-  const double x5 = sin(q[1]);
-  y[3] = 0.5*(p.b*(x0*x4 - (x2*x5))) + x1;
-  y[4] = x3 + 0.5*(p.b*(x0*x5 + x2*x4));
   y[5] = 0.0;
   y[6] = p.d + p.c*cos(q[2]);
   y[7] = p.c*sin(q[2]);
@@ -256,6 +246,16 @@ void outputs(const Params& p, double t, const double* q, const double* u, double
   y[11] = q[2];
   y[12] = 0.0;
   y[13] = 0.0;
+  const double x0 = cos(q[0]);
+  const double x1 = x0*p.a;
+  y[0] = x1;
+  const double x2 = sin(q[0]);
+  const double x3 = p.a*x2;
+  y[1] = x3;
+  const double x4 = cos(q[1]);
+  const double x5 = sin(q[1]);
+  y[3] = 0.5*(p.b*(x0*x4 - (x2*x5))) + x1;
+  y[4] = x3 + 0.5*(p.b*(x0*x5 + x2*x4));
   // Loop forces: lambda of the dynamics at these inputs of zero (NaN where it cannot be solved).
   double reaction_udot[NU], lambda[NC];
   const double no_inputs[3] = {};
@@ -266,6 +266,7 @@ void outputs(const Params& p, double t, const double* q, const double* u, double
 
 void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
                       const double* udot, double* tau) {
+  tau[2] = 4.905*(p.c*p.m_c*cos(q[2])) + 0.3333333333333333*(p.m_c*p.c*p.c*udot[2]);
   const double x0 = udot[0] + udot[1];
   const double x1 = 9.81*sin(q[0]) - (u[0]*(u[0]*p.a));
   const double x2 = sin(q[1]);
@@ -274,13 +275,13 @@ void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* 
   const double x5 = p.a*udot[0];
   const double x6 = -(x1*x2) + 9.81*(x3*x4) + x4*x5;
   const double x7 = 0.3333333333333333*(x0*p.m_b*p.b*p.b) + 0.5*(p.b*p.m_b*x6);
+  tau[1] = x7;
   const double x8 = u[1] + u[0];
   tau[0] = x7 + p.a*((p.m_b*x6 + 0.5*(x0*p.b*p.m_b))*x4 - ((-(p.m_b*(x2*x5 + 9.81*(x3*x2) + x1*x4)) + 0.5*(p.b*p.m_b*x8*x8))*x2)) + 0.3333333333333333*(p.m_a*udot[0]*p.a*p.a) + 4.905*(x3*p.a*p.m_a);
-  tau[1] = x7;
-  tau[2] = 4.905*(p.c*p.m_c*cos(q[2])) + 0.3333333333333333*(p.m_c*p.c*p.c*udot[2]);
 }
 
 void gravity(const Params& p, const double* q, double* g) {
+  g[2] = 4.905*p.c*p.m_c*cos(q[2]);
   const double x0 = sin(q[1]);
   const double x1 = cos(q[0]);
   const double x2 = sin(q[0]);
@@ -288,7 +289,6 @@ void gravity(const Params& p, const double* q, double* g) {
   const double x4 = 9.81*(x1*x3) - 9.81*(x2*x0);
   g[0] = p.a*(p.m_b*x0*(9.81*(x1*x0) + 9.81*(x2*x3)) + p.m_b*x3*x4) + 0.5*(p.b*p.m_b*x4) + 4.905*(x1*p.a*p.m_a);
   g[1] = 0.5*p.b*p.m_b*x4;
-  g[2] = 4.905*p.c*p.m_c*cos(q[2]);
 }
 
 void constraints(const Params& p, const double* q, double* phi) {
@@ -301,18 +301,18 @@ void constraints(const Params& p, const double* q, double* phi) {
 }
 
 void constraint_jacobian(const Params& p, const double* q, double* C) {
+  C[2] = p.c*sin(q[2]);
+  C[5] = -p.c*cos(q[2]);
   const double x0 = cos(q[0]);
   const double x1 = sin(q[1]);
   const double x2 = sin(q[0]);
   const double x3 = cos(q[1]);
   const double x4 = x0*x1 + x2*x3;
+  const double x5 = p.b*(x0*x3 - (x2*x1));
   C[0] = -(p.b*x4 + p.a*x2);
   C[1] = -p.b*x4;
-  C[2] = p.c*sin(q[2]);
-  const double x5 = p.b*(x0*x3 - (x2*x1));
   C[3] = x0*p.a + x5;
   C[4] = x5;
-  C[5] = -p.c*cos(q[2]);
 }
 
 void constraint_bias(const Params& p, const double* q, const double* u, double* gamma) {
@@ -322,53 +322,53 @@ void constraint_bias(const Params& p, const double* q, const double* u, double* 
   const double x3 = sin(q[0]);
   const double x4 = sin(q[1]);
   const double x5 = x1*x2 - (x3*x4);
-  const double x6 = u[1]*p.b*x5;
-  gamma[0] = -(p.c*x0*cos(q[2]) - (u[1]*(x6 + u[0]*p.b*x5)) - (u[0]*(u[0]*(x1*p.a + p.b*x5) + x6)));
-  const double x7 = x1*x4 + x3*x2;
-  const double x8 = u[1]*p.b*x7;
-  gamma[1] = u[1]*(x8 + u[0]*p.b*x7) + u[0]*(u[0]*(p.b*x7 + p.a*x3) + x8) - (p.c*x0*sin(q[2]));
+  const double x6 = x1*x4 + x3*x2;
+  const double x7 = u[1]*p.b*x5;
+  gamma[0] = -(p.c*x0*cos(q[2]) - (u[1]*(x7 + u[0]*p.b*x5)) - (u[0]*(u[0]*(x1*p.a + p.b*x5) + x7)));
+  const double x8 = u[1]*p.b*x6;
+  gamma[1] = u[1]*(x8 + u[0]*p.b*x6) + u[0]*(u[0]*(p.b*x6 + p.a*x3) + x8) - (p.c*x0*sin(q[2]));
 }
 
 int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
                          const double* tau, double* udot, double* lambda) {
   double z[5];  // the right-hand side [b; g], then [udot; lambda], in elimination order
+  const double m2_2 = 0.3333333333333333*p.m_c*p.c*p.c;
   const double x0 = p.b*p.b;
+  const double m1_1 = 0.3333333333333333*p.m_b*x0;
   const double x1 = 0.3333333333333333*(p.m_b*x0);
   const double x2 = p.a*p.a;
   const double x3 = cos(q[1]);
   const double x4 = p.b*p.a*p.m_b*x3;
   const double m0_0 = x1 + p.m_b*x2 + x4 + 0.3333333333333333*(p.m_a*x2);
   const double m1_0 = x1 + 0.5*x4;
-  const double m1_1 = 0.3333333333333333*p.m_b*x0;
-  const double m2_2 = 0.3333333333333333*p.m_c*p.c*p.c;
   const double x5 = cos(q[0]);
   const double x6 = sin(q[1]);
   const double x7 = x5*x6;
   const double x8 = sin(q[0]);
   const double x9 = x7 + x8*x3;
+  const double c0_1 = -p.b*x9;
   const double x10 = p.b*x9 + p.a*x8;
   const double c0_0 = -x10;
-  const double c0_1 = -p.b*x9;
   const double x11 = sin(q[2]);
   const double c0_2 = p.c*x11;
   const double x12 = x5*x3;
   const double x13 = x12 - (x8*x6);
-  const double x14 = p.b*x13;
-  const double x15 = x5*p.a + x14;
-  const double c1_0 = x15;
-  const double c1_1 = x14;
-  const double x16 = cos(q[2]);
-  const double c1_2 = -p.c*x16;
-  const double x17 = -9.81*x8 + p.a*u[0]*u[0];
-  const double x18 = 9.81*x12 + x6*x17;
-  const double x19 = p.b*x18*p.m_b;
-  const double x20 = u[1] + u[0];
-  z[1] = -(0.5*x19 + (p.m_b*x6*(9.81*x7 - (x3*x17) - 0.5*(p.b*x20*x20)) + x18*p.m_b*x3)*p.a + 4.905*(x5*p.a*p.m_a)) + tau[0];
+  const double x14 = -9.81*x8 + p.a*u[0]*u[0];
+  const double x15 = 9.81*x12 + x6*x14;
+  const double x16 = p.b*x13;
+  const double c1_1 = x16;
+  const double x17 = x5*p.a + x16;
+  const double c1_0 = x17;
+  const double x18 = cos(q[2]);
+  const double c1_2 = -p.c*x18;
+  z[0] = tau[2] - 4.905*(p.c*p.m_c*x18);
+  const double x19 = p.b*x15*p.m_b;
   z[2] = tau[1] - 0.5*x19;
-  z[0] = tau[2] - 4.905*(p.c*p.m_c*x16);
+  const double x20 = u[1] + u[0];
+  z[1] = -(0.5*x19 + (p.m_b*x6*(9.81*x7 - (x3*x14) - 0.5*(p.b*x20*x20)) + x15*p.m_b*x3)*p.a + 4.905*(x5*p.a*p.m_a)) + tau[0];
   const double x21 = u[2]*u[2];
   const double x22 = u[1]*p.b*x13;
-  z[3] = -(p.c*x21*x16 - (u[1]*(x22 + u[0]*p.b*x13)) - (u[0]*(u[0]*x15 + x22)));
+  z[3] = -(p.c*x21*x18 - (u[1]*(x22 + u[0]*p.b*x13)) - (u[0]*(u[0]*x17 + x22)));
   const double x23 = u[1]*p.b*x9;
   z[4] = u[1]*(x23 + u[0]*p.b*x9) + u[0]*(u[0]*x10 + x23) - (p.c*x21*x11);
   // LDL^T of [M C^T; C 0], unrolled in the elimination order; sd<j> are the pivots.

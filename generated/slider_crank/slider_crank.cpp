@@ -163,21 +163,22 @@ void initial_state(const Params& p, double* q, double* u) {
 }
 
 void mass_matrix(const Params& p, const double* q, double* M) {
-  const double x0 = p.m2*cos(q[1])*p.L1*p.L2;
-  M[0] = p.J1 + p.J2 + x0 + p.m2*p.L1*p.L1;
-  const double x1 = p.J2 + 0.5*x0;
-  M[1] = x1;
   M[2] = 0.0;
-  M[3] = x1;
   M[4] = p.J2;
   M[5] = 0.0;
   M[6] = 0.0;
   M[7] = 0.0;
   M[8] = p.m3;
+  const double x0 = p.m2*cos(q[1])*p.L1*p.L2;
+  M[0] = p.J1 + p.J2 + x0 + p.m2*p.L1*p.L1;
+  const double x1 = p.J2 + 0.5*x0;
+  M[1] = x1;
+  M[3] = x1;
 }
 
 void forcing(const Params& p, [[maybe_unused]] double t, const double* q, const double* u, const double* tau,
              double* f) {
+  f[2] = tau[2];
   const double x0 = cos(q[1]);
   const double x1 = u[0]*u[0];
   const double x2 = sin(q[1]);
@@ -186,7 +187,6 @@ void forcing(const Params& p, [[maybe_unused]] double t, const double* q, const 
   const double x5 = p.m2*x3*p.L2;
   f[0] = -(-((-(p.m2*x0*x3) + x2*(p.m2*(0.5*(x4*x4*p.L2) + x0*x1*p.L1)))*p.L1) + 0.5*x5);
   f[1] = tau[1] - 0.5*x5;
-  f[2] = tau[2];
 }
 
 int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
@@ -226,31 +226,31 @@ double nonconservative_power([[maybe_unused]] const Params& p, [[maybe_unused]] 
 
 void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
   // M u: 18 operations; recursive: 26.
+  h[2] = p.m3*u[2];
   const double x0 = p.m2*cos(q[1])*p.L1*p.L2;
   const double x1 = p.J2 + 0.5*x0;
   h[0] = u[1]*x1 + u[0]*(p.J1 + p.J2 + x0 + p.m2*p.L1*p.L1);
   h[1] = u[1]*p.J2 + u[0]*x1;
-  h[2] = p.m3*u[2];
 }
 
 void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
   y[0] = q[2];
   y[1] = u[2];
   y[2] = q[1];
+  y[5] = 0.0;
+  y[8] = 0.0;
+  y[9] = 0.0;
+  y[10] = 0.0;
   const double x0 = cos(q[0]);
   const double x1 = x0*p.L1;
   y[3] = x1;
   const double x2 = sin(q[0]);
   const double x3 = x2*p.L1;
   y[4] = x3;
-  y[5] = 0.0;
   const double x4 = cos(q[1]);
   const double x5 = sin(q[1]);
   y[6] = 0.5*((x0*x4 - (x2*x5))*p.L2) + x1;
   y[7] = x3 + 0.5*(p.L2*(x0*x5 + x2*x4));
-  y[8] = 0.0;
-  y[9] = 0.0;
-  y[10] = 0.0;
   // Loop forces: lambda of the dynamics at these inputs of zero (NaN where it cannot be solved).
   double reaction_udot[NU], lambda[NC];
   const double no_inputs[3] = {};
@@ -261,6 +261,7 @@ void outputs(const Params& p, double t, const double* q, const double* u, double
 
 void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
                       const double* udot, double* tau) {
+  tau[2] = p.m3*udot[2];
   const double x0 = sin(q[1]);
   const double x1 = u[0]*p.L1;
   const double x2 = cos(q[1]);
@@ -268,10 +269,9 @@ void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* 
   const double x4 = u[0]*x0*x1 + x2*x3;
   const double x5 = udot[0] + udot[1];
   const double x6 = 0.5*(p.m2*x4*p.L2) + x5*p.J2;
+  tau[1] = x6;
   const double x7 = u[1] + u[0];
   tau[0] = -(-x6 + (x0*(p.m2*(u[0]*x2*x1 - (x0*x3)) + 0.5*(p.m2*x7*x7*p.L2)) - ((p.m2*x4 + 0.5*(x5*p.m2*p.L2))*x2))*p.L1) + p.J1*udot[0];
-  tau[1] = x6;
-  tau[2] = p.m3*udot[2];
 }
 
 void gravity([[maybe_unused]] const Params& p, [[maybe_unused]] const double* q, double* g) {
@@ -290,18 +290,18 @@ void constraints(const Params& p, const double* q, double* phi) {
 }
 
 void constraint_jacobian(const Params& p, const double* q, double* C) {
+  C[2] = -1.0;
+  C[5] = 0.0;
   const double x0 = cos(q[0]);
   const double x1 = sin(q[1]);
   const double x2 = sin(q[0]);
   const double x3 = cos(q[1]);
   const double x4 = x0*x1 + x2*x3;
+  const double x5 = (x0*x3 - (x2*x1))*p.L2;
   C[0] = -(p.L2*x4 + x2*p.L1);
   C[1] = -p.L2*x4;
-  C[2] = -1.0;
-  const double x5 = (x0*x3 - (x2*x1))*p.L2;
   C[3] = x0*p.L1 + x5;
   C[4] = x5;
-  C[5] = 0.0;
 }
 
 void constraint_bias(const Params& p, const double* q, const double* u, double* gamma) {
@@ -310,11 +310,11 @@ void constraint_bias(const Params& p, const double* q, const double* u, double* 
   const double x2 = sin(q[0]);
   const double x3 = sin(q[1]);
   const double x4 = x0*x1 - (x2*x3);
-  const double x5 = u[1]*x4*p.L2;
-  gamma[0] = u[1]*(x5 + u[0]*x4*p.L2) + u[0]*(u[0]*(x0*p.L1 + x4*p.L2) + x5);
-  const double x6 = x0*x3 + x2*x1;
-  const double x7 = u[1]*p.L2*x6;
-  gamma[1] = u[0]*(u[0]*(p.L2*x6 + x2*p.L1) + x7) + u[1]*(x7 + u[0]*p.L2*x6);
+  const double x5 = x0*x3 + x2*x1;
+  const double x6 = u[1]*x4*p.L2;
+  gamma[0] = u[1]*(x6 + u[0]*x4*p.L2) + u[0]*(u[0]*(x0*p.L1 + x4*p.L2) + x6);
+  const double x7 = u[1]*p.L2*x5;
+  gamma[1] = u[0]*(u[0]*(p.L2*x5 + x2*p.L1) + x7) + u[1]*(x7 + u[0]*p.L2*x5);
 }
 
 int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
@@ -326,24 +326,24 @@ int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const doubl
   double z[4];  // the right-hand side [b; g], then [udot; lambda], in elimination order
   const double m0_0 = p.J2;
   const double m1_1 = p.m3;
+  const double c0_1 = -1.0;
+  z[0] = tau[2];
   const double x0 = cos(q[0]);
   const double x1 = sin(q[1]);
   const double x2 = sin(q[0]);
   const double x3 = cos(q[1]);
-  const double x4 = x0*x1 + x2*x3;
-  const double c0_0 = -p.L2*x4;
-  const double c0_1 = -1.0;
-  const double x5 = x0*x3 - (x2*x1);
-  const double x6 = x5*p.L2;
-  const double c1_0 = x6;
   z[1] = tau[1] - 0.5*(p.m2*(u[0]*u[0]*x1*p.L1)*p.L2) - (ap0*(p.J2 + 0.5*(p.m2*x3*p.L1*p.L2)));
-  z[0] = tau[2];
-  const double x7 = p.L2*x4 + x2*p.L1;
-  const double x8 = u[1]*x5*p.L2;
-  const double x9 = x0*p.L1 + x6;
-  z[2] = ap0*x7 + u[1]*(x8 + u[0]*x5*p.L2) + u[0]*(u[0]*x9 + x8);
+  const double x4 = x0*x1 + x2*x3;
+  const double x5 = x0*x3 - (x2*x1);
+  const double c0_0 = -p.L2*x4;
+  const double x6 = p.L2*x4 + x2*p.L1;
+  const double x7 = x5*p.L2;
+  const double c1_0 = x7;
+  const double x8 = x0*p.L1 + x7;
+  const double x9 = u[1]*x5*p.L2;
+  z[2] = ap0*x6 + u[1]*(x9 + u[0]*x5*p.L2) + u[0]*(u[0]*x8 + x9);
   const double x10 = u[1]*p.L2*x4;
-  z[3] = u[0]*(u[0]*x7 + x10) + u[1]*(x10 + u[0]*p.L2*x4) - (ap0*x9);
+  z[3] = u[0]*(u[0]*x6 + x10) + u[1]*(x10 + u[0]*p.L2*x4) - (ap0*x8);
   // LDL^T of [M C^T; C 0], unrolled in the elimination order; sd<j> are the pivots.
   const double sd0 = m1_1;
   if (!(sd0 > 0.0)) return 2;

@@ -6,7 +6,7 @@
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 2021
 //   forcing: 2610
-//   forward_dynamics: 6018 (recursive; composite inertias and LDL^T: 18135) [split in 7 functions, 2,936 bytes of stack between them]
+//   forward_dynamics: 6018 (recursive; composite inertias and LDL^T: 18135) [split in 7 functions, 2,960 bytes of stack between them]
 //   kinetic_energy: 1137
 //   potential_energy: 726
 //   nonconservative_power: 3

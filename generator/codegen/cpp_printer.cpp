@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "codegen/cpp_printer.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -9,6 +10,8 @@
 #include <functional>
 #include <map>
 #include <set>
+
+#include "codegen/statement_order.hpp"
 
 namespace kanegen::codegen {
 
@@ -56,17 +59,39 @@ class Printer {
         prefix_(prefix),
         scalar_(scalar),
         uses_(graph.size(), 0),
-        temps_(graph.size(), -1) {}
+        temps_(graph.size(), -1),
+        planned_at_(graph.size(), -1) {}
 
   PrintedKernel run(const std::vector<Assignment>& assignments) {
     out_.temp_prefix = prefix_;
     for (const Assignment& a : assignments) count_uses(a.node);
-    for (const Assignment& a : assignments) {
-      emit_temporaries(a.node);
-      Statement s = statement(a.node, false);
-      s.target = a.target;
-      out_.body += indent_ + a.target + " = " + s.expression + ";\n";
-      out_.statements.push_back(std::move(s));
+    // The printer's order: each temporary just before its first use. Then
+    // the order that keeps fewer values live (statement_order.hpp), unless
+    // the kernel reads what it assigns, where the order is the meaning.
+    std::vector<Planned> plan;
+    for (std::size_t i = 0; i < assignments.size(); ++i) {
+      plan_temporaries(assignments[i].node, plan);
+      plan.push_back({assignments[i].node, static_cast<int>(i)});
+    }
+    std::vector<int> order(plan.size());
+    for (std::size_t k = 0; k < plan.size(); ++k) order[k] = static_cast<int>(k);
+    if (!reads_own_targets(assignments)) order = shorten_live_ranges(dependencies(plan));
+    for (int k : order) {
+      const Planned& item = plan[k];
+      if (item.assignment < 0) {
+        Statement s = statement(item.node, true);
+        s.temporary = temporaries_;
+        temps_[item.node] = temporaries_++;
+        out_.body +=
+            indent_ + "const " + scalar_.name() + " " + temp_name(item.node) + " = " + s.expression + ";\n";
+        out_.statements.push_back(std::move(s));
+      } else {
+        const Assignment& a = assignments[item.assignment];
+        Statement s = statement(a.node, false);
+        s.target = a.target;
+        out_.body += indent_ + a.target + " = " + s.expression + ";\n";
+        out_.statements.push_back(std::move(s));
+      }
     }
     out_.temporaries = temporaries_;
     return out_;
@@ -117,16 +142,64 @@ class Printer {
     return !is_leaf(n) && uses_[id] > 1;
   }
 
-  void emit_temporaries(int id) {
-    if (has_temp(id) || is_leaf(node(id))) return;
-    for (int a : node(id).args) emit_temporaries(a);
+  /// A statement to print: a temporary's definition (assignment -1) or an assignment.
+  struct Planned {
+    int node;
+    int assignment;
+  };
+
+  void plan_temporaries(int id, std::vector<Planned>& plan) {
+    if (planned_at_[id] >= 0 || is_leaf(node(id))) return;
+    for (int a : node(id).args) plan_temporaries(a, plan);
     if (wants_temp(id)) {
-      Statement s = statement(id, true);
-      s.temporary = temporaries_;
-      temps_[id] = temporaries_++;
-      out_.body += indent_ + "const " + scalar_.name() + " " + temp_name(id) + " = " + s.expression + ";\n";
-      out_.statements.push_back(std::move(s));
+      planned_at_[id] = static_cast<int>(plan.size());
+      plan.push_back({id, -1});
     }
+  }
+
+  /// The temporaries (as plan indices) that the text of node `id` reads where it is used.
+  void collect_reads(int id, std::vector<int>& reads) const {
+    if (is_leaf(node(id))) return;
+    if (wants_temp(id)) {
+      reads.push_back(planned_at_[id]);
+      return;
+    }
+    for (int a : node(id).args) collect_reads(a, reads);
+  }
+
+  std::vector<OrderedStatement> dependencies(const std::vector<Planned>& plan) const {
+    std::vector<OrderedStatement> statements(plan.size());
+    for (std::size_t k = 0; k < plan.size(); ++k) {
+      std::vector<int>& reads = statements[k].reads;
+      if (plan[k].assignment < 0) {
+        for (int a : node(plan[k].node).args) collect_reads(a, reads);
+        statements[k].defines = true;
+      } else {
+        collect_reads(plan[k].node, reads);
+      }
+      std::sort(reads.begin(), reads.end());
+      reads.erase(std::unique(reads.begin(), reads.end()), reads.end());
+    }
+    return statements;
+  }
+
+  /// An assignment's target that another statement reads, or a target
+  /// assigned twice ("udot" of "udot[3]", "m0_0" of "const double m0_0").
+  bool reads_own_targets(const std::vector<Assignment>& assignments) const {
+    auto root = [](const std::string& s) {
+      const std::size_t begin = s.find_last_of(' ') == std::string::npos ? 0 : s.find_last_of(' ') + 1;
+      return s.substr(begin, s.find_first_of("[.", begin) - begin);
+    };
+    std::set<std::string> targets, whole;
+    for (const Assignment& a : assignments) {
+      targets.insert(root(a.target));
+      if (!whole.insert(a.target).second) return true;
+    }
+    for (std::size_t id = 0; id < uses_.size(); ++id)
+      if (uses_[id] > 0 && node(static_cast<int>(id)).op == Op::input &&
+          targets.count(root(node(static_cast<int>(id)).name)))
+        return true;
+    return false;
   }
 
   // The statement of node `id`, with the temporaries and inputs its text reads
@@ -260,6 +333,7 @@ class Printer {
   // where ordered maps cost a logarithm on every lookup of a large graph.
   std::vector<int> uses_;
   std::vector<int> temps_;
+  std::vector<int> planned_at_;  ///< a temporary's index in the plan
   int temporaries_ = 0;
   // What the statement being printed reads (filled by the const text functions).
   mutable std::set<int> read_temps_;
