@@ -10,12 +10,13 @@ spatial chains of N links from scripts/make_chain_urdf.py, and for each
   plus system, and wall) and the source's size;
 - forward_dynamics against MuJoCo's mj_forward on the same URDF, median time
   per call (bench/scaling_driver.cpp; it checks that both compute the same
-  udot before it times anything);
+  udot before it times anything), at --layouts placements of the kernel's
+  code (the median over them counts);
 - for the --sympy sizes, SymPy's KanesMethod on the same chain
   (bench/sympy_chain.py; its M and f at a check state must be kanegen's).
 
     bench/scaling.py [--sizes 7,20,50,100] [--sympy 7] [--kanegen build/generator/kanegen]
-                     [--out DIR] [--reps 3] [--plot FIG.png] [--dynamics auto]
+                     [--out DIR] [--reps 3] [--layouts 4] [--plot FIG.png] [--dynamics auto]
                      [--split-threshold N]
     bench/scaling.py --from-json DIR/scaling.json [--plot FIG.png]
 
@@ -28,6 +29,7 @@ import json
 import os
 import re
 import shutil
+import statistics
 import subprocess
 import sys
 import time
@@ -97,15 +99,35 @@ def measure(args, n, work):
     obj = os.path.join(work, name + ".o")
     compile_cpu, compile_seconds = cpu([args.cxx, "-std=c++17", "-O2", "-I", gen, "-I", os.path.join(ROOT, "runtime", "include"),
                             "-c", os.path.join(gen, name + ".cpp"), "-o", obj])
-    driver = os.path.join(work, "driver%d" % n)
+    driver_object = os.path.join(work, "driver%d.o" % n)
     run([args.cxx, "-std=c++17", "-O2", "-DKANEGEN_SCALING_HEADER=<%s.hpp>" % name,
-         "-DKANEGEN_SCALING_NAMESPACE=%s" % name, "-I", gen, os.path.join(ROOT, "bench", "scaling_driver.cpp"), obj,
-         "-lmujoco", "-o", driver])
-    print("chain%d: timing forward_dynamics and mj_forward ..." % n, file=sys.stderr, flush=True)
-    timing = json.loads(run([driver, urdf]).stdout)
+         "-DKANEGEN_SCALING_NAMESPACE=%s" % name, "-I", gen, "-c", os.path.join(ROOT, "bench", "scaling_driver.cpp"),
+         "-o", driver_object])
+    # Where the kernel's code lands moves its time by up to about 10 % (fetch
+    # blocks and cache lines; see docs/benchmarks.md), as much as a change
+    # to the kernel may gain. So the same object is linked at --layouts
+    # offsets, 16 bytes apart (padding before it), and each figure is the
+    # median over them.
+    print("chain%d: timing forward_dynamics and mj_forward at %d code layouts ..." % (n, args.layouts),
+          file=sys.stderr, flush=True)
+    layouts = []
+    for k in range(args.layouts):
+        pad = os.path.join(work, "pad%d.s" % k)
+        with open(pad, "w") as f:
+            f.write(".section .note.GNU-stack,\"\",@progbits\n.text\n.globl kanegen_layout_pad%d\n"
+                    "kanegen_layout_pad%d:\n%s" % (k, k, ".space %d, 0x90\n" % (16 * k) if k else ""))
+        driver = os.path.join(work, "driver%d_layout%d" % (n, k))
+        run([args.cxx, driver_object, pad, obj, "-lmujoco", "-o", driver])
+        layouts.append(json.loads(run([driver, urdf]).stdout))
+    timing = dict(layouts[0])
+    for key in ("kanegen_ns", "mujoco_ns"):
+        timing[key] = statistics.median(t[key] for t in layouts)
+    ratios = [t["kanegen_ns"] / t["mujoco_ns"] for t in layouts]
     return {"links": n, "method": method, "operations": counts, "generation_s": generation,
             "source_bytes": os.path.getsize(os.path.join(gen, name + ".cpp")), "compile_O2_s": compile_seconds,
-            "compile_O2_cpu_s": compile_cpu, **timing, "ratio_to_mj_forward": timing["kanegen_ns"] / timing["mujoco_ns"]}
+            "compile_O2_cpu_s": compile_cpu, **timing, "ratio_to_mj_forward": statistics.median(ratios),
+            "layouts": {"kanegen_ns": [t["kanegen_ns"] for t in layouts],
+                        "mujoco_ns": [t["mujoco_ns"] for t in layouts], "ratio": ratios}}
 
 
 def sympy_peer(n, kanegen_row, timeout):
@@ -169,10 +191,15 @@ def main():
                         help="passed to kanegen generate --split-threshold (default: its own)")
     parser.add_argument("--out", default=os.path.join(ROOT, "build", "bench_scaling"))
     parser.add_argument("--reps", type=int, default=3, help="generation runs per size; the fastest counts")
+    parser.add_argument("--layouts", type=int, default=4,
+                        help="code layouts the kernel is timed at (its object 16 bytes further each); the"
+                             " figures are their median (default 4)")
     parser.add_argument("--plot", help="write a PNG of operations and time ratio against N")
     parser.add_argument("--from-json", metavar="FILE",
                         help="measure nothing: print the tables (and --plot) of an earlier run's scaling.json")
     args = parser.parse_args()
+    if args.layouts < 1:
+        parser.error("--layouts must be at least 1")
     if args.from_json:
         with open(args.from_json) as f:
             report(json.load(f), args.plot)
@@ -207,6 +234,13 @@ def report(result, plot_path):
               (r["links"], r["method"], c.get("chosen", 0), both, r["generation_s"], r["source_bytes"] / 1e6,
                r["compile_O2_cpu_s"], r["compile_O2_s"],
                r["kanegen_ns"] / 1e3, r["mujoco_ns"] / 1e3, r["ratio_to_mj_forward"]))
+    spread = [r for r in rows if len(r.get("layouts", {}).get("ratio", [])) > 1]
+    if spread:
+        print()
+        print("| links | ratio at each code layout (the table gives their median) |")
+        print("|---|---|")
+        for r in spread:
+            print("| %d | %s |" % (r["links"], ", ".join("%.3f" % x for x in r["layouts"]["ratio"])))
     if peers:
         print()
         print("| links | SymPy KanesMethod [s] (CPU, equations only) | kanegen generate [s] (wall, to C++) |")
