@@ -230,7 +230,7 @@ def report(result, plot_path):
     for r in rows:
         c = r["operations"]
         both = " / ".join(str(c[k]) if k in c else "-" for k in ("recursive", "composite"))
-        print("| %d | %s | %d (%s) | %.2f | %.2f | %.1f | %.1f | %.2f | %.2f | %.2f |" %
+        print("| %d | %s | %d (%s) | %.2f | %.2f | %.1f | %.1f | %.2f | %.2f | %.3f |" %
               (r["links"], r["method"], c.get("chosen", 0), both, r["generation_s"], r["source_bytes"] / 1e6,
                r["compile_O2_cpu_s"], r["compile_O2_s"],
                r["kanegen_ns"] / 1e3, r["mujoco_ns"] / 1e3, r["ratio_to_mj_forward"]))
