@@ -38,6 +38,14 @@ int most_live(const std::vector<OrderedStatement>& statements, const std::vector
   return most;
 }
 
+/// An expression graph with no model symbols in use (its inputs are made by name).
+struct Graph {
+  kanegen::model::Model model = kanegen::model::load_model(KANEGEN_SOURCE_DIR "/models/double_pendulum.json");
+  kanegen::symbolic::Variables vars{model};
+  kanegen::symbolic::Program program;
+  ExpressionGraph graph{vars, program};
+};
+
 std::vector<int> identity_order(int n) {
   std::vector<int> order(n);
   for (int i = 0; i < n; ++i) order[i] = i;
@@ -101,11 +109,8 @@ TEST_CASE("a statement that reads a value for the last time comes before one tha
 }
 
 TEST_CASE("a kernel that reads what it assigns keeps the printer's order", "[order]") {
-  const kanegen::model::Model model =
-      kanegen::model::load_model(KANEGEN_SOURCE_DIR "/models/double_pendulum.json");
-  const kanegen::symbolic::Variables vars(model);
-  kanegen::symbolic::Program program;
-  ExpressionGraph graph(vars, program);
+  Graph g;
+  ExpressionGraph& graph = g.graph;
   const int x = graph.input("x[0]");
   const int y0 = graph.input("y[0]");
   // y[0] = s s + s with s = x + 2 (a temporary); y[1] = 3 y[0] + y[0]^2 reads
@@ -122,11 +127,8 @@ TEST_CASE("a kernel that reads what it assigns keeps the printer's order", "[ord
 }
 
 TEST_CASE("printed statements define each temporary before the statements that read it", "[order]") {
-  const kanegen::model::Model model =
-      kanegen::model::load_model(KANEGEN_SOURCE_DIR "/models/double_pendulum.json");
-  const kanegen::symbolic::Variables vars(model);
-  kanegen::symbolic::Program program;
-  ExpressionGraph graph(vars, program);
+  Graph g;
+  ExpressionGraph& graph = g.graph;
   std::vector<int> inputs;
   for (int i = 0; i < 6; ++i) inputs.push_back(graph.input("a[" + std::to_string(i) + "]"));
   std::vector<Assignment> assignments;
