@@ -103,7 +103,7 @@ def measure(args, n, work):
     run([args.cxx, "-std=c++17", "-O2", "-DKANEGEN_SCALING_HEADER=<%s.hpp>" % name,
          "-DKANEGEN_SCALING_NAMESPACE=%s" % name, "-I", gen, "-c", os.path.join(ROOT, "bench", "scaling_driver.cpp"),
          "-o", driver_object])
-    # Where the kernel's code lands moves its time by up to about 10 % (fetch
+    # Where the kernel's code lands moves its time by up to about 20 % (fetch
     # blocks and cache lines; see docs/benchmarks.md), as much as a change
     # to the kernel may gain. So the same object is linked at --layouts
     # offsets, 16 bytes apart (padding before it), and each figure is the
