@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <functional>
 #include <map>
+#include <numeric>
 #include <set>
 
 #include "codegen/statement_order.hpp"
@@ -74,7 +75,7 @@ class Printer {
       plan.push_back({assignments[i].node, static_cast<int>(i)});
     }
     std::vector<int> order(plan.size());
-    for (std::size_t k = 0; k < plan.size(); ++k) order[k] = static_cast<int>(k);
+    std::iota(order.begin(), order.end(), 0);
     if (!reads_own_targets(assignments)) order = shorten_live_ranges(dependencies(plan));
     for (int k : order) {
       const Planned& item = plan[k];

@@ -5,6 +5,7 @@
 // reads what it assigns.
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <numeric>
 #include <random>
 #include <string>
 #include <vector>
@@ -48,7 +49,7 @@ struct Graph {
 
 std::vector<int> identity_order(int n) {
   std::vector<int> order(n);
-  for (int i = 0; i < n; ++i) order[i] = i;
+  std::iota(order.begin(), order.end(), 0);
   return order;
 }
 
