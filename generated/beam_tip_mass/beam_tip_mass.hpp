@@ -6,7 +6,7 @@
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 502
 //   forcing: 1384
-//   forward_dynamics: 2441 (recursive; composite inertias and LDL^T: 14450)
+//   forward_dynamics: 2411 (recursive; composite inertias and LDL^T: 14450)
 //   kinetic_energy: 872
 //   potential_energy: 609
 //   nonconservative_power: 3

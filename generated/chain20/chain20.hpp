@@ -5,13 +5,13 @@
 //
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 6999 (a loop over 210 pairs of world axes and momenta; entry by entry: 6999)
-//   forcing: 4516
-//   forward_dynamics: 8653 (recursive; composite inertias and LDL^T: 14967) [split in 9 functions, 3,272 bytes of stack between them]
+//   forcing: 4514
+//   forward_dynamics: 8404 (recursive; composite inertias and LDL^T: 14965) [split in 9 functions, 3,480 bytes of stack between them]
 //   kinetic_energy: 2029
 //   potential_energy: 941
 //   nonconservative_power: 39
 //   outputs: 0
-//   inverse_dynamics: 5372 (recursive; M udot - f from M and f: 11907)
+//   inverse_dynamics: 5342 (recursive; M udot - f from M and f: 11905)
 //   gravity: 1233
 //
 // Arrays are plain C arrays with their sizes in the comments; no function

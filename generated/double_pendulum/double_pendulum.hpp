@@ -5,14 +5,14 @@
 //
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 18
-//   forcing: 41
-//   forward_dynamics: 70 (composite inertias, 12 of them in LDL^T; recursive: 86)
+//   forcing: 40
+//   forward_dynamics: 69 (composite inertias, 12 of them in LDL^T; recursive: 79)
 //   kinetic_energy: 32
-//   potential_energy: 17
+//   potential_energy: 16
 //   nonconservative_power: 7
 //   outputs: 16
-//   inverse_dynamics: 60 (recursive; M udot - f from M and f: 65)
-//   gravity: 31
+//   inverse_dynamics: 60 (recursive; M udot - f from M and f: 63)
+//   gravity: 29
 //
 // Arrays are plain C arrays with their sizes in the comments; no function
 // allocates, throws or keeps state, and nothing beyond <math.h> is needed.

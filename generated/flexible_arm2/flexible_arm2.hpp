@@ -6,7 +6,7 @@
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 491
 //   forcing: 1153
-//   forward_dynamics: 2216 (recursive; composite inertias and LDL^T: 9321)
+//   forward_dynamics: 2198 (recursive; composite inertias and LDL^T: 9321)
 //   kinetic_energy: 698
 //   potential_energy: 529
 //   nonconservative_power: 3

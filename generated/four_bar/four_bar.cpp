@@ -165,8 +165,8 @@ void mass_matrix(const Params& p, const double* q, double* M) {
   M[4] = 0.3333333333333333*p.m_b*x0;
   const double x1 = 0.3333333333333333*(p.m_b*x0);
   const double x2 = p.a*p.a;
-  const double x3 = p.b*p.a*p.m_b*cos(q[1]);
-  M[0] = x1 + p.m_b*x2 + x3 + 0.3333333333333333*(p.m_a*x2);
+  const double x3 = (cos(q[1])*(p.b*p.m_b))*p.a;
+  M[0] = x1 + p.m_b*x2 + 0.3333333333333333*(p.m_a*x2) + x3;
   const double x4 = x1 + 0.5*x3;
   M[1] = x4;
   M[3] = x4;
@@ -174,16 +174,16 @@ void mass_matrix(const Params& p, const double* q, double* M) {
 
 void forcing(const Params& p, [[maybe_unused]] double t, const double* q, const double* u, const double* tau,
              double* f) {
-  f[2] = tau[2] - 4.905*(p.c*p.m_c*cos(q[2]));
+  f[2] = tau[2] - 4.905*(p.c*(p.m_c*cos(q[2])));
   const double x0 = cos(q[0]);
   const double x1 = cos(q[1]);
   const double x2 = sin(q[1]);
   const double x3 = -9.81*sin(q[0]) + p.a*u[0]*u[0];
-  const double x4 = 9.81*(x0*x1) + x2*x3;
-  const double x5 = p.b*x4*p.m_b;
+  const double x4 = (9.81*(x0*x1) + x2*x3)*p.m_b;
+  const double x5 = x4*p.b;
   f[1] = tau[1] - 0.5*x5;
   const double x6 = u[1] + u[0];
-  f[0] = -(0.5*x5 + (p.m_b*x2*(9.81*(x0*x2) - (x1*x3) - 0.5*(p.b*x6*x6)) + x4*p.m_b*x1)*p.a + 4.905*(x0*p.a*p.m_a)) + tau[0];
+  f[0] = tau[0] - (4.905*((x0*p.m_a)*p.a) + 0.5*x5 + p.a*(x4*x1 + (p.m_b*(9.81*(x0*x2) - (x1*x3) - 0.5*(p.b*x6*x6)))*x2));
 }
 
 int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
@@ -205,14 +205,15 @@ double kinetic_energy(const Params& p, const double* q, const double* u) {
   const double x2 = u[0]*p.a*sin(q[1]);
   const double x3 = p.c*u[2];
   const double x4 = u[0]*p.a;
-  T = 0.5*(p.m_b*(x1*x1 + x2*x2)) + 0.041666666666666664*(u[0]*u[0]*p.m_a*p.a*p.a) + 0.041666666666666664*(p.m_b*p.b*p.b*x0*x0) + 0.125*(p.m_c*x3*x3) + 0.125*(p.m_a*x4*x4) + 0.041666666666666664*(u[2]*u[2]*p.m_c*p.c*p.c);
+  T = 0.041666666666666664*(u[0]*(u[0]*p.m_a*p.a*p.a)) + 0.5*(p.m_b*(x1*x1 + x2*x2)) + 0.041666666666666664*((p.m_b*p.b*p.b*x0)*x0) + 0.125*(p.m_c*x3*x3) + 0.125*(p.m_a*x4*x4) + 0.041666666666666664*(u[2]*(u[2]*p.m_c*p.c*p.c));
   return T;
 }
 
 double potential_energy(const Params& p, const double* q) {
   double V;
   const double x0 = sin(q[0]);
-  V = 4.905*(p.c*p.m_c*sin(q[2])) + 4.905*(p.a*p.m_a*x0) + 9.81*((p.a*x0 + 0.5*(p.b*(cos(q[0])*sin(q[1]) + x0*cos(q[1]))))*p.m_b);
+  const double x1 = p.a*x0;
+  V = 9.81*((x1 + 0.5*(p.b*(cos(q[0])*sin(q[1]) + x0*cos(q[1]))))*p.m_b) + 4.905*(p.m_c*(p.c*sin(q[2]))) + 4.905*(p.m_a*x1);
   return V;
 }
 
@@ -224,15 +225,15 @@ double nonconservative_power([[maybe_unused]] const Params& p, [[maybe_unused]] 
 }
 
 void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
-  // M u: 28 operations; recursive: 35.
-  h[2] = 0.3333333333333333*u[2]*p.m_c*p.c*p.c;
-  const double x0 = p.b*p.b;
-  const double x1 = 0.3333333333333333*(p.m_b*x0);
-  const double x2 = p.b*p.a*p.m_b*cos(q[1]);
-  const double x3 = x1 + 0.5*x2;
-  h[1] = u[0]*x3 + 0.3333333333333333*(u[1]*p.m_b*x0);
-  const double x4 = p.a*p.a;
-  h[0] = u[1]*x3 + u[0]*(x1 + p.m_b*x4 + x2 + 0.3333333333333333*(p.m_a*x4));
+  // M u: 27 operations; recursive: 35.
+  h[2] = 0.3333333333333333*(p.m_c*p.c*p.c)*u[2];
+  const double x0 = p.m_b*p.b*p.b;
+  const double x1 = 0.3333333333333333*x0;
+  const double x2 = p.a*p.a;
+  const double x3 = (cos(q[1])*(p.b*p.m_b))*p.a;
+  const double x4 = x1 + 0.5*x3;
+  h[0] = (x1 + p.m_b*x2 + 0.3333333333333333*(p.m_a*x2) + x3)*u[0] + u[1]*x4;
+  h[1] = 0.3333333333333333*(u[1]*x0) + u[0]*x4;
 }
 
 void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
@@ -277,18 +278,19 @@ void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* 
   const double x7 = 0.3333333333333333*(x0*p.m_b*p.b*p.b) + 0.5*(p.b*p.m_b*x6);
   tau[1] = x7;
   const double x8 = u[1] + u[0];
-  tau[0] = x7 + p.a*((p.m_b*x6 + 0.5*(x0*p.b*p.m_b))*x4 - ((-(p.m_b*(x2*x5 + 9.81*(x3*x2) + x1*x4)) + 0.5*(p.b*p.m_b*x8*x8))*x2)) + 0.3333333333333333*(p.m_a*udot[0]*p.a*p.a) + 4.905*(x3*p.a*p.m_a);
+  tau[0] = x7 + ((p.m_b*x6 + 0.5*(x0*p.b*p.m_b))*x4 - (x2*(0.5*(x8*(p.b*p.m_b*x8)) - (p.m_b*(x2*x5 + 9.81*(x3*x2) + x1*x4)))))*p.a + 0.3333333333333333*(p.m_a*udot[0]*p.a*p.a) + 4.905*(x3*p.a*p.m_a);
 }
 
 void gravity(const Params& p, const double* q, double* g) {
-  g[2] = 4.905*p.c*p.m_c*cos(q[2]);
-  const double x0 = sin(q[1]);
-  const double x1 = cos(q[0]);
+  g[2] = 4.905*(p.c*p.m_c*cos(q[2]));
+  const double x0 = cos(q[0]);
+  const double x1 = cos(q[1]);
   const double x2 = sin(q[0]);
-  const double x3 = cos(q[1]);
-  const double x4 = 9.81*(x1*x3) - 9.81*(x2*x0);
-  g[0] = p.a*(p.m_b*x0*(9.81*(x1*x0) + 9.81*(x2*x3)) + p.m_b*x3*x4) + 0.5*(p.b*p.m_b*x4) + 4.905*(x1*p.a*p.m_a);
-  g[1] = 0.5*p.b*p.m_b*x4;
+  const double x3 = sin(q[1]);
+  const double x4 = 9.81*(x0*x1) - 9.81*(x2*x3);
+  const double x5 = 0.5*(p.b*p.m_b*x4);
+  g[0] = x5 + p.a*(x3*(p.m_b*(9.81*(x0*x3) + 9.81*(x2*x1))) + (p.m_b*x4)*x1) + 4.905*(x0*p.a*p.m_a);
+  g[1] = x5;
 }
 
 void constraints(const Params& p, const double* q, double* phi) {
@@ -338,8 +340,8 @@ int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const doubl
   const double x1 = 0.3333333333333333*(p.m_b*x0);
   const double x2 = p.a*p.a;
   const double x3 = cos(q[1]);
-  const double x4 = p.b*p.a*p.m_b*x3;
-  const double m0_0 = x1 + p.m_b*x2 + x4 + 0.3333333333333333*(p.m_a*x2);
+  const double x4 = (x3*(p.b*p.m_b))*p.a;
+  const double m0_0 = x1 + p.m_b*x2 + 0.3333333333333333*(p.m_a*x2) + x4;
   const double m1_0 = x1 + 0.5*x4;
   const double x5 = cos(q[0]);
   const double x6 = sin(q[1]);
@@ -354,18 +356,18 @@ int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const doubl
   const double x12 = x5*x3;
   const double x13 = x12 - (x8*x6);
   const double x14 = -9.81*x8 + p.a*u[0]*u[0];
-  const double x15 = 9.81*x12 + x6*x14;
+  const double x15 = (9.81*x12 + x6*x14)*p.m_b;
   const double x16 = p.b*x13;
   const double c1_1 = x16;
   const double x17 = x5*p.a + x16;
   const double c1_0 = x17;
   const double x18 = cos(q[2]);
   const double c1_2 = -p.c*x18;
-  z[0] = tau[2] - 4.905*(p.c*p.m_c*x18);
-  const double x19 = p.b*x15*p.m_b;
+  z[0] = tau[2] - 4.905*(p.c*(p.m_c*x18));
+  const double x19 = x15*p.b;
   z[2] = tau[1] - 0.5*x19;
   const double x20 = u[1] + u[0];
-  z[1] = -(0.5*x19 + (p.m_b*x6*(9.81*x7 - (x3*x14) - 0.5*(p.b*x20*x20)) + x15*p.m_b*x3)*p.a + 4.905*(x5*p.a*p.m_a)) + tau[0];
+  z[1] = tau[0] - (4.905*((x5*p.m_a)*p.a) + 0.5*x19 + p.a*(x15*x3 + (p.m_b*(9.81*x7 - (x3*x14) - 0.5*(p.b*x20*x20)))*x6));
   const double x21 = u[2]*u[2];
   const double x22 = u[1]*p.b*x13;
   z[3] = -(p.c*x21*x18 - (u[1]*(x22 + u[0]*p.b*x13)) - (u[0]*(u[0]*x17 + x22)));

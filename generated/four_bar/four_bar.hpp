@@ -5,14 +5,14 @@
 //
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 21
-//   forcing: 43
-//   forward_dynamics: 182 (78 of them in the saddle-point solve, a sparse LDL^T; the dense solve would take 105 in their place)
+//   forcing: 42
+//   forward_dynamics: 181 (78 of them in the saddle-point solve, a sparse LDL^T; the dense solve would take 105 in their place)
 //   kinetic_energy: 43
-//   potential_energy: 22
+//   potential_energy: 21
 //   nonconservative_power: 5
 //   outputs: 23
-//   inverse_dynamics: 65 (recursive; M udot - f from M and f: 69)
-//   gravity: 35
+//   inverse_dynamics: 65 (recursive; M udot - f from M and f: 67)
+//   gravity: 32
 //   constraints: 23
 //   constraint_jacobian: 21
 //   constraint_bias: 45

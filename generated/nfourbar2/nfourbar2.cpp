@@ -147,47 +147,48 @@ void mass_matrix(const Params& p, const double* q, double* M) {
   M[20] = 0.0;
   M[22] = 0.0;
   M[23] = 0.0;
-  const double x0 = p.m*p.l*p.l*cos(q[3]);
-  const double x1 = p.l*p.l;
-  const double x2 = p.m*x1;
-  const double x3 = 0.3333333333333333*p.m*x1;
-  M[12] = x3;
-  M[18] = x3;
-  M[24] = x3;
-  const double x4 = 1.6666666666666665*x2;
-  M[0] = x0 + x4;
-  const double x5 = 0.3333333333333333*x2;
-  const double x6 = 0.5*x0 + x5;
-  M[3] = x6;
-  M[15] = x6;
-  const double x7 = p.m*p.l*p.l*cos(q[4]);
-  M[6] = x7 + x4;
-  const double x8 = 0.5*x7 + x5;
-  M[9] = x8;
-  M[21] = x8;
+  const double x0 = p.m*p.l;
+  const double x1 = (x0*cos(q[3]))*p.l;
+  const double x2 = p.l*(x0*cos(q[4]));
+  const double x3 = p.l*p.l;
+  const double x4 = p.m*x3;
+  const double x5 = 0.3333333333333333*p.m*x3;
+  M[12] = x5;
+  M[18] = x5;
+  M[24] = x5;
+  const double x6 = 1.6666666666666665*x4;
+  M[0] = x1 + x6;
+  M[6] = x2 + x6;
+  const double x7 = 0.3333333333333333*x4;
+  const double x8 = x7 + 0.5*x1;
+  const double x9 = 0.5*x2 + x7;
+  M[3] = x8;
+  M[15] = x8;
+  M[9] = x9;
+  M[21] = x9;
 }
 
 void forcing(const Params& p, [[maybe_unused]] double t, const double* q, const double* u, const double* tau,
              double* f) {
-  f[2] = tau[2] - 4.905*(p.m*p.l*cos(q[2]));
+  f[2] = tau[2] - 4.905*(p.l*(p.m*cos(q[2])));
   const double x0 = cos(q[0]);
   const double x1 = cos(q[3]);
   const double x2 = sin(q[3]);
   const double x3 = 9.81*sin(q[0]) - (p.l*u[0]*u[0]);
   const double x4 = (-9.81*(x0*x1) + x2*x3)*p.m;
-  const double x5 = 0.5*(p.l*x4);
-  f[3] = tau[3] + x5;
-  const double x6 = u[0] + u[3];
-  f[0] = tau[0] - (-(x5 + p.l*(x4*x1 - (p.m*x2*(9.81*(x0*x2) + x1*x3 - 0.5*(p.l*x6*x6))))) + 4.905*(x0*p.m*p.l));
-  const double x7 = -(p.l*u[1]*u[1]) + 9.81*sin(q[1]);
-  const double x8 = sin(q[4]);
-  const double x9 = cos(q[1]);
+  const double x5 = u[0] + u[3];
+  const double x6 = 0.5*(p.l*x4);
+  f[0] = tau[0] - (4.905*(p.l*(x0*p.m)) - (p.l*(x4*x1 - ((p.m*(9.81*(x0*x2) + x1*x3 - 0.5*(p.l*x5*x5)))*x2)) + x6));
+  f[3] = tau[3] + x6;
+  const double x7 = cos(q[1]);
+  const double x8 = -(p.l*u[1]*u[1]) + 9.81*sin(q[1]);
+  const double x9 = sin(q[4]);
   const double x10 = cos(q[4]);
-  const double x11 = -(x7*x8) + 9.81*(x9*x10);
-  const double x12 = p.m*p.l*x11;
-  f[4] = -0.5*x12 + tau[4];
+  const double x11 = p.m*(-(x8*x9) + 9.81*(x7*x10));
+  const double x12 = 0.5*(p.l*x11);
+  f[4] = -(-tau[4] + x12);
   const double x13 = u[1] + u[4];
-  f[1] = tau[1] - (0.5*x12 + (p.m*x11*x10 - ((p.m*(0.5*(p.l*x13*x13) - (x7*x10 + 9.81*(x9*x8))))*x8))*p.l + 4.905*(p.m*p.l*x9));
+  f[1] = tau[1] - (4.905*((p.m*x7)*p.l) + x12 + p.l*(x11*x10 - ((p.m*(0.5*(p.l*x13*x13) - (x8*x10 + 9.81*(x7*x9))))*x9)));
 }
 
 int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
@@ -206,25 +207,27 @@ void coordinate_rates([[maybe_unused]] const double* q, const double* u, double*
 
 double kinetic_energy(const Params& p, const double* q, const double* u) {
   double T;
-  const double x0 = p.l*p.l;
-  const double x1 = u[0] + u[3];
-  const double x2 = u[1] + u[4];
-  const double x3 = u[1]*p.l;
-  const double x4 = p.l*u[2];
-  const double x5 = u[0]*p.l;
+  const double x0 = u[1]*p.l;
+  const double x1 = p.l*u[2];
+  const double x2 = u[0]*p.l;
+  const double x3 = p.l*p.l;
+  const double x4 = u[0] + u[3];
+  const double x5 = u[1] + u[4];
   const double x6 = u[1]*p.l*sin(q[4]);
-  const double x7 = u[1]*p.l*cos(q[4]) + 0.5*(p.l*x2);
+  const double x7 = u[1]*p.l*cos(q[4]) + 0.5*(p.l*x5);
   const double x8 = u[0]*p.l*sin(q[3]);
-  const double x9 = 0.5*(p.l*x1) + u[0]*p.l*cos(q[3]);
-  T = 0.041666666666666664*(p.m*x0*x1*x1) + 0.041666666666666664*(p.m*x0*x2*x2) + 0.125*(p.m*x3*x3) + 0.041666666666666664*(p.m*u[2]*u[2]*x0) + 0.125*(p.m*x4*x4) + 0.125*(x5*x5*p.m) + 0.041666666666666664*(u[0]*u[0]*p.m*x0) + 0.041666666666666664*(u[1]*u[1]*p.m*x0) + 0.5*(p.m*(x6*x6 + x7*x7)) + 0.5*(p.m*(x8*x8 + x9*x9));
+  const double x9 = 0.5*(p.l*x4) + u[0]*p.l*cos(q[3]);
+  T = 0.125*(p.m*x0*x0) + 0.125*(p.m*x1*x1) + 0.125*(x2*x2*p.m) + 0.041666666666666664*(u[1]*(u[1]*p.m*x3)) + 0.041666666666666664*((p.m*x3*x4)*x4) + 0.041666666666666664*(x5*(p.m*x3*x5)) + 0.041666666666666664*(u[0]*(u[0]*p.m*x3)) + 0.5*(p.m*(x6*x6 + x7*x7)) + 0.5*(p.m*(x8*x8 + x9*x9)) + 0.041666666666666664*(u[2]*(p.m*u[2]*x3));
   return T;
 }
 
 double potential_energy(const Params& p, const double* q) {
   double V;
-  const double x0 = sin(q[1]);
-  const double x1 = sin(q[0]);
-  V = 4.905*(p.m*p.l*x0) + 9.81*((p.l*x1 + 0.5*(p.l*(cos(q[0])*sin(q[3]) + x1*cos(q[3]))))*p.m) + 9.81*(p.m*(0.5*((cos(q[1])*sin(q[4]) + x0*cos(q[4]))*p.l) + p.l*x0)) + 4.905*(p.m*p.l*x1) + 4.905*(p.m*p.l*sin(q[2]));
+  const double x0 = sin(q[0]);
+  const double x1 = p.l*x0;
+  const double x2 = sin(q[1]);
+  const double x3 = p.l*x2;
+  V = 9.81*((x1 + 0.5*(p.l*(cos(q[0])*sin(q[3]) + x0*cos(q[3]))))*p.m) + 9.81*(p.m*(0.5*((cos(q[1])*sin(q[4]) + x2*cos(q[4]))*p.l) + x3)) + 4.905*((p.l*sin(q[2]))*p.m) + 4.905*(p.m*x3) + 4.905*(x1*p.m);
   return V;
 }
 
@@ -236,20 +239,20 @@ double nonconservative_power([[maybe_unused]] const Params& p, [[maybe_unused]] 
 }
 
 void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
-  // M u: 37 operations; recursive: 62.
-  const double x0 = p.m*p.l*p.l*cos(q[3]);
-  const double x1 = p.l*p.l;
-  h[2] = 0.3333333333333333*p.m*u[2]*x1;
-  const double x2 = p.m*x1;
-  const double x3 = 0.3333333333333333*x2;
-  const double x4 = 1.6666666666666665*x2;
-  const double x5 = 0.5*x0 + x3;
-  h[0] = u[3]*x5 + u[0]*(x0 + x4);
-  h[3] = 0.3333333333333333*(u[3]*p.m*x1) + u[0]*x5;
-  const double x6 = p.m*p.l*p.l*cos(q[4]);
-  const double x7 = 0.5*x6 + x3;
-  h[1] = u[1]*(x6 + x4) + x7*u[4];
-  h[4] = x7*u[1] + 0.3333333333333333*(p.m*x1*u[4]);
+  // M u: 33 operations; recursive: 62.
+  const double x0 = p.m*p.l;
+  const double x1 = (x0*cos(q[3]))*p.l;
+  const double x2 = p.l*(x0*cos(q[4]));
+  const double x3 = p.m*p.l*p.l;
+  h[2] = 0.3333333333333333*u[2]*x3;
+  const double x4 = 1.6666666666666665*x3;
+  const double x5 = 0.3333333333333333*x3;
+  const double x6 = x5 + 0.5*x1;
+  h[0] = u[0]*(x1 + x4) + u[3]*x6;
+  h[3] = u[0]*x6 + 0.3333333333333333*(u[3]*x3);
+  const double x7 = 0.5*x2 + x5;
+  h[1] = u[4]*x7 + u[1]*(x2 + x4);
+  h[4] = 0.3333333333333333*(u[4]*x3) + u[1]*x7;
 }
 
 void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
@@ -280,18 +283,18 @@ void outputs(const Params& p, double t, const double* q, const double* u, double
 
 void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
                       const double* udot, double* tau) {
-  const double x0 = udot[0] + udot[3];
-  const double x1 = cos(q[3]);
-  const double x2 = p.l*udot[0];
-  const double x3 = -9.81*sin(q[0]) + u[0]*(u[0]*p.l);
+  const double x0 = p.l*p.l;
+  tau[2] = 4.905*(p.m*p.l*cos(q[2])) + 0.3333333333333333*(p.m*x0*udot[2]);
+  const double x1 = cos(q[0]);
+  const double x2 = -9.81*sin(q[0]) + u[0]*(u[0]*p.l);
+  const double x3 = cos(q[3]);
   const double x4 = sin(q[3]);
-  const double x5 = cos(q[0]);
-  const double x6 = x1*x2 + x3*x4 + 9.81*(x5*x1);
-  const double x7 = u[0] + u[3];
-  const double x8 = p.l*p.l;
-  tau[2] = 4.905*(p.m*p.l*cos(q[2])) + 0.3333333333333333*(p.m*x8*udot[2]);
-  const double x9 = 0.5*(x6*p.m*p.l) + 0.3333333333333333*(p.m*x8*x0);
-  tau[0] = -(p.l*(-((0.5*(p.m*p.l*x0) + x6*p.m)*x1) + (-(p.m*(-(x3*x1) + 9.81*(x5*x4) + x4*x2)) + 0.5*(p.m*p.l*x7*x7))*x4) - x9) + 0.3333333333333333*(p.m*x8*udot[0]) + 4.905*(x5*p.m*p.l);
+  const double x5 = p.l*udot[0];
+  const double x6 = u[0] + u[3];
+  const double x7 = udot[0] + udot[3];
+  const double x8 = x3*x5 + x2*x4 + 9.81*(x1*x3);
+  const double x9 = 0.5*(x8*p.m*p.l) + 0.3333333333333333*(p.m*x0*x7);
+  tau[0] = 0.3333333333333333*(p.m*x0*udot[0]) + 4.905*(x1*p.m*p.l) + p.l*((p.m*(-(x2*x3) + 9.81*(x1*x4) + x4*x5) - 0.5*(x6*(p.m*p.l*x6)))*x4 + (0.5*(p.m*p.l*x7) + x8*p.m)*x3) + x9;
   tau[3] = x9;
   const double x10 = udot[4] + udot[1];
   const double x11 = cos(q[1]);
@@ -301,27 +304,29 @@ void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* 
   const double x15 = p.l*udot[1];
   const double x16 = 9.81*(x11*x12) + x13*x14 + x15*x12;
   const double x17 = u[1] + u[4];
-  const double x18 = 0.5*(p.m*p.l*x16) + 0.3333333333333333*(p.m*x8*x10);
-  tau[1] = ((0.5*(p.m*p.l*x10) + p.m*x16)*x12 - ((0.5*(p.m*p.l*x17*x17) - (p.m*(x13*x15 + 9.81*(x11*x13) - (x14*x12))))*x13))*p.l + x18 + 0.3333333333333333*(p.m*x8*udot[1]) + 4.905*(p.m*p.l*x11);
+  const double x18 = 0.5*(p.m*p.l*x16) + 0.3333333333333333*(p.m*x0*x10);
+  tau[1] = 0.3333333333333333*(p.m*x0*udot[1]) + p.l*((0.5*(p.m*p.l*x10) + p.m*x16)*x12 - ((0.5*((p.m*p.l*x17)*x17) - (p.m*(x13*x15 + 9.81*(x11*x13) - (x14*x12))))*x13)) + x18 + 4.905*(p.m*p.l*x11);
   tau[4] = x18;
 }
 
 void gravity(const Params& p, const double* q, double* g) {
-  g[2] = 4.905*p.m*p.l*cos(q[2]);
+  g[2] = 4.905*(p.m*p.l*cos(q[2]));
   const double x0 = cos(q[0]);
   const double x1 = cos(q[3]);
   const double x2 = sin(q[0]);
   const double x3 = sin(q[3]);
   const double x4 = -9.81*(x0*x1) + 9.81*(x2*x3);
-  g[0] = -(0.5*(p.m*p.l*x4) + p.l*((p.m*x4)*x1 - (p.m*(9.81*(x2*x1) + 9.81*(x0*x3))*x3)) - 4.905*(x0*p.m*p.l));
-  g[3] = -0.5*p.m*p.l*x4;
-  const double x5 = cos(q[1]);
-  const double x6 = sin(q[1]);
+  const double x5 = p.m*p.l*x4;
+  g[0] = 4.905*(x0*p.m*p.l) - (0.5*x5 + p.l*(-((p.m*(9.81*(x2*x1) + 9.81*(x0*x3)))*x3) + (p.m*x4)*x1));
+  g[3] = -0.5*x5;
+  const double x6 = cos(q[1]);
   const double x7 = cos(q[4]);
-  const double x8 = sin(q[4]);
-  const double x9 = 9.81*(x5*x7) - 9.81*(x6*x8);
-  g[1] = 4.905*(p.m*p.l*x5) + p.l*(p.m*(9.81*(x6*x7) + 9.81*(x5*x8))*x8 + p.m*x9*x7) + 0.5*(p.m*p.l*x9);
-  g[4] = 0.5*p.m*p.l*x9;
+  const double x8 = sin(q[1]);
+  const double x9 = sin(q[4]);
+  const double x10 = 9.81*(x6*x7) - 9.81*(x8*x9);
+  const double x11 = 0.5*(p.m*p.l*x10);
+  g[1] = 4.905*(p.m*p.l*x6) + x11 + ((p.m*(9.81*(x8*x7) + 9.81*(x6*x9)))*x9 + (p.m*x10)*x7)*p.l;
+  g[4] = x11;
 }
 
 void constraints(const Params& p, const double* q, double* phi) {
@@ -405,79 +410,80 @@ void constraint_bias(const Params& p, const double* q, const double* u, double* 
 int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
                          const double* tau, double* udot, double* lambda) {
   double z[9];  // the right-hand side [b; g], then [udot; lambda], in elimination order
-  const double x0 = cos(q[3]);
-  const double x1 = p.m*p.l*p.l*x0;
-  const double x2 = p.l*p.l;
-  const double x3 = p.m*x2;
-  const double x4 = 0.3333333333333333*p.m*x2;
-  const double m2_2 = x4;
-  const double m3_3 = x4;
-  const double m4_4 = x4;
-  const double x5 = 1.6666666666666665*x3;
-  const double m0_0 = x1 + x5;
-  const double x6 = 0.3333333333333333*x3;
-  const double m3_0 = 0.5*x1 + x6;
-  const double x7 = cos(q[4]);
-  const double x8 = p.m*p.l*p.l*x7;
-  const double m1_1 = x8 + x5;
-  const double m4_1 = 0.5*x8 + x6;
-  const double x9 = sin(q[0]);
-  const double x10 = cos(q[0]);
-  const double x11 = sin(q[3]);
-  const double x12 = x10*x11;
-  const double x13 = x12 + x9*x0;
-  const double c0_3 = -p.l*x13;
-  const double x14 = p.l*x9 + p.l*x13;
-  const double c0_0 = -x14;
-  const double x15 = sin(q[1]);
-  const double x16 = p.l*x15;
-  const double c0_1 = x16;
-  const double x17 = x10*x0;
-  const double x18 = x9*x11 - x17;
-  const double c1_3 = -p.l*x18;
-  const double x19 = 9.81*x9 - (p.l*u[0]*u[0]);
-  const double x20 = (-9.81*x17 + x11*x19)*p.m;
-  const double x21 = -(p.l*x18) + x10*p.l;
-  const double c1_0 = x21;
-  const double x22 = cos(q[1]);
-  const double c1_1 = -p.l*x22;
-  const double x23 = sin(q[4]);
-  const double x24 = x22*x23;
-  const double x25 = x24 + x15*x7;
-  const double x26 = x25*p.l + x16;
-  const double c2_1 = -x26;
-  const double c2_4 = -x25*p.l;
-  const double x27 = sin(q[2]);
-  const double c2_2 = p.l*x27;
-  const double x28 = x22*x7;
-  const double x29 = x28 - (x15*x23);
-  const double x30 = p.l*x29;
-  const double c3_4 = x30;
-  const double x31 = p.l*x22 + x30;
-  const double c3_1 = x31;
-  const double x32 = cos(q[2]);
-  const double c3_2 = -p.l*x32;
-  z[0] = tau[2] - 4.905*(p.m*p.l*x32);
-  const double x33 = 0.5*(p.l*x20);
-  z[3] = tau[3] + x33;
+  const double x0 = p.m*p.l;
+  const double x1 = cos(q[3]);
+  const double x2 = (x0*x1)*p.l;
+  const double x3 = p.l*p.l;
+  const double x4 = p.m*x3;
+  const double x5 = 0.3333333333333333*p.m*x3;
+  const double m2_2 = x5;
+  const double m3_3 = x5;
+  const double m4_4 = x5;
+  const double x6 = 1.6666666666666665*x4;
+  const double m0_0 = x2 + x6;
+  const double x7 = 0.3333333333333333*x4;
+  const double m3_0 = x7 + 0.5*x2;
+  const double x8 = cos(q[4]);
+  const double x9 = p.l*(x0*x8);
+  const double m1_1 = x9 + x6;
+  const double m4_1 = 0.5*x9 + x7;
+  const double x10 = sin(q[0]);
+  const double x11 = cos(q[0]);
+  const double x12 = sin(q[3]);
+  const double x13 = x11*x12;
+  const double x14 = x13 + x10*x1;
+  const double c0_3 = -p.l*x14;
+  const double x15 = p.l*x10 + p.l*x14;
+  const double c0_0 = -x15;
+  const double x16 = sin(q[1]);
+  const double x17 = p.l*x16;
+  const double c0_1 = x17;
+  const double x18 = x11*x1;
+  const double x19 = x10*x12 - x18;
+  const double c1_3 = -p.l*x19;
+  const double x20 = 9.81*x10 - (p.l*u[0]*u[0]);
+  const double x21 = (-9.81*x18 + x12*x20)*p.m;
+  const double x22 = -(p.l*x19) + x11*p.l;
+  const double c1_0 = x22;
+  const double x23 = cos(q[1]);
+  const double c1_1 = -p.l*x23;
+  const double x24 = sin(q[4]);
+  const double x25 = x23*x24;
+  const double x26 = x25 + x16*x8;
+  const double x27 = x26*p.l + x17;
+  const double c2_1 = -x27;
+  const double c2_4 = -x26*p.l;
+  const double x28 = sin(q[2]);
+  const double c2_2 = p.l*x28;
+  const double x29 = x23*x8;
+  const double x30 = x29 - (x16*x24);
+  const double x31 = p.l*x30;
+  const double c3_4 = x31;
+  const double x32 = p.l*x23 + x31;
+  const double c3_1 = x32;
+  const double x33 = cos(q[2]);
+  const double c3_2 = -p.l*x33;
+  z[0] = tau[2] - 4.905*(p.l*(p.m*x33));
   const double x34 = u[0] + u[3];
-  z[2] = tau[0] - (-(x33 + p.l*(x20*x0 - (p.m*x11*(9.81*x12 + x0*x19 - 0.5*(p.l*x34*x34))))) + 4.905*(x10*p.m*p.l));
-  const double x35 = u[1]*u[1];
-  const double x36 = -(p.l*x35) + 9.81*x15;
-  const double x37 = -(x36*x23) + 9.81*x28;
-  const double x38 = p.m*p.l*x37;
-  z[1] = -0.5*x38 + tau[4];
-  const double x39 = u[1] + u[4];
-  z[4] = tau[1] - (0.5*x38 + (p.m*x37*x7 - ((p.m*(0.5*(p.l*x39*x39) - (x36*x7 + 9.81*x24)))*x23))*p.l + 4.905*(p.m*p.l*x22));
-  const double x40 = u[3]*p.l*x18;
-  z[5] = -(p.l*x22*x35 + u[0]*(x40 - (u[0]*x21)) + u[3]*(x40 + u[0]*p.l*x18));
-  const double x41 = u[3]*p.l*x13;
-  z[6] = -(p.l*x35*x15 - (u[3]*(u[0]*p.l*x13 + x41)) - (u[0]*(u[0]*x14 + x41)));
-  const double x42 = p.l*u[4]*x29;
-  const double x43 = u[2]*u[2];
-  z[7] = u[1]*(x42 + u[1]*x31) + u[4]*(x42 + u[1]*p.l*x29) - (p.l*x43*x32);
-  const double x44 = x25*p.l*u[4];
-  z[8] = -(p.l*x43*x27) + u[1]*(x44 + u[1]*x26) + (u[1]*x25*p.l + x44)*u[4];
+  const double x35 = 0.5*(p.l*x21);
+  z[2] = tau[0] - (4.905*(p.l*(x11*p.m)) - (p.l*(x21*x1 - ((p.m*(9.81*x13 + x1*x20 - 0.5*(p.l*x34*x34)))*x12)) + x35));
+  z[3] = tau[3] + x35;
+  const double x36 = u[1]*u[1];
+  const double x37 = -(p.l*x36) + 9.81*x16;
+  const double x38 = p.m*(-(x37*x24) + 9.81*x29);
+  const double x39 = 0.5*(p.l*x38);
+  z[1] = -(-tau[4] + x39);
+  const double x40 = u[1] + u[4];
+  z[4] = tau[1] - (4.905*((p.m*x23)*p.l) + x39 + p.l*(x38*x8 - ((p.m*(0.5*(p.l*x40*x40) - (x37*x8 + 9.81*x25)))*x24)));
+  const double x41 = u[3]*p.l*x19;
+  z[5] = -(p.l*x23*x36 + u[0]*(x41 - (u[0]*x22)) + u[3]*(x41 + u[0]*p.l*x19));
+  const double x42 = u[3]*p.l*x14;
+  z[6] = -(p.l*x36*x16 - (u[3]*(u[0]*p.l*x14 + x42)) - (u[0]*(u[0]*x15 + x42)));
+  const double x43 = p.l*u[4]*x30;
+  const double x44 = u[2]*u[2];
+  z[7] = u[1]*(x43 + u[1]*x32) + u[4]*(x43 + u[1]*p.l*x30) - (p.l*x44*x33);
+  const double x45 = x26*p.l*u[4];
+  z[8] = -(p.l*x44*x28) + u[1]*(x45 + u[1]*x27) + (u[1]*x26*p.l + x45)*u[4];
   // LDL^T of [M C^T; C 0], unrolled in the elimination order; sd<j> are the pivots.
   const double sd0 = m2_2;
   if (!(sd0 > 0.0)) return 3;

@@ -6,7 +6,7 @@
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 388
 //   forcing: 500
-//   forward_dynamics: 785 (composite inertias, 64 of them in LDL^T; recursive: 826)
+//   forward_dynamics: 785 (composite inertias, 64 of them in LDL^T; recursive: 817)
 //   kinetic_energy: 434
 //   potential_energy: 23
 //   nonconservative_power: 14

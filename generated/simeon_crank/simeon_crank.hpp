@@ -5,13 +5,13 @@
 //
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 60
-//   forcing: 101
-//   forward_dynamics: 339 (125 of them in the saddle-point solve, a sparse LDL^T; the dense solve would take 332 in their place)
+//   forcing: 99
+//   forward_dynamics: 337 (125 of them in the saddle-point solve, a sparse LDL^T; the dense solve would take 332 in their place)
 //   kinetic_energy: 112
 //   potential_energy: 17
 //   nonconservative_power: 3
 //   outputs: 1
-//   inverse_dynamics: 199 (M udot - f: flexible bodies)
+//   inverse_dynamics: 197 (M udot - f: flexible bodies)
 //   gravity: 0
 //   constraints: 24
 //   constraint_jacobian: 32

@@ -5,13 +5,13 @@
 //
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 423
-//   forcing: 705
-//   forward_dynamics: 1691 (706 of them in the saddle-point solve, a sparse LDL^T; the dense solve would take 9282 in their place)
+//   forcing: 703
+//   forward_dynamics: 1689 (706 of them in the saddle-point solve, a sparse LDL^T; the dense solve would take 9282 in their place)
 //   kinetic_energy: 731
 //   potential_energy: 218
 //   nonconservative_power: 3
 //   outputs: 0
-//   inverse_dynamics: 1307 (M udot - f: flexible bodies)
+//   inverse_dynamics: 1305 (M udot - f: flexible bodies)
 //   gravity: 0
 //   constraints: 18
 //   constraint_jacobian: 18

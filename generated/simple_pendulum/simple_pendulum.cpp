@@ -64,13 +64,13 @@ void mass_matrix(const Params& p, [[maybe_unused]] const double* q, double* M) {
 
 void forcing(const Params& p, [[maybe_unused]] double t, const double* q, [[maybe_unused]] const double* u,
              const double* tau, double* f) {
-  f[0] = -(p.l*(p.m*p.g*sin(q[0]))) + tau[0];
+  f[0] = tau[0] - (p.l*(p.m*(p.g*sin(q[0]))));
 }
 
 int forward_dynamics(const Params& p, [[maybe_unused]] double t, const double* q,
                      [[maybe_unused]] const double* u, const double* tau, double* udot) {
   const double m0_0 = p.m*p.l*p.l;
-  udot[0] = -(p.l*(p.m*p.g*sin(q[0]))) + tau[0];
+  udot[0] = tau[0] - (p.l*(p.m*(p.g*sin(q[0]))));
   // LDL^T of M, unrolled; d<j> are the pivots.
   const double d0 = m0_0;
   if (!(d0 > 0.0)) return 1;
@@ -92,7 +92,7 @@ double kinetic_energy(const Params& p, [[maybe_unused]] const double* q, const d
 
 double potential_energy(const Params& p, const double* q) {
   double V;
-  V = -cos(q[0])*p.m*p.l*p.g;
+  V = -p.m*p.g*(cos(q[0])*p.l);
   return V;
 }
 
@@ -118,7 +118,7 @@ void outputs(const Params& p, [[maybe_unused]] double t, const double* q, [[mayb
 
 void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* q,
                       [[maybe_unused]] const double* u, const double* udot, double* tau) {
-  tau[0] = p.m*p.l*p.g*sin(q[0]) + p.m*p.l*p.l*udot[0];
+  tau[0] = p.m*p.l*(p.g*sin(q[0])) + p.m*p.l*p.l*udot[0];
 }
 
 void gravity(const Params& p, const double* q, double* g) {

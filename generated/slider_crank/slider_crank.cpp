@@ -169,8 +169,8 @@ void mass_matrix(const Params& p, const double* q, double* M) {
   M[6] = 0.0;
   M[7] = 0.0;
   M[8] = p.m3;
-  const double x0 = p.m2*cos(q[1])*p.L1*p.L2;
-  M[0] = p.J1 + p.J2 + x0 + p.m2*p.L1*p.L1;
+  const double x0 = (cos(q[1])*(p.m2*p.L2))*p.L1;
+  M[0] = p.J1 + p.J2 + p.m2*p.L1*p.L1 + x0;
   const double x1 = p.J2 + 0.5*x0;
   M[1] = x1;
   M[3] = x1;
@@ -179,14 +179,14 @@ void mass_matrix(const Params& p, const double* q, double* M) {
 void forcing(const Params& p, [[maybe_unused]] double t, const double* q, const double* u, const double* tau,
              double* f) {
   f[2] = tau[2];
-  const double x0 = cos(q[1]);
-  const double x1 = u[0]*u[0];
-  const double x2 = sin(q[1]);
-  const double x3 = x1*x2*p.L1;
+  const double x0 = u[0]*u[0];
+  const double x1 = sin(q[1]);
+  const double x2 = p.m2*(x0*x1*p.L1);
+  const double x3 = p.L2*x2;
+  f[1] = tau[1] - 0.5*x3;
   const double x4 = u[1] + u[0];
-  const double x5 = p.m2*x3*p.L2;
-  f[0] = -(-((-(p.m2*x0*x3) + x2*(p.m2*(0.5*(x4*x4*p.L2) + x0*x1*p.L1)))*p.L1) + 0.5*x5);
-  f[1] = tau[1] - 0.5*x5;
+  const double x5 = cos(q[1]);
+  f[0] = -(0.5*x3 + (-(x1*(p.m2*(0.5*(x4*x4*p.L2) + x5*x0*p.L1))) + x5*x2)*p.L1);
 }
 
 int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
@@ -207,7 +207,7 @@ double kinetic_energy(const Params& p, const double* q, const double* u) {
   const double x1 = u[0]*cos(q[1])*p.L1 + 0.5*(x0*p.L2);
   const double x2 = u[0]*sin(q[1])*p.L1;
   const double x3 = u[0]*p.L1;
-  T = 0.5*(p.m3*u[2]*u[2]) + 0.125*(u[0]*u[0]*(4.0*p.J1 - (p.m1*p.L1*p.L1))) + 0.5*(p.m2*(x1*x1 + x2*x2)) + 0.125*((-(p.m2*p.L2*p.L2) + 4.0*p.J2)*x0*x0) + 0.125*(p.m1*x3*x3);
+  T = 0.5*(p.m3*u[2]*u[2]) + 0.5*(p.m2*(x1*x1 + x2*x2)) + 0.125*(((-(p.m2*p.L2*p.L2) + 4.0*p.J2)*x0)*x0) + 0.125*((u[0]*(4.0*p.J1 - (p.m1*p.L1*p.L1)))*u[0]) + 0.125*(p.m1*x3*x3);
   return T;
 }
 
@@ -227,10 +227,10 @@ double nonconservative_power([[maybe_unused]] const Params& p, [[maybe_unused]] 
 void generalized_momentum(const Params& p, const double* q, const double* u, double* h) {
   // M u: 18 operations; recursive: 26.
   h[2] = p.m3*u[2];
-  const double x0 = p.m2*cos(q[1])*p.L1*p.L2;
+  const double x0 = (cos(q[1])*(p.m2*p.L2))*p.L1;
   const double x1 = p.J2 + 0.5*x0;
-  h[0] = u[1]*x1 + u[0]*(p.J1 + p.J2 + x0 + p.m2*p.L1*p.L1);
-  h[1] = u[1]*p.J2 + u[0]*x1;
+  h[0] = u[1]*x1 + u[0]*(p.J1 + p.J2 + p.m2*p.L1*p.L1 + x0);
+  h[1] = u[0]*x1 + u[1]*p.J2;
 }
 
 void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
@@ -262,16 +262,16 @@ void outputs(const Params& p, double t, const double* q, const double* u, double
 void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
                       const double* udot, double* tau) {
   tau[2] = p.m3*udot[2];
-  const double x0 = sin(q[1]);
-  const double x1 = u[0]*p.L1;
-  const double x2 = cos(q[1]);
-  const double x3 = udot[0]*p.L1;
-  const double x4 = u[0]*x0*x1 + x2*x3;
-  const double x5 = udot[0] + udot[1];
-  const double x6 = 0.5*(p.m2*x4*p.L2) + x5*p.J2;
+  const double x0 = udot[0] + udot[1];
+  const double x1 = cos(q[1]);
+  const double x2 = udot[0]*p.L1;
+  const double x3 = u[0]*(u[0]*p.L1);
+  const double x4 = sin(q[1]);
+  const double x5 = x1*x2 + x3*x4;
+  const double x6 = x0*p.J2 + 0.5*(p.m2*x5*p.L2);
   tau[1] = x6;
   const double x7 = u[1] + u[0];
-  tau[0] = -(-x6 + (x0*(p.m2*(u[0]*x2*x1 - (x0*x3)) + 0.5*(p.m2*x7*x7*p.L2)) - ((p.m2*x4 + 0.5*(x5*p.m2*p.L2))*x2))*p.L1) + p.J1*udot[0];
+  tau[0] = x6 + (-((p.m2*(x3*x1 - (x4*x2)) + 0.5*((p.m2*x7*p.L2)*x7))*x4) + x1*(0.5*(x0*p.m2*p.L2) + p.m2*x5))*p.L1 + p.J1*udot[0];
 }
 
 void gravity([[maybe_unused]] const Params& p, [[maybe_unused]] const double* q, double* g) {
@@ -332,7 +332,7 @@ int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const doubl
   const double x1 = sin(q[1]);
   const double x2 = sin(q[0]);
   const double x3 = cos(q[1]);
-  z[1] = tau[1] - 0.5*(p.m2*(u[0]*u[0]*x1*p.L1)*p.L2) - (ap0*(p.J2 + 0.5*(p.m2*x3*p.L1*p.L2)));
+  z[1] = tau[1] - 0.5*(p.L2*(p.m2*(u[0]*u[0]*x1*p.L1))) - (ap0*(p.J2 + 0.5*((x3*(p.m2*p.L2))*p.L1)));
   const double x4 = x0*x1 + x2*x3;
   const double x5 = x0*x3 - (x2*x1);
   const double c0_0 = -p.L2*x4;

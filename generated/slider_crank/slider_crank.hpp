@@ -5,13 +5,13 @@
 //
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 11
-//   forcing: 24
+//   forcing: 23
 //   forward_dynamics: 95 (40 of them in the saddle-point solve, a sparse LDL^T; the dense solve would take 62 in their place)
 //   kinetic_energy: 40
 //   potential_energy: 0
 //   nonconservative_power: 3
 //   outputs: 18
-//   inverse_dynamics: 38 (recursive; M udot - f from M and f: 41)
+//   inverse_dynamics: 37 (recursive; M udot - f from M and f: 40)
 //   gravity: 0
 //   constraints: 17
 //   constraint_jacobian: 17

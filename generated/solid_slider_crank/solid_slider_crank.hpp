@@ -5,13 +5,13 @@
 //
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 1234
-//   forcing: 1785
-//   forward_dynamics: 3650 (1153 of them in the saddle-point solve, a sparse LDL^T; the dense solve would take 2757 in their place)
+//   forcing: 1783
+//   forward_dynamics: 3648 (1153 of them in the saddle-point solve, a sparse LDL^T; the dense solve would take 2757 in their place)
 //   kinetic_energy: 1580
 //   potential_energy: 253
 //   nonconservative_power: 3
 //   outputs: 31
-//   inverse_dynamics: 2764 (M udot - f: flexible bodies)
+//   inverse_dynamics: 2762 (M udot - f: flexible bodies)
 //   gravity: 0
 //   constraints: 33
 //   constraint_jacobian: 72

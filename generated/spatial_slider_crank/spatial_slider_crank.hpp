@@ -5,13 +5,13 @@
 //
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 481
-//   forcing: 1885
-//   forward_dynamics: 3053 (934 of them in the saddle-point solve, a sparse LDL^T; the dense solve would take 11255 in their place)
-//   kinetic_energy: 815
+//   forcing: 1740
+//   forward_dynamics: 2921 (934 of them in the saddle-point solve, a sparse LDL^T; the dense solve would take 11255 in their place)
+//   kinetic_energy: 797
 //   potential_energy: 451
 //   nonconservative_power: 5
 //   outputs: 6
-//   inverse_dynamics: 2405 (M udot - f: flexible bodies)
+//   inverse_dynamics: 2254 (M udot - f: flexible bodies)
 //   gravity: 29
 //   constraints: 36
 //   constraint_jacobian: 52

@@ -117,6 +117,10 @@ ExpressionGraph::Term ExpressionGraph::split_coefficient(int id) {
 // A product in canonical form: at most one numeric coefficient, the product of
 // all coefficients of the factors multiplied in sorted order (so that the
 // rounding does not depend on GiNaC's operand order), and the other factors.
+// A factor that is a product keeps its coefficient-free part whole (c w with
+// w = -a b is -c (a b), not -c a b): the part is one node, computed once
+// wherever it recurs (chain20's forward_dynamics: 8653 -> 8404 operations;
+// the shipped models' sources: 0 to 4 % fewer).
 int ExpressionGraph::make_mul(std::vector<int> factors) {
   std::vector<double> coefficients;
   Node n;
@@ -125,10 +129,7 @@ int ExpressionGraph::make_mul(std::vector<int> factors) {
     const Term t = split_coefficient(f);
     coefficients.push_back(t.coefficient);
     if (t.base < 0) continue;
-    if (t.coefficient != 1.0 && nodes_[t.base].op == Op::mul)
-      for (int a : nodes_[t.base].args) n.args.push_back(a);
-    else
-      n.args.push_back(t.base);
+    n.args.push_back(t.base);
   }
   std::sort(coefficients.begin(), coefficients.end());
   double c = 1.0;
