@@ -371,7 +371,7 @@ void mass_matrix(const Params& p, const double* q, double* M) {
   const double x0 = p.i2 + p.m2*p.da*p.da;
   M[8] = x0;
   const double x1 = ((p.m2*p.da)*cos(q[1]))*p.rr;
-  M[0] = p.i1 + x0 + p.ra*p.ra*p.m1 + p.m2*p.rr*p.rr - 2.0*x1;
+  M[0] = p.i1 + p.ra*p.ra*p.m1 + p.m2*p.rr*p.rr + x0 - 2.0*x1;
   const double x2 = x0 - x1;
   M[1] = x2;
   M[7] = x2;
@@ -379,7 +379,7 @@ void mass_matrix(const Params& p, const double* q, double* M) {
   const double x4 = p.i4 + x3*x3*p.m4;
   M[24] = x4;
   const double x5 = p.zt*(sin(q[3])*(p.m4*x3));
-  M[32] = p.m5*(p.tb*p.tb + p.ta*p.ta) + p.i5 + p.m4*p.zt*p.zt + x4 + 2.0*x5;
+  M[32] = p.i5 + p.m4*p.zt*p.zt + p.m5*(p.tb*p.tb + p.ta*p.ta) + x4 + 2.0*x5;
   const double x6 = x4 + x5;
   M[25] = x6;
   M[31] = x6;
@@ -388,8 +388,8 @@ void mass_matrix(const Params& p, const double* q, double* M) {
   M[40] = x8;
   const double x9 = ((p.m6*x7)*sin(q[5]))*p.uu;
   const double x10 = -x8;
-  M[48] = -(2.0*x9 - p.i7 - (p.m6*p.uu*p.uu) - (p.m7*(p.ub*p.ub + p.ua*p.ua)) + x10);
-  const double x11 = -(x9 + x10);
+  M[48] = -(-p.i7 - (p.m6*p.uu*p.uu) - (p.m7*(p.ub*p.ub + p.ua*p.ua)) + x10 + 2.0*x9);
+  const double x11 = -(x10 + x9);
   M[41] = x11;
   M[47] = x11;
 }
@@ -406,14 +406,14 @@ void forcing(const Params& p, [[maybe_unused]] double t, const double* q, const 
   f[0] = tau[0] + p.mom + x3 + (-(x4*x2) + x1*(p.m2*(-(x5*x5*p.da) + x4*x0*p.rr)))*p.rr;
   const double x6 = cos(q[2]);
   const double x7 = sin(q[2]);
-  const double x8 = p.yc - (p.yb - (p.sc*x6) + x7*p.sd);
-  const double x9 = -(p.sd*x6 + p.xb + x7*p.sc) + p.xc;
+  const double x8 = p.yc - (p.yb + x7*p.sd - (p.sc*x6));
+  const double x9 = p.xc - (p.xb + p.sd*x6 + x7*p.sc);
   const double x10 = sqrt(x8*x8 + x9*x9);
   const double x11 = p.c0*(p.l0 - x10)/x10;
   const double x12 = x11*x8;
   const double x13 = x11*x9;
   const double x14 = u[2]*u[2];
-  f[2] = tau[2] - ((x12*x6 - (x13*x7))*p.sd + (p.m3*(x14*p.sa))*p.sb - ((p.m3*(x14*p.sb))*p.sa) + (x13*x6 + x7*x12)*p.sc);
+  f[2] = tau[2] - ((p.m3*(x14*p.sa))*p.sb - ((p.m3*(x14*p.sb))*p.sa) + (x13*x6 + x7*x12)*p.sc + (x12*x6 - (x13*x7))*p.sd);
   const double x15 = p.e - p.ea;
   const double x16 = u[4]*u[4];
   const double x17 = cos(q[3]);
@@ -422,16 +422,16 @@ void forcing(const Params& p, [[maybe_unused]] double t, const double* q, const 
   f[3] = tau[3] + x19;
   const double x20 = sin(q[3]);
   const double x21 = u[3] + u[4];
-  f[4] = -(-(-(p.zt*(-(x20*x18) + x17*(p.m4*(x15*x21*x21 + p.zt*x16*x20)))) + x19) + p.tb*(p.m5*(p.ta*x16)) - (p.ta*(p.m5*(p.tb*x16))) - tau[4]);
+  f[4] = -(-tau[4] + p.tb*(p.m5*(p.ta*x16)) - (p.ta*(p.m5*(p.tb*x16))) - (x19 - (p.zt*(-(x20*x18) + x17*(p.m4*(x15*x21*x21 + p.zt*x16*x20))))));
   const double x22 = p.zf - p.fa;
   const double x23 = cos(q[5]);
   const double x24 = u[6]*u[6];
   const double x25 = p.m6*(x23*p.uu*x24);
   const double x26 = x22*x25;
-  f[5] = -(x26 - tau[5]);
+  f[5] = -(-tau[5] + x26);
   const double x27 = sin(q[5]);
   const double x28 = u[5] + u[6];
-  f[6] = -(-(p.ua*((p.ub*x24)*p.m7) - (p.ub*(p.m7*(p.ua*x24)))) + p.uu*(-(x25*x27) + x23*((-(x28*x28*x22) + p.uu*x24*x27)*p.m6)) + x26 - tau[6]);
+  f[6] = -(-tau[6] + -(p.ua*((p.ub*x24)*p.m7) - (p.ub*(p.m7*(p.ua*x24)))) + x26 + p.uu*(-(x25*x27) + x23*((-(x28*x28*x22) + p.uu*x24*x27)*p.m6)));
 }
 
 int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
@@ -468,7 +468,7 @@ double kinetic_energy(const Params& p, const double* q, const double* u) {
   const double x13 = u[0]*p.ra;
   const double x14 = p.tb*u[4];
   const double x15 = p.ta*u[4];
-  T = 0.5*((p.i2*x0)*x0) + 0.5*(p.m6*(x2*x2 + x3*x3)) + 0.5*(p.m7*(x4*x4 + x5*x5)) + 0.5*((x6*x6 + x7*x7)*p.m3) + 0.5*(u[4]*(p.i5*u[4])) + 0.5*(u[2]*(p.i3*u[2])) + 0.5*(u[0]*(p.i1*u[0])) + 0.5*(x1*(p.i6*x1)) + 0.5*((p.i4*x8)*x8) + 0.5*(p.m2*(x9*x9 + x10*x10)) + 0.5*(p.m4*(x11*x11 + x12*x12)) + 0.5*((p.i7*u[6])*u[6]) + 0.5*(p.m1*x13*x13) + 0.5*(p.m5*(x14*x14 + x15*x15));
+  T = 0.5*(u[4]*(p.i5*u[4])) + 0.5*(u[2]*(p.i3*u[2])) + 0.5*(u[0]*(p.i1*u[0])) + 0.5*((p.i7*u[6])*u[6]) + 0.5*((p.i2*x0)*x0) + 0.5*(x1*(p.i6*x1)) + 0.5*((p.i4*x8)*x8) + 0.5*(p.m1*x13*x13) + 0.5*(p.m7*(x4*x4 + x5*x5)) + 0.5*((x6*x6 + x7*x7)*p.m3) + 0.5*(p.m5*(x14*x14 + x15*x15)) + 0.5*(p.m6*(x3*x3 + x2*x2)) + 0.5*(p.m4*(x11*x11 + x12*x12)) + 0.5*(p.m2*(x10*x10 + x9*x9));
   return T;
 }
 
@@ -476,8 +476,8 @@ double potential_energy(const Params& p, const double* q) {
   double V;
   const double x0 = cos(q[2]);
   const double x1 = sin(q[2]);
-  const double x2 = p.yc - (p.yb - (p.sc*x0) + x1*p.sd);
-  const double x3 = -(p.sd*x0 + p.xb + x1*p.sc) + p.xc;
+  const double x2 = p.yc - (p.yb + x1*p.sd - (p.sc*x0));
+  const double x3 = p.xc - (p.xb + p.sd*x0 + x1*p.sc);
   const double x4 = p.l0 - sqrt(x2*x2 + x3*x3);
   V = 0.5*x4*x4*p.c0;
   return V;
@@ -486,7 +486,7 @@ double potential_energy(const Params& p, const double* q) {
 double nonconservative_power(const Params& p, [[maybe_unused]] double t, [[maybe_unused]] const double* q,
                              const double* u, const double* tau) {
   double P;
-  P = u[0]*(tau[0] + p.mom) + u[6]*tau[6] + tau[2]*u[2] + tau[3]*u[3] + u[4]*tau[4] + tau[1]*u[1] + u[5]*tau[5];
+  P = u[6]*tau[6] + tau[2]*u[2] + tau[3]*u[3] + u[4]*tau[4] + tau[1]*u[1] + u[5]*tau[5] + u[0]*(tau[0] + p.mom);
   return P;
 }
 
@@ -496,21 +496,21 @@ void generalized_momentum(const Params& p, const double* q, const double* u, dou
   const double x0 = p.i2 + p.m2*p.da*p.da;
   const double x1 = ((p.m2*p.da)*cos(q[1]))*p.rr;
   const double x2 = x0 - x1;
-  h[0] = u[0]*(p.i1 + x0 + p.ra*p.ra*p.m1 + p.m2*p.rr*p.rr - 2.0*x1) + u[1]*x2;
+  h[0] = u[0]*(p.i1 + p.ra*p.ra*p.m1 + p.m2*p.rr*p.rr + x0 - 2.0*x1) + u[1]*x2;
   h[1] = u[1]*x0 + u[0]*x2;
   const double x3 = p.e - p.ea;
   const double x4 = p.i4 + x3*x3*p.m4;
   const double x5 = p.zt*(sin(q[3])*(p.m4*x3));
   const double x6 = x4 + x5;
-  h[4] = (p.m5*(p.tb*p.tb + p.ta*p.ta) + p.i5 + p.m4*p.zt*p.zt + x4 + 2.0*x5)*u[4] + u[3]*x6;
-  h[3] = x6*u[4] + u[3]*x4;
+  h[4] = u[3]*x6 + (p.i5 + p.m4*p.zt*p.zt + p.m5*(p.tb*p.tb + p.ta*p.ta) + x4 + 2.0*x5)*u[4];
+  h[3] = u[3]*x4 + x6*u[4];
   const double x7 = p.zf - p.fa;
   const double x8 = ((p.m6*x7)*sin(q[5]))*p.uu;
   const double x9 = p.i6 + p.m6*x7*x7;
   const double x10 = -x9;
-  const double x11 = x8 + x10;
-  h[6] = -(u[5]*x11 + u[6]*(2.0*x8 - p.i7 - (p.m6*p.uu*p.uu) - (p.m7*(p.ub*p.ub + p.ua*p.ua)) + x10));
-  h[5] = -(u[6]*x11 - (u[5]*x9));
+  const double x11 = x10 + x8;
+  h[6] = -(u[5]*x11 + u[6]*(-p.i7 - (p.m6*p.uu*p.uu) - (p.m7*(p.ub*p.ub + p.ua*p.ua)) + x10 + 2.0*x8));
+  h[5] = -(-(u[5]*x9) + u[6]*x11);
 }
 
 void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
@@ -536,15 +536,15 @@ void outputs(const Params& p, double t, const double* q, const double* u, double
   const double x2 = sin(q[0]);
   const double x3 = sin(q[1]);
   const double x4 = x0*p.rr;
-  y[0] = -(p.d*(x0*x1 - (x2*x3)) - x4);
+  y[0] = -(-x4 + p.d*(x0*x1 - (x2*x3)));
   y[3] = x4;
   const double x5 = x2*p.rr;
   y[1] = x5 - (p.d*(x0*x3 + x2*x1));
   y[4] = x5;
   const double x6 = cos(q[2]);
   const double x7 = sin(q[2]);
-  y[6] = p.sd*x6 + p.xb + x7*p.sc;
-  y[7] = p.yb - (p.sc*x6) + x7*p.sd;
+  y[6] = p.xb + p.sd*x6 + x7*p.sc;
+  y[7] = p.yb + x7*p.sd - (p.sc*x6);
   // Loop forces: lambda of the dynamics at these inputs of zero (NaN where it cannot be solved).
   double reaction_udot[NU], lambda[NC];
   const double no_inputs[7] = {};
@@ -568,27 +568,27 @@ void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* 
   const double x6 = -(x0*(p.i2 + p.m2*p.da*p.da)) + p.m2*x5*p.da;
   tau[1] = -x6;
   const double x7 = u[1] + u[0];
-  tau[0] = -(p.mom - (udot[0]*(p.i1 + p.ra*p.ra*p.m1) - (x6 - ((-(x1*(-(p.m2*x5) + x0*p.m2*p.da)) + (p.m2*(x4*x2 - (x3*x1)) + (p.m2*x7*p.da)*x7)*x4)*p.rr))));
+  tau[0] = -(p.mom - (udot[0]*(p.i1 + p.ra*p.ra*p.m1) - (x6 - ((((p.m2*x7*p.da)*x7 + p.m2*(x4*x2 - (x3*x1)))*x4 - (x1*(x0*p.m2*p.da - (p.m2*x5))))*p.rr))));
   const double x8 = cos(q[2]);
   const double x9 = sin(q[2]);
-  const double x10 = p.yc - (p.yb - (p.sc*x8) + x9*p.sd);
-  const double x11 = -(p.sd*x8 + p.xb + x9*p.sc) + p.xc;
+  const double x10 = p.yc - (p.yb + x9*p.sd - (p.sc*x8));
+  const double x11 = p.xc - (p.xb + p.sd*x8 + x9*p.sc);
   const double x12 = sqrt(x10*x10 + x11*x11);
   const double x13 = p.c0*(p.l0 - x12)/x12;
   const double x14 = x13*x10;
   const double x15 = x13*x11;
-  tau[2] = (p.i3 + p.m3*(p.sa*p.sa + p.sb*p.sb))*udot[2] + (x14*x8 - (x15*x9))*p.sd + (x15*x8 + x9*x14)*p.sc;
+  tau[2] = (p.i3 + p.m3*(p.sa*p.sa + p.sb*p.sb))*udot[2] + (x15*x8 + x9*x14)*p.sc + (x14*x8 - (x15*x9))*p.sd;
   const double x16 = p.e - p.ea;
   const double x17 = udot[4] + udot[3];
   const double x18 = cos(q[3]);
   const double x19 = u[4]*(p.zt*u[4]);
   const double x20 = p.zt*udot[4];
   const double x21 = sin(q[3]);
-  const double x22 = -(x18*x19) + x20*x21;
+  const double x22 = x20*x21 - (x18*x19);
   const double x23 = (p.i4 + x16*x16*p.m4)*x17 + p.m4*x22*x16;
   tau[3] = x23;
   const double x24 = u[3] + u[4];
-  tau[4] = x23 + (x18*(p.m4*(x21*x19 + x20*x18) + (p.m4*x16*x24)*x24) + x21*(p.m4*x17*x16 + p.m4*x22))*p.zt + (p.m5*(p.tb*p.tb + p.ta*p.ta) + p.i5)*udot[4];
+  tau[4] = (p.i5 + p.m5*(p.tb*p.tb + p.ta*p.ta))*udot[4] + x23 + (x18*((p.m4*x16*x24)*x24 + p.m4*(x21*x19 + x20*x18)) + x21*(p.m4*x17*x16 + p.m4*x22))*p.zt;
   const double x25 = udot[5] + udot[6];
   const double x26 = p.zf - p.fa;
   const double x27 = p.uu*udot[6];
@@ -599,7 +599,7 @@ void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* 
   const double x32 = -(-(x25*(p.i6 + p.m6*x26*x26)) + p.m6*x26*x31);
   tau[5] = x32;
   const double x33 = u[5] + u[6];
-  tau[6] = p.uu*((-(p.m6*x25*x26) + p.m6*x31)*x28 - (x29*(-(p.m6*(x29*x27 + x28*x30)) + x33*(p.m6*x26*x33)))) + x32 + udot[6]*(p.i7 + p.m7*(p.ub*p.ub + p.ua*p.ua));
+  tau[6] = udot[6]*(p.i7 + p.m7*(p.ub*p.ub + p.ua*p.ua)) + x32 + p.uu*((-(p.m6*x25*x26) + p.m6*x31)*x28 - (x29*(x33*(p.m6*x26*x33) - (p.m6*(x29*x27 + x28*x30)))));
 }
 
 void gravity([[maybe_unused]] const Params& p, [[maybe_unused]] const double* q, double* g) {
@@ -620,22 +620,22 @@ void constraints(const Params& p, const double* q, double* phi) {
   const double x4 = p.d*(x0*x1 - (x2*x3));
   const double x5 = p.d*(x0*x3 + x2*x1);
   const double x6 = -(x0*p.rr);
-  phi[0] = -(x4 + sin(q[2])*p.ss + p.xb + x6);
+  phi[0] = -(p.xb + sin(q[2])*p.ss + x6 + x4);
   const double x7 = x2*p.rr;
-  phi[1] = p.ss*cos(q[2]) + x7 - p.yb - x5;
+  phi[1] = -p.yb + p.ss*cos(q[2]) + x7 - x5;
   const double x8 = -x7;
   const double x9 = cos(q[3]);
   const double x10 = sin(q[4]);
   const double x11 = sin(q[3]);
   const double x12 = cos(q[4]);
-  phi[2] = -(p.e*(x9*x10 + x11*x12) + x4 + p.xa + p.zt*x12 + x6);
-  phi[3] = -(x8 + p.ya + x5 - (p.e*(-(x11*x10) + x9*x12)) + p.zt*x10);
+  phi[2] = -(p.xa + p.zt*x12 + x6 + p.e*(x9*x10 + x11*x12) + x4);
+  phi[3] = -(p.ya + p.zt*x10 + x8 + x5 - (p.e*(x9*x12 - (x11*x10))));
   const double x13 = sin(q[6]);
   const double x14 = cos(q[5]);
   const double x15 = cos(q[6]);
   const double x16 = sin(q[5]);
-  phi[4] = -(x4 + p.xa + x13*p.uu - (p.zf*(-(x14*x15) + x13*x16)) + x6);
-  phi[5] = -(x8 + p.ya + x5 + p.zf*(x15*x16 + x14*x13) - (p.uu*x15));
+  phi[4] = -(p.xa + x13*p.uu + x6 + x4 - (p.zf*(x13*x16 - (x14*x15))));
+  phi[5] = -(p.ya + x8 - (p.uu*x15) + x5 + p.zf*(x15*x16 + x14*x13));
 }
 
 void constraint_jacobian(const Params& p, const double* q, double* C) {
@@ -670,7 +670,7 @@ void constraint_jacobian(const Params& p, const double* q, double* C) {
   const double x6 = -(x0*p.rr - x4);
   C[0] = x6;
   C[1] = x4;
-  const double x7 = -(p.d*x5 - (x1*p.rr));
+  const double x7 = -(-(x1*p.rr) + p.d*x5);
   C[7] = x7;
   const double x8 = -p.d*x5;
   C[8] = x8;
@@ -686,18 +686,18 @@ void constraint_jacobian(const Params& p, const double* q, double* C) {
   const double x10 = sin(q[4]);
   const double x11 = cos(q[3]);
   const double x12 = cos(q[4]);
-  const double x13 = -(x9*x10) + x11*x12;
+  const double x13 = x11*x12 - (x9*x10);
   const double x14 = x11*x10 + x9*x12;
   C[18] = -(-(p.zt*x10) + p.e*x13);
   C[17] = -p.e*x13;
-  C[25] = -(p.e*x14 + p.zt*x12);
+  C[25] = -(p.zt*x12 + p.e*x14);
   C[24] = -p.e*x14;
   const double x15 = cos(q[6]);
   const double x16 = sin(q[5]);
   const double x17 = cos(q[5]);
   const double x18 = sin(q[6]);
   const double x19 = p.zf*(x15*x16 + x17*x18);
-  const double x20 = p.zf*(-(x17*x15) + x18*x16);
+  const double x20 = p.zf*(x18*x16 - (x17*x15));
   C[34] = -(p.uu*x15 - x19);
   C[33] = x19;
   C[41] = -(x18*p.uu - x20);
@@ -713,13 +713,13 @@ void constraint_bias(const Params& p, const double* q, const double* u, double* 
   const double x5 = x1*x2 - (x3*x4);
   const double x6 = x1*x4 + x3*x2;
   const double x7 = u[1]*p.d*x5;
-  const double x8 = u[0]*(x7 + u[0]*(p.d*x5 - (x1*p.rr)));
+  const double x8 = u[0]*(x7 + u[0]*(-(x1*p.rr) + p.d*x5));
   const double x9 = u[1]*(u[0]*p.d*x5 + x7);
-  gamma[0] = -(x0*sin(q[2])*p.ss + x8 + x9);
+  gamma[0] = -(x0*sin(q[2])*p.ss + x9 + x8);
   const double x10 = u[1]*p.d*x6;
   const double x11 = u[0]*(x10 - ((x3*p.rr - (p.d*x6))*u[0]));
   const double x12 = u[1]*(u[0]*p.d*x6 + x10);
-  gamma[1] = -(x11 - (x0*p.ss*cos(q[2])) + x12);
+  gamma[1] = -(-(x0*p.ss*cos(q[2])) + x12 + x11);
   const double x13 = -x11;
   const double x14 = -x12;
   const double x15 = cos(q[3]);
@@ -727,21 +727,21 @@ void constraint_bias(const Params& p, const double* q, const double* u, double* 
   const double x17 = sin(q[3]);
   const double x18 = cos(q[4]);
   const double x19 = x15*x16 + x17*x18;
-  const double x20 = -(x17*x16) + x15*x18;
+  const double x20 = x15*x18 - (x17*x16);
   const double x21 = u[3]*p.e*x19;
-  gamma[2] = -(x8 + u[3]*(p.e*u[4]*x19 + x21) + (u[4]*(p.e*x19 + p.zt*x18) + x21)*u[4] + x9);
+  gamma[2] = -(u[3]*(p.e*u[4]*x19 + x21) + x9 + (x21 + u[4]*(p.zt*x18 + p.e*x19))*u[4] + x8);
   const double x22 = u[3]*p.e*x20;
-  gamma[3] = (x22 + p.e*x20*u[4])*u[3] + x13 + u[4]*(x22 + u[4]*(-(p.zt*x16) + p.e*x20)) + x14;
+  gamma[3] = (x22 + p.e*x20*u[4])*u[3] + x14 + u[4]*(x22 + u[4]*(-(p.zt*x16) + p.e*x20)) + x13;
   const double x23 = cos(q[5]);
   const double x24 = cos(q[6]);
   const double x25 = sin(q[6]);
   const double x26 = sin(q[5]);
-  const double x27 = -(x23*x24) + x25*x26;
+  const double x27 = x25*x26 - (x23*x24);
   const double x28 = x24*x26 + x23*x25;
   const double x29 = p.zf*u[5]*x27;
-  gamma[4] = -(-(u[5]*(x29 + p.zf*u[6]*x27)) + x8 - (u[6]*(x29 - ((x25*p.uu - (p.zf*x27))*u[6]))) + x9);
+  gamma[4] = -(x9 - (u[5]*(x29 + p.zf*u[6]*x27)) + x8 - (u[6]*(x29 - ((x25*p.uu - (p.zf*x27))*u[6]))));
   const double x30 = p.zf*u[5]*x28;
-  gamma[5] = -((x30 + p.zf*u[6]*x28)*u[5]) + ((p.uu*x24 - (p.zf*x28))*u[6] - x30)*u[6] + x13 + x14;
+  gamma[5] = -((x30 + p.zf*u[6]*x28)*u[5]) + x14 + (-x30 + (p.uu*x24 - (p.zf*x28))*u[6])*u[6] + x13;
 }
 
 int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
@@ -752,7 +752,7 @@ int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const doubl
   const double m1_1 = x0;
   const double x1 = cos(q[1]);
   const double x2 = ((p.m2*p.da)*x1)*p.rr;
-  const double m0_0 = p.i1 + x0 + p.ra*p.ra*p.m1 + p.m2*p.rr*p.rr - 2.0*x2;
+  const double m0_0 = p.i1 + p.ra*p.ra*p.m1 + p.m2*p.rr*p.rr + x0 - 2.0*x2;
   const double m1_0 = x0 - x2;
   const double x3 = p.e - p.ea;
   const double x4 = p.i4 + x3*x3*p.m4;
@@ -760,15 +760,15 @@ int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const doubl
   const double x5 = sin(q[3]);
   const double x6 = p.zt*(x5*(p.m4*x3));
   const double m4_3 = x4 + x6;
-  const double m4_4 = p.m5*(p.tb*p.tb + p.ta*p.ta) + p.i5 + p.m4*p.zt*p.zt + x4 + 2.0*x6;
+  const double m4_4 = p.i5 + p.m4*p.zt*p.zt + p.m5*(p.tb*p.tb + p.ta*p.ta) + x4 + 2.0*x6;
   const double x7 = p.zf - p.fa;
   const double x8 = p.i6 + p.m6*x7*x7;
   const double m5_5 = x8;
   const double x9 = -x8;
   const double x10 = sin(q[5]);
   const double x11 = ((p.m6*x7)*x10)*p.uu;
-  const double m6_5 = -(x11 + x9);
-  const double m6_6 = -(2.0*x11 - p.i7 - (p.m6*p.uu*p.uu) - (p.m7*(p.ub*p.ub + p.ua*p.ua)) + x9);
+  const double m6_5 = -(x9 + x11);
+  const double m6_6 = -(-p.i7 - (p.m6*p.uu*p.uu) - (p.m7*(p.ub*p.ub + p.ua*p.ua)) + x9 + 2.0*x11);
   const double x12 = sin(q[0]);
   const double x13 = cos(q[0]);
   const double x14 = sin(q[1]);
@@ -779,7 +779,7 @@ int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const doubl
   const double c4_1 = x16;
   const double x17 = x12*p.rr - x16;
   const double x18 = x13*x1 - (x12*x14);
-  const double x19 = p.d*x18 - (x13*p.rr);
+  const double x19 = -(x13*p.rr) + p.d*x18;
   const double x20 = -x17;
   const double c0_0 = x20;
   const double c2_0 = x20;
@@ -799,13 +799,13 @@ int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const doubl
   const double x25 = sin(q[4]);
   const double x26 = cos(q[3]);
   const double x27 = cos(q[4]);
-  const double x28 = -(x5*x25) + x26*x27;
+  const double x28 = x26*x27 - (x5*x25);
   const double c2_3 = -p.e*x28;
   const double x29 = -(p.zt*x25) + p.e*x28;
   const double c2_4 = -x29;
   const double x30 = x26*x25 + x5*x27;
   const double c3_3 = -p.e*x30;
-  const double x31 = p.e*x30 + p.zt*x27;
+  const double x31 = p.zt*x27 + p.e*x30;
   const double c3_4 = -x31;
   const double x32 = cos(q[6]);
   const double x33 = cos(q[5]);
@@ -815,7 +815,7 @@ int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const doubl
   const double c4_5 = x36;
   const double x37 = p.uu*x32 - x36;
   const double c4_6 = -x37;
-  const double x38 = -(x33*x32) + x34*x10;
+  const double x38 = x34*x10 - (x33*x32);
   const double x39 = p.zf*x38;
   const double c5_5 = x39;
   const double x40 = x34*p.uu - x39;
@@ -826,44 +826,44 @@ int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const doubl
   z[6] = tau[1] + x43;
   const double x44 = u[1] + u[0];
   z[5] = tau[0] + p.mom + x43 + (-(x1*x42) + x14*(p.m2*(-(x44*x44*p.da) + x1*x41*p.rr)))*p.rr;
-  const double x45 = p.yc - (p.yb - (p.sc*x21) + x24*p.sd);
-  const double x46 = -(p.sd*x21 + p.xb + x24*p.sc) + p.xc;
+  const double x45 = p.yc - (p.yb + x24*p.sd - (p.sc*x21));
+  const double x46 = p.xc - (p.xb + p.sd*x21 + x24*p.sc);
   const double x47 = sqrt(x45*x45 + x46*x46);
   const double x48 = p.c0*(p.l0 - x47)/x47;
   const double x49 = x48*x45;
   const double x50 = x48*x46;
   const double x51 = u[2]*u[2];
-  z[0] = tau[2] - ((x49*x21 - (x50*x24))*p.sd + (p.m3*(x51*p.sa))*p.sb - ((p.m3*(x51*p.sb))*p.sa) + (x50*x21 + x24*x49)*p.sc);
+  z[0] = tau[2] - ((p.m3*(x51*p.sa))*p.sb - ((p.m3*(x51*p.sb))*p.sa) + (x50*x21 + x24*x49)*p.sc + (x49*x21 - (x50*x24))*p.sd);
   const double x52 = u[4]*u[4];
   const double x53 = p.m4*(p.zt*x52*x26);
   const double x54 = x3*x53;
   z[1] = tau[3] + x54;
   const double x55 = u[3] + u[4];
-  z[2] = -(-(-(p.zt*(-(x5*x53) + x26*(p.m4*(x3*x55*x55 + p.zt*x52*x5)))) + x54) + p.tb*(p.m5*(p.ta*x52)) - (p.ta*(p.m5*(p.tb*x52))) - tau[4]);
+  z[2] = -(-tau[4] + p.tb*(p.m5*(p.ta*x52)) - (p.ta*(p.m5*(p.tb*x52))) - (x54 - (p.zt*(-(x5*x53) + x26*(p.m4*(x3*x55*x55 + p.zt*x52*x5))))));
   const double x56 = u[6]*u[6];
   const double x57 = p.m6*(x33*p.uu*x56);
   const double x58 = x7*x57;
-  z[3] = -(x58 - tau[5]);
+  z[3] = -(-tau[5] + x58);
   const double x59 = u[5] + u[6];
-  z[4] = -(-(p.ua*((p.ub*x56)*p.m7) - (p.ub*(p.m7*(p.ua*x56)))) + p.uu*(-(x57*x10) + x33*((-(x59*x59*x7) + p.uu*x56*x10)*p.m6)) + x58 - tau[6]);
+  z[4] = -(-tau[6] + -(p.ua*((p.ub*x56)*p.m7) - (p.ub*(p.m7*(p.ua*x56)))) + x58 + p.uu*(-(x57*x10) + x33*((-(x59*x59*x7) + p.uu*x56*x10)*p.m6)));
   const double x60 = u[1]*p.d*x18;
   const double x61 = u[0]*(x60 + u[0]*x19);
   const double x62 = u[1]*(u[0]*p.d*x18 + x60);
-  z[7] = -(x51*x24*p.ss + x61 + x62);
+  z[7] = -(x51*x24*p.ss + x62 + x61);
   const double x63 = u[1]*p.d*x15;
   const double x64 = u[0]*(x63 - (x17*u[0]));
   const double x65 = u[1]*(u[0]*p.d*x15 + x63);
-  z[8] = -(x64 - (x51*p.ss*x21) + x65);
+  z[8] = -(-(x51*p.ss*x21) + x65 + x64);
   const double x66 = -x64;
   const double x67 = -x65;
   const double x68 = u[3]*p.e*x30;
-  z[9] = -(x61 + u[3]*(p.e*u[4]*x30 + x68) + (u[4]*x31 + x68)*u[4] + x62);
+  z[9] = -(u[3]*(p.e*u[4]*x30 + x68) + x62 + (x68 + u[4]*x31)*u[4] + x61);
   const double x69 = u[3]*p.e*x28;
-  z[10] = (x69 + p.e*x28*u[4])*u[3] + x66 + u[4]*(x69 + u[4]*x29) + x67;
+  z[10] = (x69 + p.e*x28*u[4])*u[3] + x67 + u[4]*(x69 + u[4]*x29) + x66;
   const double x70 = p.zf*u[5]*x38;
-  z[11] = -(-(u[5]*(x70 + p.zf*u[6]*x38)) + x61 - (u[6]*(x70 - (x40*u[6]))) + x62);
+  z[11] = -(x62 - (u[5]*(x70 + p.zf*u[6]*x38)) + x61 - (u[6]*(x70 - (x40*u[6]))));
   const double x71 = p.zf*u[5]*x35;
-  z[12] = -((x71 + p.zf*u[6]*x35)*u[5]) + (x37*u[6] - x71)*u[6] + x66 + x67;
+  z[12] = -((x71 + p.zf*u[6]*x35)*u[5]) + x67 + (-x71 + x37*u[6])*u[6] + x66;
   // LDL^T of [M C^T; C 0], unrolled in the elimination order; sd<j> are the pivots.
   const double sd0 = m2_2;
   if (!(sd0 > 0.0)) return 3;

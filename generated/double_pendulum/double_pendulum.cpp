@@ -79,8 +79,8 @@ void mass_matrix(const Params& p, const double* q, double* M) {
   M[3] = 0.3333333333333333*p.m2*x1;
   const double x2 = 0.3333333333333333*(p.m2*x1);
   const double x3 = p.l1*((p.m2*p.l2)*cos(q[1]));
-  M[0] = p.m2*x0 + x2 + x3 + 0.3333333333333333*(p.m1*x0);
-  const double x4 = 0.5*x3 + x2;
+  M[0] = p.m2*x0 + x2 + 0.3333333333333333*(p.m1*x0) + x3;
+  const double x4 = x2 + 0.5*x3;
   M[1] = x4;
   M[2] = x4;
 }
@@ -89,13 +89,13 @@ void forcing(const Params& p, [[maybe_unused]] double t, const double* q, const 
              double* f) {
   const double x0 = cos(q[0]);
   const double x1 = sin(q[1]);
-  const double x2 = 9.81*sin(q[0]) + p.l1*u[0]*u[0];
+  const double x2 = p.l1*u[0]*u[0] + 9.81*sin(q[0]);
   const double x3 = cos(q[1]);
-  const double x4 = p.m2*(-(x1*x2) + 9.81*(x0*x3));
+  const double x4 = p.m2*(9.81*(x0*x3) - (x1*x2));
   const double x5 = 0.5*(p.l2*x4);
   f[1] = tau[1] - (u[1]*p.c2) + x5;
   const double x6 = u[1] + u[0];
-  f[0] = 4.905*(p.l1*(p.m1*x0)) + x5 + p.l1*(x3*x4 + (p.m2*(9.81*(x0*x1) + x3*x2 + 0.5*(p.l2*x6*x6)))*x1) + tau[0] - (u[0]*p.c1);
+  f[0] = tau[0] - (u[0]*p.c1) + 4.905*(p.l1*(p.m1*x0)) + x5 + p.l1*(x3*x4 + (p.m2*(0.5*(p.l2*x6*x6) + 9.81*(x0*x1) + x3*x2))*x1);
 }
 
 int forward_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
@@ -106,16 +106,16 @@ int forward_dynamics(const Params& p, [[maybe_unused]] double t, const double* q
   const double x2 = 0.3333333333333333*(p.m2*x1);
   const double x3 = cos(q[1]);
   const double x4 = p.l1*((p.m2*p.l2)*x3);
-  const double m0_0 = p.m2*x0 + x2 + x4 + 0.3333333333333333*(p.m1*x0);
-  const double m1_0 = 0.5*x4 + x2;
+  const double m0_0 = p.m2*x0 + x2 + 0.3333333333333333*(p.m1*x0) + x4;
+  const double m1_0 = x2 + 0.5*x4;
   const double x5 = cos(q[0]);
   const double x6 = sin(q[1]);
-  const double x7 = 9.81*sin(q[0]) + p.l1*u[0]*u[0];
-  const double x8 = p.m2*(-(x6*x7) + 9.81*(x5*x3));
+  const double x7 = p.l1*u[0]*u[0] + 9.81*sin(q[0]);
+  const double x8 = p.m2*(9.81*(x5*x3) - (x6*x7));
   const double x9 = 0.5*(p.l2*x8);
   udot[1] = tau[1] - (u[1]*p.c2) + x9;
   const double x10 = u[1] + u[0];
-  udot[0] = 4.905*(p.l1*(p.m1*x5)) + x9 + p.l1*(x3*x8 + (p.m2*(9.81*(x5*x6) + x3*x7 + 0.5*(p.l2*x10*x10)))*x6) + tau[0] - (u[0]*p.c1);
+  udot[0] = tau[0] - (u[0]*p.c1) + 4.905*(p.l1*(p.m1*x5)) + x9 + p.l1*(x3*x8 + (p.m2*(0.5*(p.l2*x10*x10) + 9.81*(x5*x6) + x3*x7))*x6);
   // LDL^T of M, unrolled; d<j> are the pivots.
   const double d0 = m0_0;
   if (!(d0 > 0.0)) return 1;
@@ -143,7 +143,7 @@ double kinetic_energy(const Params& p, const double* q, const double* u) {
   const double x1 = 0.5*(p.l2*x0) + u[0]*p.l1*cos(q[1]);
   const double x2 = u[0]*p.l1*sin(q[1]);
   const double x3 = u[0]*p.l1;
-  T = 0.5*(p.m2*(x1*x1 + x2*x2)) + 0.041666666666666664*((p.m2*x0*p.l2*p.l2)*x0) + 0.041666666666666664*(u[0]*(p.m1*u[0]*p.l1*p.l1)) + 0.125*(p.m1*x3*x3);
+  T = 0.041666666666666664*(u[0]*(p.m1*u[0]*p.l1*p.l1)) + 0.125*(p.m1*x3*x3) + 0.041666666666666664*((p.m2*x0*p.l2*p.l2)*x0) + 0.5*(p.m2*(x2*x2 + x1*x1));
   return T;
 }
 
@@ -151,14 +151,14 @@ double potential_energy(const Params& p, const double* q) {
   double V;
   const double x0 = sin(q[0]);
   const double x1 = p.l1*x0;
-  V = -(9.81*(p.m2*(0.5*(p.l2*(cos(q[0])*sin(q[1]) + x0*cos(q[1]))) + x1)) + 4.905*(p.m1*x1));
+  V = -(4.905*(p.m1*x1) + 9.81*(p.m2*(x1 + 0.5*(p.l2*(cos(q[0])*sin(q[1]) + x0*cos(q[1]))))));
   return V;
 }
 
 double nonconservative_power(const Params& p, [[maybe_unused]] double t, [[maybe_unused]] const double* q,
                              const double* u, const double* tau) {
   double P;
-  P = -(-(u[1]*(tau[1] - (u[1]*p.c2))) + u[0]*(u[0]*p.c1 - tau[0]));
+  P = -(u[0]*(u[0]*p.c1 - tau[0]) - (u[1]*(tau[1] - (u[1]*p.c2))));
   return P;
 }
 
@@ -167,10 +167,10 @@ void generalized_momentum(const Params& p, const double* q, const double* u, dou
   const double x0 = p.l1*((p.m2*p.l2)*cos(q[1]));
   const double x1 = p.m2*p.l2*p.l2;
   const double x2 = 0.3333333333333333*x1;
-  const double x3 = 0.5*x0 + x2;
+  const double x3 = x2 + 0.5*x0;
   h[1] = 0.3333333333333333*(u[1]*x1) + u[0]*x3;
   const double x4 = p.l1*p.l1;
-  h[0] = u[1]*x3 + u[0]*(p.m2*x4 + x2 + x0 + 0.3333333333333333*(p.m1*x4));
+  h[0] = u[0]*(p.m2*x4 + x2 + 0.3333333333333333*(p.m1*x4) + x0) + u[1]*x3;
 }
 
 void outputs(const Params& p, [[maybe_unused]] double t, const double* q, [[maybe_unused]] const double* u,
@@ -182,8 +182,8 @@ void outputs(const Params& p, [[maybe_unused]] double t, const double* q, [[mayb
   const double x1 = cos(q[1]);
   const double x2 = sin(q[0]);
   const double x3 = sin(q[1]);
-  y[0] = p.l2*(x0*x1 - (x2*x3)) + x0*p.l1;
-  y[2] = -(p.l2*(x0*x3 + x2*x1) + p.l1*x2);
+  y[0] = x0*p.l1 + p.l2*(x0*x1 - (x2*x3));
+  y[2] = -(p.l1*x2 + p.l2*(x0*x3 + x2*x1));
 }
 
 void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
@@ -191,13 +191,13 @@ void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* 
   const double x0 = cos(q[0]);
   const double x1 = cos(q[1]);
   const double x2 = sin(q[1]);
-  const double x3 = 9.81*sin(q[0]) + u[0]*(u[0]*p.l1);
+  const double x3 = u[0]*(u[0]*p.l1) + 9.81*sin(q[0]);
   const double x4 = p.l1*udot[0];
-  const double x5 = 9.81*(x0*x1) - (x2*x3) - (x4*x1);
+  const double x5 = -(x4*x1) + 9.81*(x0*x1) - (x2*x3);
   const double x6 = udot[0] + udot[1];
   const double x7 = u[1] + u[0];
   const double x8 = 0.3333333333333333*(x6*p.m2*p.l2*p.l2) - 0.5*(p.m2*p.l2*x5);
-  tau[0] = u[0]*p.c1 + p.l1*((-(p.m2*x5) + 0.5*(x6*p.m2*p.l2))*x1 - ((-(p.m2*(-(9.81*(x0*x2) + x1*x3) + x4*x2)) + 0.5*((p.m2*p.l2*x7)*x7))*x2)) + x8 - 4.905*(p.m1*x0*p.l1) + 0.3333333333333333*(p.m1*p.l1*p.l1*udot[0]);
+  tau[0] = u[0]*p.c1 + 0.3333333333333333*(p.m1*p.l1*p.l1*udot[0]) - 4.905*(p.m1*x0*p.l1) + x8 + p.l1*((0.5*(x6*p.m2*p.l2) - (p.m2*x5))*x1 - ((0.5*((p.m2*p.l2*x7)*x7) - (p.m2*(x4*x2 - (9.81*(x0*x2) + x1*x3))))*x2));
   tau[1] = u[1]*p.c2 + x8;
 }
 

@@ -166,7 +166,7 @@ void mass_matrix(const Params& p, const double* q, double* M) {
   const double x1 = 0.3333333333333333*(p.m_b*x0);
   const double x2 = p.a*p.a;
   const double x3 = (cos(q[1])*(p.b*p.m_b))*p.a;
-  M[0] = x1 + p.m_b*x2 + 0.3333333333333333*(p.m_a*x2) + x3;
+  M[0] = p.m_b*x2 + x1 + 0.3333333333333333*(p.m_a*x2) + x3;
   const double x4 = x1 + 0.5*x3;
   M[1] = x4;
   M[3] = x4;
@@ -178,12 +178,12 @@ void forcing(const Params& p, [[maybe_unused]] double t, const double* q, const 
   const double x0 = cos(q[0]);
   const double x1 = cos(q[1]);
   const double x2 = sin(q[1]);
-  const double x3 = -9.81*sin(q[0]) + p.a*u[0]*u[0];
+  const double x3 = p.a*u[0]*u[0] - 9.81*sin(q[0]);
   const double x4 = (9.81*(x0*x1) + x2*x3)*p.m_b;
   const double x5 = x4*p.b;
   f[1] = tau[1] - 0.5*x5;
   const double x6 = u[1] + u[0];
-  f[0] = tau[0] - (4.905*((x0*p.m_a)*p.a) + 0.5*x5 + p.a*(x4*x1 + (p.m_b*(9.81*(x0*x2) - (x1*x3) - 0.5*(p.b*x6*x6)))*x2));
+  f[0] = tau[0] - (4.905*((x0*p.m_a)*p.a) + 0.5*x5 + p.a*(x4*x1 + (p.m_b*(-0.5*(p.b*x6*x6) + 9.81*(x0*x2) - (x1*x3)))*x2));
 }
 
 int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
@@ -205,7 +205,7 @@ double kinetic_energy(const Params& p, const double* q, const double* u) {
   const double x2 = u[0]*p.a*sin(q[1]);
   const double x3 = p.c*u[2];
   const double x4 = u[0]*p.a;
-  T = 0.041666666666666664*(u[0]*(u[0]*p.m_a*p.a*p.a)) + 0.5*(p.m_b*(x1*x1 + x2*x2)) + 0.041666666666666664*((p.m_b*p.b*p.b*x0)*x0) + 0.125*(p.m_c*x3*x3) + 0.125*(p.m_a*x4*x4) + 0.041666666666666664*(u[2]*(u[2]*p.m_c*p.c*p.c));
+  T = 0.041666666666666664*(u[0]*(u[0]*p.m_a*p.a*p.a)) + 0.125*(p.m_c*x3*x3) + 0.125*(p.m_a*x4*x4) + 0.041666666666666664*(u[2]*(u[2]*p.m_c*p.c*p.c)) + 0.041666666666666664*((p.m_b*p.b*p.b*x0)*x0) + 0.5*(p.m_b*(x2*x2 + x1*x1));
   return T;
 }
 
@@ -213,7 +213,7 @@ double potential_energy(const Params& p, const double* q) {
   double V;
   const double x0 = sin(q[0]);
   const double x1 = p.a*x0;
-  V = 9.81*((x1 + 0.5*(p.b*(cos(q[0])*sin(q[1]) + x0*cos(q[1]))))*p.m_b) + 4.905*(p.m_c*(p.c*sin(q[2]))) + 4.905*(p.m_a*x1);
+  V = 4.905*(p.m_c*(p.c*sin(q[2]))) + 4.905*(p.m_a*x1) + 9.81*((x1 + 0.5*(p.b*(cos(q[0])*sin(q[1]) + x0*cos(q[1]))))*p.m_b);
   return V;
 }
 
@@ -232,7 +232,7 @@ void generalized_momentum(const Params& p, const double* q, const double* u, dou
   const double x2 = p.a*p.a;
   const double x3 = (cos(q[1])*(p.b*p.m_b))*p.a;
   const double x4 = x1 + 0.5*x3;
-  h[0] = (x1 + p.m_b*x2 + 0.3333333333333333*(p.m_a*x2) + x3)*u[0] + u[1]*x4;
+  h[0] = (p.m_b*x2 + x1 + 0.3333333333333333*(p.m_a*x2) + x3)*u[0] + u[1]*x4;
   h[1] = 0.3333333333333333*(u[1]*x0) + u[0]*x4;
 }
 
@@ -255,7 +255,7 @@ void outputs(const Params& p, double t, const double* q, const double* u, double
   y[1] = x3;
   const double x4 = cos(q[1]);
   const double x5 = sin(q[1]);
-  y[3] = 0.5*(p.b*(x0*x4 - (x2*x5))) + x1;
+  y[3] = x1 + 0.5*(p.b*(x0*x4 - (x2*x5)));
   y[4] = x3 + 0.5*(p.b*(x0*x5 + x2*x4));
   // Loop forces: lambda of the dynamics at these inputs of zero (NaN where it cannot be solved).
   double reaction_udot[NU], lambda[NC];
@@ -267,18 +267,18 @@ void outputs(const Params& p, double t, const double* q, const double* u, double
 
 void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
                       const double* udot, double* tau) {
-  tau[2] = 4.905*(p.c*p.m_c*cos(q[2])) + 0.3333333333333333*(p.m_c*p.c*p.c*udot[2]);
+  tau[2] = 0.3333333333333333*(p.m_c*p.c*p.c*udot[2]) + 4.905*(p.c*p.m_c*cos(q[2]));
   const double x0 = udot[0] + udot[1];
-  const double x1 = 9.81*sin(q[0]) - (u[0]*(u[0]*p.a));
+  const double x1 = -(u[0]*(u[0]*p.a)) + 9.81*sin(q[0]);
   const double x2 = sin(q[1]);
   const double x3 = cos(q[0]);
   const double x4 = cos(q[1]);
   const double x5 = p.a*udot[0];
-  const double x6 = -(x1*x2) + 9.81*(x3*x4) + x4*x5;
+  const double x6 = x4*x5 + 9.81*(x3*x4) - (x1*x2);
   const double x7 = 0.3333333333333333*(x0*p.m_b*p.b*p.b) + 0.5*(p.b*p.m_b*x6);
   tau[1] = x7;
   const double x8 = u[1] + u[0];
-  tau[0] = x7 + ((p.m_b*x6 + 0.5*(x0*p.b*p.m_b))*x4 - (x2*(0.5*(x8*(p.b*p.m_b*x8)) - (p.m_b*(x2*x5 + 9.81*(x3*x2) + x1*x4)))))*p.a + 0.3333333333333333*(p.m_a*udot[0]*p.a*p.a) + 4.905*(x3*p.a*p.m_a);
+  tau[0] = 0.3333333333333333*(p.m_a*udot[0]*p.a*p.a) + 4.905*(x3*p.a*p.m_a) + x7 + ((0.5*(x0*p.b*p.m_b) + p.m_b*x6)*x4 - (x2*(0.5*(x8*(p.b*p.m_b*x8)) - (p.m_b*(x2*x5 + 9.81*(x3*x2) + x1*x4)))))*p.a;
 }
 
 void gravity(const Params& p, const double* q, double* g) {
@@ -289,7 +289,7 @@ void gravity(const Params& p, const double* q, double* g) {
   const double x3 = sin(q[1]);
   const double x4 = 9.81*(x0*x1) - 9.81*(x2*x3);
   const double x5 = 0.5*(p.b*p.m_b*x4);
-  g[0] = x5 + p.a*(x3*(p.m_b*(9.81*(x0*x3) + 9.81*(x2*x1))) + (p.m_b*x4)*x1) + 4.905*(x0*p.a*p.m_a);
+  g[0] = 4.905*(x0*p.a*p.m_a) + x5 + p.a*(x3*(p.m_b*(9.81*(x0*x3) + 9.81*(x2*x1))) + (p.m_b*x4)*x1);
   g[1] = x5;
 }
 
@@ -298,8 +298,8 @@ void constraints(const Params& p, const double* q, double* phi) {
   const double x1 = cos(q[1]);
   const double x2 = sin(q[0]);
   const double x3 = sin(q[1]);
-  phi[0] = -(p.d + p.c*cos(q[2]) - (p.b*(x0*x1 - (x2*x3))) - (x0*p.a));
-  phi[1] = -(-(p.a*x2) - (p.b*(x0*x3 + x2*x1)) + p.c*sin(q[2]));
+  phi[0] = -(p.d + p.c*cos(q[2]) - (x0*p.a) - (p.b*(x0*x1 - (x2*x3))));
+  phi[1] = -(p.c*sin(q[2]) - (p.a*x2) - (p.b*(x0*x3 + x2*x1)));
 }
 
 void constraint_jacobian(const Params& p, const double* q, double* C) {
@@ -311,7 +311,7 @@ void constraint_jacobian(const Params& p, const double* q, double* C) {
   const double x3 = cos(q[1]);
   const double x4 = x0*x1 + x2*x3;
   const double x5 = p.b*(x0*x3 - (x2*x1));
-  C[0] = -(p.b*x4 + p.a*x2);
+  C[0] = -(p.a*x2 + p.b*x4);
   C[1] = -p.b*x4;
   C[3] = x0*p.a + x5;
   C[4] = x5;
@@ -326,9 +326,9 @@ void constraint_bias(const Params& p, const double* q, const double* u, double* 
   const double x5 = x1*x2 - (x3*x4);
   const double x6 = x1*x4 + x3*x2;
   const double x7 = u[1]*p.b*x5;
-  gamma[0] = -(p.c*x0*cos(q[2]) - (u[1]*(x7 + u[0]*p.b*x5)) - (u[0]*(u[0]*(x1*p.a + p.b*x5) + x7)));
+  gamma[0] = -(p.c*x0*cos(q[2]) - (u[1]*(x7 + u[0]*p.b*x5)) - (u[0]*(x7 + u[0]*(x1*p.a + p.b*x5))));
   const double x8 = u[1]*p.b*x6;
-  gamma[1] = u[1]*(x8 + u[0]*p.b*x6) + u[0]*(u[0]*(p.b*x6 + p.a*x3) + x8) - (p.c*x0*sin(q[2]));
+  gamma[1] = -(p.c*x0*sin(q[2])) + u[1]*(x8 + u[0]*p.b*x6) + u[0]*(x8 + u[0]*(p.a*x3 + p.b*x6));
 }
 
 int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
@@ -341,7 +341,7 @@ int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const doubl
   const double x2 = p.a*p.a;
   const double x3 = cos(q[1]);
   const double x4 = (x3*(p.b*p.m_b))*p.a;
-  const double m0_0 = x1 + p.m_b*x2 + 0.3333333333333333*(p.m_a*x2) + x4;
+  const double m0_0 = p.m_b*x2 + x1 + 0.3333333333333333*(p.m_a*x2) + x4;
   const double m1_0 = x1 + 0.5*x4;
   const double x5 = cos(q[0]);
   const double x6 = sin(q[1]);
@@ -349,13 +349,13 @@ int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const doubl
   const double x8 = sin(q[0]);
   const double x9 = x7 + x8*x3;
   const double c0_1 = -p.b*x9;
-  const double x10 = p.b*x9 + p.a*x8;
+  const double x10 = p.a*x8 + p.b*x9;
   const double c0_0 = -x10;
   const double x11 = sin(q[2]);
   const double c0_2 = p.c*x11;
   const double x12 = x5*x3;
   const double x13 = x12 - (x8*x6);
-  const double x14 = -9.81*x8 + p.a*u[0]*u[0];
+  const double x14 = p.a*u[0]*u[0] - 9.81*x8;
   const double x15 = (9.81*x12 + x6*x14)*p.m_b;
   const double x16 = p.b*x13;
   const double c1_1 = x16;
@@ -367,12 +367,12 @@ int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const doubl
   const double x19 = x15*p.b;
   z[2] = tau[1] - 0.5*x19;
   const double x20 = u[1] + u[0];
-  z[1] = tau[0] - (4.905*((x5*p.m_a)*p.a) + 0.5*x19 + p.a*(x15*x3 + (p.m_b*(9.81*x7 - (x3*x14) - 0.5*(p.b*x20*x20)))*x6));
+  z[1] = tau[0] - (4.905*((x5*p.m_a)*p.a) + 0.5*x19 + p.a*(x15*x3 + (p.m_b*(-0.5*(p.b*x20*x20) + 9.81*x7 - (x3*x14)))*x6));
   const double x21 = u[2]*u[2];
   const double x22 = u[1]*p.b*x13;
-  z[3] = -(p.c*x21*x18 - (u[1]*(x22 + u[0]*p.b*x13)) - (u[0]*(u[0]*x17 + x22)));
+  z[3] = -(p.c*x21*x18 - (u[1]*(x22 + u[0]*p.b*x13)) - (u[0]*(x22 + u[0]*x17)));
   const double x23 = u[1]*p.b*x9;
-  z[4] = u[1]*(x23 + u[0]*p.b*x9) + u[0]*(u[0]*x10 + x23) - (p.c*x21*x11);
+  z[4] = -(p.c*x21*x11) + u[1]*(x23 + u[0]*p.b*x9) + u[0]*(x23 + u[0]*x10);
   // LDL^T of [M C^T; C 0], unrolled in the elimination order; sd<j> are the pivots.
   const double sd0 = m2_2;
   if (!(sd0 > 0.0)) return 3;

@@ -157,11 +157,11 @@ void mass_matrix(const Params& p, const double* q, double* M) {
   M[18] = x5;
   M[24] = x5;
   const double x6 = 1.6666666666666665*x4;
-  M[0] = x1 + x6;
-  M[6] = x2 + x6;
+  M[0] = x6 + x1;
+  M[6] = x6 + x2;
   const double x7 = 0.3333333333333333*x4;
   const double x8 = x7 + 0.5*x1;
-  const double x9 = 0.5*x2 + x7;
+  const double x9 = x7 + 0.5*x2;
   M[3] = x8;
   M[15] = x8;
   M[9] = x9;
@@ -174,21 +174,21 @@ void forcing(const Params& p, [[maybe_unused]] double t, const double* q, const 
   const double x0 = cos(q[0]);
   const double x1 = cos(q[3]);
   const double x2 = sin(q[3]);
-  const double x3 = 9.81*sin(q[0]) - (p.l*u[0]*u[0]);
+  const double x3 = -(p.l*u[0]*u[0]) + 9.81*sin(q[0]);
   const double x4 = (-9.81*(x0*x1) + x2*x3)*p.m;
   const double x5 = u[0] + u[3];
   const double x6 = 0.5*(p.l*x4);
-  f[0] = tau[0] - (4.905*(p.l*(x0*p.m)) - (p.l*(x4*x1 - ((p.m*(9.81*(x0*x2) + x1*x3 - 0.5*(p.l*x5*x5)))*x2)) + x6));
+  f[0] = tau[0] - (4.905*(p.l*(x0*p.m)) - (x6 + p.l*(x4*x1 - ((p.m*(-0.5*(p.l*x5*x5) + 9.81*(x0*x2) + x1*x3))*x2))));
   f[3] = tau[3] + x6;
   const double x7 = cos(q[1]);
   const double x8 = -(p.l*u[1]*u[1]) + 9.81*sin(q[1]);
   const double x9 = sin(q[4]);
   const double x10 = cos(q[4]);
-  const double x11 = p.m*(-(x8*x9) + 9.81*(x7*x10));
+  const double x11 = p.m*(9.81*(x7*x10) - (x8*x9));
   const double x12 = 0.5*(p.l*x11);
   f[4] = -(-tau[4] + x12);
   const double x13 = u[1] + u[4];
-  f[1] = tau[1] - (4.905*((p.m*x7)*p.l) + x12 + p.l*(x11*x10 - ((p.m*(0.5*(p.l*x13*x13) - (x8*x10 + 9.81*(x7*x9))))*x9)));
+  f[1] = tau[1] - (4.905*((p.m*x7)*p.l) + x12 + p.l*(x11*x10 - ((p.m*(0.5*(p.l*x13*x13) - (9.81*(x7*x9) + x8*x10)))*x9)));
 }
 
 int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
@@ -214,10 +214,10 @@ double kinetic_energy(const Params& p, const double* q, const double* u) {
   const double x4 = u[0] + u[3];
   const double x5 = u[1] + u[4];
   const double x6 = u[1]*p.l*sin(q[4]);
-  const double x7 = u[1]*p.l*cos(q[4]) + 0.5*(p.l*x5);
+  const double x7 = 0.5*(p.l*x5) + u[1]*p.l*cos(q[4]);
   const double x8 = u[0]*p.l*sin(q[3]);
   const double x9 = 0.5*(p.l*x4) + u[0]*p.l*cos(q[3]);
-  T = 0.125*(p.m*x0*x0) + 0.125*(p.m*x1*x1) + 0.125*(x2*x2*p.m) + 0.041666666666666664*(u[1]*(u[1]*p.m*x3)) + 0.041666666666666664*((p.m*x3*x4)*x4) + 0.041666666666666664*(x5*(p.m*x3*x5)) + 0.041666666666666664*(u[0]*(u[0]*p.m*x3)) + 0.5*(p.m*(x6*x6 + x7*x7)) + 0.5*(p.m*(x8*x8 + x9*x9)) + 0.041666666666666664*(u[2]*(p.m*u[2]*x3));
+  T = 0.125*(p.m*x0*x0) + 0.125*(p.m*x1*x1) + 0.125*(x2*x2*p.m) + 0.041666666666666664*(u[1]*(u[1]*p.m*x3)) + 0.041666666666666664*(u[0]*(u[0]*p.m*x3)) + 0.041666666666666664*(u[2]*(p.m*u[2]*x3)) + 0.041666666666666664*((p.m*x3*x4)*x4) + 0.041666666666666664*(x5*(p.m*x3*x5)) + 0.5*(p.m*(x6*x6 + x7*x7)) + 0.5*(p.m*(x8*x8 + x9*x9));
   return T;
 }
 
@@ -227,7 +227,7 @@ double potential_energy(const Params& p, const double* q) {
   const double x1 = p.l*x0;
   const double x2 = sin(q[1]);
   const double x3 = p.l*x2;
-  V = 9.81*((x1 + 0.5*(p.l*(cos(q[0])*sin(q[3]) + x0*cos(q[3]))))*p.m) + 9.81*(p.m*(0.5*((cos(q[1])*sin(q[4]) + x2*cos(q[4]))*p.l) + x3)) + 4.905*((p.l*sin(q[2]))*p.m) + 4.905*(p.m*x3) + 4.905*(x1*p.m);
+  V = 4.905*((p.l*sin(q[2]))*p.m) + 4.905*(p.m*x3) + 4.905*(x1*p.m) + 9.81*((x1 + 0.5*(p.l*(cos(q[0])*sin(q[3]) + x0*cos(q[3]))))*p.m) + 9.81*(p.m*(x3 + 0.5*((cos(q[1])*sin(q[4]) + x2*cos(q[4]))*p.l)));
   return V;
 }
 
@@ -248,10 +248,10 @@ void generalized_momentum(const Params& p, const double* q, const double* u, dou
   const double x4 = 1.6666666666666665*x3;
   const double x5 = 0.3333333333333333*x3;
   const double x6 = x5 + 0.5*x1;
-  h[0] = u[0]*(x1 + x4) + u[3]*x6;
-  h[3] = u[0]*x6 + 0.3333333333333333*(u[3]*x3);
-  const double x7 = 0.5*x2 + x5;
-  h[1] = u[4]*x7 + u[1]*(x2 + x4);
+  h[0] = u[0]*(x4 + x1) + u[3]*x6;
+  h[3] = 0.3333333333333333*(u[3]*x3) + u[0]*x6;
+  const double x7 = x5 + 0.5*x2;
+  h[1] = u[1]*(x4 + x2) + u[4]*x7;
   h[4] = 0.3333333333333333*(u[4]*x3) + u[1]*x7;
 }
 
@@ -262,7 +262,7 @@ void outputs(const Params& p, double t, const double* q, const double* u, double
   y[3] = p.l + p.l*cos(q[1]);
   y[4] = p.l*sin(q[1]);
   y[5] = 0.0;
-  y[6] = p.l*cos(q[2]) + 2.0*p.l;
+  y[6] = 2.0*p.l + p.l*cos(q[2]);
   y[7] = p.l*sin(q[2]);
   y[8] = 0.0;
   y[9] = q[0];
@@ -284,28 +284,28 @@ void outputs(const Params& p, double t, const double* q, const double* u, double
 void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
                       const double* udot, double* tau) {
   const double x0 = p.l*p.l;
-  tau[2] = 4.905*(p.m*p.l*cos(q[2])) + 0.3333333333333333*(p.m*x0*udot[2]);
+  tau[2] = 0.3333333333333333*(p.m*x0*udot[2]) + 4.905*(p.m*p.l*cos(q[2]));
   const double x1 = cos(q[0]);
-  const double x2 = -9.81*sin(q[0]) + u[0]*(u[0]*p.l);
+  const double x2 = u[0]*(u[0]*p.l) - 9.81*sin(q[0]);
   const double x3 = cos(q[3]);
   const double x4 = sin(q[3]);
   const double x5 = p.l*udot[0];
   const double x6 = u[0] + u[3];
   const double x7 = udot[0] + udot[3];
-  const double x8 = x3*x5 + x2*x4 + 9.81*(x1*x3);
-  const double x9 = 0.5*(x8*p.m*p.l) + 0.3333333333333333*(p.m*x0*x7);
-  tau[0] = 0.3333333333333333*(p.m*x0*udot[0]) + 4.905*(x1*p.m*p.l) + p.l*((p.m*(-(x2*x3) + 9.81*(x1*x4) + x4*x5) - 0.5*(x6*(p.m*p.l*x6)))*x4 + (0.5*(p.m*p.l*x7) + x8*p.m)*x3) + x9;
+  const double x8 = x3*x5 + 9.81*(x1*x3) + x2*x4;
+  const double x9 = 0.3333333333333333*(p.m*x0*x7) + 0.5*(x8*p.m*p.l);
+  tau[0] = 0.3333333333333333*(p.m*x0*udot[0]) + 4.905*(x1*p.m*p.l) + x9 + p.l*((0.5*(p.m*p.l*x7) + x8*p.m)*x3 + (-0.5*(x6*(p.m*p.l*x6)) + p.m*(x4*x5 + 9.81*(x1*x4) - (x2*x3)))*x4);
   tau[3] = x9;
   const double x10 = udot[4] + udot[1];
   const double x11 = cos(q[1]);
   const double x12 = cos(q[4]);
   const double x13 = sin(q[4]);
-  const double x14 = -9.81*sin(q[1]) + u[1]*(u[1]*p.l);
+  const double x14 = u[1]*(u[1]*p.l) - 9.81*sin(q[1]);
   const double x15 = p.l*udot[1];
-  const double x16 = 9.81*(x11*x12) + x13*x14 + x15*x12;
+  const double x16 = x15*x12 + 9.81*(x11*x12) + x13*x14;
   const double x17 = u[1] + u[4];
-  const double x18 = 0.5*(p.m*p.l*x16) + 0.3333333333333333*(p.m*x0*x10);
-  tau[1] = 0.3333333333333333*(p.m*x0*udot[1]) + p.l*((0.5*(p.m*p.l*x10) + p.m*x16)*x12 - ((0.5*((p.m*p.l*x17)*x17) - (p.m*(x13*x15 + 9.81*(x11*x13) - (x14*x12))))*x13)) + x18 + 4.905*(p.m*p.l*x11);
+  const double x18 = 0.3333333333333333*(p.m*x0*x10) + 0.5*(p.m*p.l*x16);
+  tau[1] = 0.3333333333333333*(p.m*x0*udot[1]) + 4.905*(p.m*p.l*x11) + x18 + p.l*((0.5*(p.m*p.l*x10) + p.m*x16)*x12 - ((0.5*((p.m*p.l*x17)*x17) - (p.m*(x13*x15 + 9.81*(x11*x13) - (x14*x12))))*x13));
   tau[4] = x18;
 }
 
@@ -317,7 +317,7 @@ void gravity(const Params& p, const double* q, double* g) {
   const double x3 = sin(q[3]);
   const double x4 = -9.81*(x0*x1) + 9.81*(x2*x3);
   const double x5 = p.m*p.l*x4;
-  g[0] = 4.905*(x0*p.m*p.l) - (0.5*x5 + p.l*(-((p.m*(9.81*(x2*x1) + 9.81*(x0*x3)))*x3) + (p.m*x4)*x1));
+  g[0] = 4.905*(x0*p.m*p.l) - (0.5*x5 + p.l*((p.m*x4)*x1 - ((p.m*(9.81*(x2*x1) + 9.81*(x0*x3)))*x3)));
   g[3] = -0.5*x5;
   const double x6 = cos(q[1]);
   const double x7 = cos(q[4]);
@@ -339,11 +339,11 @@ void constraints(const Params& p, const double* q, double* phi) {
   phi[0] = -(p.l + x1 - (x2*p.l) + p.l*(x3*x4 - (x2*x5)));
   const double x6 = sin(q[1]);
   const double x7 = p.l*x6;
-  phi[1] = p.l*x3 + p.l*(x2*x4 + x3*x5) - x7;
+  phi[1] = p.l*x3 - x7 + p.l*(x2*x4 + x3*x5);
   const double x8 = cos(q[4]);
   const double x9 = sin(q[4]);
-  phi[2] = -(p.l*cos(q[2]) - (p.l*(x0*x8 - (x6*x9))) + p.l - x1);
-  phi[3] = (x0*x9 + x6*x8)*p.l + x7 - (p.l*sin(q[2]));
+  phi[2] = -(p.l + p.l*cos(q[2]) - x1 - (p.l*(x0*x8 - (x6*x9))));
+  phi[3] = x7 - (p.l*sin(q[2])) + (x0*x9 + x6*x8)*p.l;
 }
 
 void constraint_jacobian(const Params& p, const double* q, double* C) {
@@ -365,7 +365,7 @@ void constraint_jacobian(const Params& p, const double* q, double* C) {
   const double x5 = x0*x2 - (x1*x3);
   C[0] = -(p.l*x0 + p.l*x4);
   C[3] = -p.l*x4;
-  C[5] = -(p.l*x5) + x1*p.l;
+  C[5] = x1*p.l - (p.l*x5);
   C[8] = -p.l*x5;
   const double x6 = sin(q[1]);
   const double x7 = p.l*x6;
@@ -376,7 +376,7 @@ void constraint_jacobian(const Params& p, const double* q, double* C) {
   const double x10 = cos(q[4]);
   const double x11 = x8*x9 + x6*x10;
   const double x12 = p.l*(x8*x10 - (x6*x9));
-  C[11] = -(x11*p.l + x7);
+  C[11] = -(x7 + x11*p.l);
   C[14] = -x11*p.l;
   C[16] = p.l*x8 + x12;
   C[19] = x12;
@@ -392,19 +392,19 @@ void constraint_bias(const Params& p, const double* q, const double* u, double* 
   const double x6 = x2*x3 - (x4*x5);
   const double x7 = x4*x3 + x2*x5;
   const double x8 = u[3]*p.l*x6;
-  gamma[0] = -(p.l*x0*x1 + u[0]*(x8 - (u[0]*(-(p.l*x6) + x4*p.l))) + u[3]*(x8 + u[0]*p.l*x6));
+  gamma[0] = -(p.l*x0*x1 + u[3]*(x8 + u[0]*p.l*x6) + u[0]*(x8 - (u[0]*(x4*p.l - (p.l*x6)))));
   const double x9 = sin(q[1]);
   const double x10 = u[3]*p.l*x7;
-  gamma[1] = -(p.l*x1*x9 - (u[3]*(u[0]*p.l*x7 + x10)) - (u[0]*(u[0]*(p.l*x2 + p.l*x7) + x10)));
+  gamma[1] = -(p.l*x1*x9 - (u[3]*(u[0]*p.l*x7 + x10)) - (u[0]*(x10 + u[0]*(p.l*x2 + p.l*x7))));
   const double x11 = cos(q[4]);
   const double x12 = sin(q[4]);
   const double x13 = x0*x11 - (x9*x12);
   const double x14 = x0*x12 + x9*x11;
   const double x15 = p.l*u[4]*x13;
   const double x16 = u[2]*u[2];
-  gamma[2] = u[1]*(x15 + u[1]*(p.l*x0 + p.l*x13)) + u[4]*(x15 + u[1]*p.l*x13) - (p.l*x16*cos(q[2]));
+  gamma[2] = -(p.l*x16*cos(q[2])) + u[4]*(x15 + u[1]*p.l*x13) + u[1]*(x15 + u[1]*(p.l*x0 + p.l*x13));
   const double x17 = x14*p.l*u[4];
-  gamma[3] = -(p.l*x16*sin(q[2])) + u[1]*(x17 + u[1]*(x14*p.l + p.l*x9)) + (u[1]*x14*p.l + x17)*u[4];
+  gamma[3] = -(p.l*x16*sin(q[2])) + (u[1]*x14*p.l + x17)*u[4] + u[1]*(x17 + u[1]*(p.l*x9 + x14*p.l));
 }
 
 int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
@@ -420,13 +420,13 @@ int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const doubl
   const double m3_3 = x5;
   const double m4_4 = x5;
   const double x6 = 1.6666666666666665*x4;
-  const double m0_0 = x2 + x6;
+  const double m0_0 = x6 + x2;
   const double x7 = 0.3333333333333333*x4;
   const double m3_0 = x7 + 0.5*x2;
   const double x8 = cos(q[4]);
   const double x9 = p.l*(x0*x8);
-  const double m1_1 = x9 + x6;
-  const double m4_1 = 0.5*x9 + x7;
+  const double m1_1 = x6 + x9;
+  const double m4_1 = x7 + 0.5*x9;
   const double x10 = sin(q[0]);
   const double x11 = cos(q[0]);
   const double x12 = sin(q[3]);
@@ -441,16 +441,16 @@ int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const doubl
   const double x18 = x11*x1;
   const double x19 = x10*x12 - x18;
   const double c1_3 = -p.l*x19;
-  const double x20 = 9.81*x10 - (p.l*u[0]*u[0]);
+  const double x20 = -(p.l*u[0]*u[0]) + 9.81*x10;
   const double x21 = (-9.81*x18 + x12*x20)*p.m;
-  const double x22 = -(p.l*x19) + x11*p.l;
+  const double x22 = x11*p.l - (p.l*x19);
   const double c1_0 = x22;
   const double x23 = cos(q[1]);
   const double c1_1 = -p.l*x23;
   const double x24 = sin(q[4]);
   const double x25 = x23*x24;
   const double x26 = x25 + x16*x8;
-  const double x27 = x26*p.l + x17;
+  const double x27 = x17 + x26*p.l;
   const double c2_1 = -x27;
   const double c2_4 = -x26*p.l;
   const double x28 = sin(q[2]);
@@ -466,24 +466,24 @@ int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const doubl
   z[0] = tau[2] - 4.905*(p.l*(p.m*x33));
   const double x34 = u[0] + u[3];
   const double x35 = 0.5*(p.l*x21);
-  z[2] = tau[0] - (4.905*(p.l*(x11*p.m)) - (p.l*(x21*x1 - ((p.m*(9.81*x13 + x1*x20 - 0.5*(p.l*x34*x34)))*x12)) + x35));
+  z[2] = tau[0] - (4.905*(p.l*(x11*p.m)) - (x35 + p.l*(x21*x1 - ((p.m*(-0.5*(p.l*x34*x34) + 9.81*x13 + x1*x20))*x12))));
   z[3] = tau[3] + x35;
   const double x36 = u[1]*u[1];
   const double x37 = -(p.l*x36) + 9.81*x16;
-  const double x38 = p.m*(-(x37*x24) + 9.81*x29);
+  const double x38 = p.m*(9.81*x29 - (x37*x24));
   const double x39 = 0.5*(p.l*x38);
   z[1] = -(-tau[4] + x39);
   const double x40 = u[1] + u[4];
-  z[4] = tau[1] - (4.905*((p.m*x23)*p.l) + x39 + p.l*(x38*x8 - ((p.m*(0.5*(p.l*x40*x40) - (x37*x8 + 9.81*x25)))*x24)));
+  z[4] = tau[1] - (4.905*((p.m*x23)*p.l) + x39 + p.l*(x38*x8 - ((p.m*(0.5*(p.l*x40*x40) - (9.81*x25 + x37*x8)))*x24)));
   const double x41 = u[3]*p.l*x19;
-  z[5] = -(p.l*x23*x36 + u[0]*(x41 - (u[0]*x22)) + u[3]*(x41 + u[0]*p.l*x19));
+  z[5] = -(p.l*x23*x36 + u[3]*(x41 + u[0]*p.l*x19) + u[0]*(x41 - (u[0]*x22)));
   const double x42 = u[3]*p.l*x14;
-  z[6] = -(p.l*x36*x16 - (u[3]*(u[0]*p.l*x14 + x42)) - (u[0]*(u[0]*x15 + x42)));
+  z[6] = -(p.l*x36*x16 - (u[3]*(u[0]*p.l*x14 + x42)) - (u[0]*(x42 + u[0]*x15)));
   const double x43 = p.l*u[4]*x30;
   const double x44 = u[2]*u[2];
-  z[7] = u[1]*(x43 + u[1]*x32) + u[4]*(x43 + u[1]*p.l*x30) - (p.l*x44*x33);
+  z[7] = -(p.l*x44*x33) + u[4]*(x43 + u[1]*p.l*x30) + u[1]*(x43 + u[1]*x32);
   const double x45 = x26*p.l*u[4];
-  z[8] = -(p.l*x44*x28) + u[1]*(x45 + u[1]*x27) + (u[1]*x26*p.l + x45)*u[4];
+  z[8] = -(p.l*x44*x28) + (u[1]*x26*p.l + x45)*u[4] + u[1]*(x45 + u[1]*x27);
   // LDL^T of [M C^T; C 0], unrolled in the elimination order; sd<j> are the pivots.
   const double sd0 = m2_2;
   if (!(sd0 > 0.0)) return 3;

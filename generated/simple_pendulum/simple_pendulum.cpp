@@ -118,7 +118,7 @@ void outputs(const Params& p, [[maybe_unused]] double t, const double* q, [[mayb
 
 void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* q,
                       [[maybe_unused]] const double* u, const double* udot, double* tau) {
-  tau[0] = p.m*p.l*(p.g*sin(q[0])) + p.m*p.l*p.l*udot[0];
+  tau[0] = p.m*p.l*p.l*udot[0] + p.m*p.l*(p.g*sin(q[0]));
 }
 
 void gravity(const Params& p, const double* q, double* g) {

@@ -186,7 +186,7 @@ void forcing(const Params& p, [[maybe_unused]] double t, const double* q, const 
   f[1] = tau[1] - 0.5*x3;
   const double x4 = u[1] + u[0];
   const double x5 = cos(q[1]);
-  f[0] = -(0.5*x3 + (-(x1*(p.m2*(0.5*(x4*x4*p.L2) + x5*x0*p.L1))) + x5*x2)*p.L1);
+  f[0] = -(0.5*x3 + (x5*x2 - (x1*(p.m2*(0.5*(x4*x4*p.L2) + x5*x0*p.L1))))*p.L1);
 }
 
 int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
@@ -204,10 +204,10 @@ void coordinate_rates([[maybe_unused]] const double* q, const double* u, double*
 double kinetic_energy(const Params& p, const double* q, const double* u) {
   double T;
   const double x0 = u[1] + u[0];
-  const double x1 = u[0]*cos(q[1])*p.L1 + 0.5*(x0*p.L2);
+  const double x1 = 0.5*(x0*p.L2) + u[0]*cos(q[1])*p.L1;
   const double x2 = u[0]*sin(q[1])*p.L1;
   const double x3 = u[0]*p.L1;
-  T = 0.5*(p.m3*u[2]*u[2]) + 0.5*(p.m2*(x1*x1 + x2*x2)) + 0.125*(((-(p.m2*p.L2*p.L2) + 4.0*p.J2)*x0)*x0) + 0.125*((u[0]*(4.0*p.J1 - (p.m1*p.L1*p.L1)))*u[0]) + 0.125*(p.m1*x3*x3);
+  T = 0.5*(p.m3*u[2]*u[2]) + 0.125*(p.m1*x3*x3) + 0.125*(((4.0*p.J2 - (p.m2*p.L2*p.L2))*x0)*x0) + 0.125*((u[0]*(4.0*p.J1 - (p.m1*p.L1*p.L1)))*u[0]) + 0.5*(p.m2*(x2*x2 + x1*x1));
   return T;
 }
 
@@ -229,8 +229,8 @@ void generalized_momentum(const Params& p, const double* q, const double* u, dou
   h[2] = p.m3*u[2];
   const double x0 = (cos(q[1])*(p.m2*p.L2))*p.L1;
   const double x1 = p.J2 + 0.5*x0;
-  h[0] = u[1]*x1 + u[0]*(p.J1 + p.J2 + p.m2*p.L1*p.L1 + x0);
-  h[1] = u[0]*x1 + u[1]*p.J2;
+  h[0] = u[0]*(p.J1 + p.J2 + p.m2*p.L1*p.L1 + x0) + u[1]*x1;
+  h[1] = u[1]*p.J2 + u[0]*x1;
 }
 
 void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
@@ -249,7 +249,7 @@ void outputs(const Params& p, double t, const double* q, const double* u, double
   y[4] = x3;
   const double x4 = cos(q[1]);
   const double x5 = sin(q[1]);
-  y[6] = 0.5*((x0*x4 - (x2*x5))*p.L2) + x1;
+  y[6] = x1 + 0.5*((x0*x4 - (x2*x5))*p.L2);
   y[7] = x3 + 0.5*(p.L2*(x0*x5 + x2*x4));
   // Loop forces: lambda of the dynamics at these inputs of zero (NaN where it cannot be solved).
   double reaction_udot[NU], lambda[NC];
@@ -271,7 +271,7 @@ void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* 
   const double x6 = x0*p.J2 + 0.5*(p.m2*x5*p.L2);
   tau[1] = x6;
   const double x7 = u[1] + u[0];
-  tau[0] = x6 + (-((p.m2*(x3*x1 - (x4*x2)) + 0.5*((p.m2*x7*p.L2)*x7))*x4) + x1*(0.5*(x0*p.m2*p.L2) + p.m2*x5))*p.L1 + p.J1*udot[0];
+  tau[0] = p.J1*udot[0] + x6 + (x1*(0.5*(x0*p.m2*p.L2) + p.m2*x5) - ((0.5*((p.m2*x7*p.L2)*x7) + p.m2*(x3*x1 - (x4*x2)))*x4))*p.L1;
 }
 
 void gravity([[maybe_unused]] const Params& p, [[maybe_unused]] const double* q, double* g) {
@@ -285,8 +285,8 @@ void constraints(const Params& p, const double* q, double* phi) {
   const double x1 = cos(q[1]);
   const double x2 = sin(q[0]);
   const double x3 = sin(q[1]);
-  phi[0] = -(q[2] - ((x0*x1 - (x2*x3))*p.L2) - (x0*p.L1));
-  phi[1] = p.L2*(x0*x3 + x2*x1) + x2*p.L1;
+  phi[0] = -(q[2] - (x0*p.L1) - ((x0*x1 - (x2*x3))*p.L2));
+  phi[1] = x2*p.L1 + p.L2*(x0*x3 + x2*x1);
 }
 
 void constraint_jacobian(const Params& p, const double* q, double* C) {
@@ -298,7 +298,7 @@ void constraint_jacobian(const Params& p, const double* q, double* C) {
   const double x3 = cos(q[1]);
   const double x4 = x0*x1 + x2*x3;
   const double x5 = (x0*x3 - (x2*x1))*p.L2;
-  C[0] = -(p.L2*x4 + x2*p.L1);
+  C[0] = -(x2*p.L1 + p.L2*x4);
   C[1] = -p.L2*x4;
   C[3] = x0*p.L1 + x5;
   C[4] = x5;
@@ -312,9 +312,9 @@ void constraint_bias(const Params& p, const double* q, const double* u, double* 
   const double x4 = x0*x1 - (x2*x3);
   const double x5 = x0*x3 + x2*x1;
   const double x6 = u[1]*x4*p.L2;
-  gamma[0] = u[1]*(x6 + u[0]*x4*p.L2) + u[0]*(u[0]*(x0*p.L1 + x4*p.L2) + x6);
+  gamma[0] = u[1]*(x6 + u[0]*x4*p.L2) + u[0]*(x6 + u[0]*(x0*p.L1 + x4*p.L2));
   const double x7 = u[1]*p.L2*x5;
-  gamma[1] = u[0]*(u[0]*(p.L2*x5 + x2*p.L1) + x7) + u[1]*(x7 + u[0]*p.L2*x5);
+  gamma[1] = u[1]*(x7 + u[0]*p.L2*x5) + u[0]*(x7 + u[0]*(x2*p.L1 + p.L2*x5));
 }
 
 int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
@@ -336,14 +336,14 @@ int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const doubl
   const double x4 = x0*x1 + x2*x3;
   const double x5 = x0*x3 - (x2*x1);
   const double c0_0 = -p.L2*x4;
-  const double x6 = p.L2*x4 + x2*p.L1;
+  const double x6 = x2*p.L1 + p.L2*x4;
   const double x7 = x5*p.L2;
   const double c1_0 = x7;
   const double x8 = x0*p.L1 + x7;
   const double x9 = u[1]*x5*p.L2;
-  z[2] = ap0*x6 + u[1]*(x9 + u[0]*x5*p.L2) + u[0]*(u[0]*x8 + x9);
+  z[2] = ap0*x6 + u[1]*(x9 + u[0]*x5*p.L2) + u[0]*(x9 + u[0]*x8);
   const double x10 = u[1]*p.L2*x4;
-  z[3] = u[0]*(u[0]*x6 + x10) + u[1]*(x10 + u[0]*p.L2*x4) - (ap0*x8);
+  z[3] = u[1]*(x10 + u[0]*p.L2*x4) + u[0]*(x10 + u[0]*x6) - (ap0*x8);
   // LDL^T of [M C^T; C 0], unrolled in the elimination order; sd<j> are the pivots.
   const double sd0 = m1_1;
   if (!(sd0 > 0.0)) return 2;

@@ -270,6 +270,51 @@ class Printer {
     return s;
   }
 
+  // When a node's value is ready, in cycles of a machine that runs every
+  // operation as soon as its operands are (additions and multiplications 3,
+  // a division 13, a library call 40): the longest path of latencies to it.
+  double readiness(int id) const {
+    if (ready_.empty()) ready_.assign(graph_.size(), -1.0);
+    double& r = ready_[id];
+    if (r >= 0) return r;
+    const Node& n = node(id);
+    switch (n.op) {
+      case Op::number:
+      case Op::input:
+        r = 0;
+        break;
+      case Op::add:
+      case Op::mul: {
+        std::vector<double> operands;
+        for (int a : n.args)
+          if (node(a).op != Op::number) operands.push_back(readiness(a));
+        std::sort(operands.begin(), operands.end());
+        r = operands.empty() ? 0 : operands[0];
+        for (std::size_t k = 1; k < operands.size(); ++k) r = std::max(r, operands[k]) + 3;
+        if (n.op == Op::mul && operands.size() < n.args.size()) r += 3;  // the coefficient
+        break;
+      }
+      case Op::power: {
+        const long e = is_integer(n.value) ? std::labs(static_cast<long>(n.value)) : 1;
+        r = readiness(n.args[0]) + 3 * static_cast<double>(e - 1) + (n.value < 0 ? 13 : 0);
+        break;
+      }
+      default:
+        r = readiness(n.args[0]) + 40;
+        break;
+    }
+    return r;
+  }
+
+  // A sum's terms, the earliest ready first: C++ adds from the left, so the
+  // term ready last waits for one addition, not for the whole sum.
+  std::vector<int> by_readiness(const std::vector<int>& args) const {
+    std::vector<int> order = args;
+    std::stable_sort(order.begin(), order.end(),
+                     [this](int a, int b) { return readiness(a) < readiness(b); });
+    return order;
+  }
+
   // The <math.h> function (not <cmath>'s std::): the kernels compile freestanding.
   std::string call(const char* f, const Node& n) const {
     return scalar_.function(f) + "(" + text(n.args[0]) + ")";
@@ -285,7 +330,7 @@ class Printer {
         return n.name;
       case Op::add: {
         std::string s;
-        for (int a : n.args) {
+        for (int a : by_readiness(n.args)) {
           const Node& term = node(a);
           bool negative = false;
           std::string t;
@@ -340,6 +385,7 @@ class Printer {
   mutable std::set<int> read_temps_;
   mutable std::set<std::string> read_inputs_;
   mutable long read_operations_ = 0;
+  mutable std::vector<double> ready_;  ///< readiness() by node, -1 until computed
   PrintedKernel out_;
 };
 

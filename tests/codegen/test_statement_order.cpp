@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // The emission order of a kernel's statements (statement_order.*): a valid
 // order on random dependency graphs, fewer values live at once where the
-// printer's order keeps many, and the printer's order kept for a kernel that
-// reads what it assigns.
+// printer's order keeps many, the printer's order kept for a kernel that
+// reads what it assigns, and a sum's terms in the order they are ready.
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <numeric>
@@ -145,4 +145,31 @@ TEST_CASE("printed statements define each temporary before the statements that r
     for (int t : s.temporaries) CHECK(defined[t]);
     if (s.temporary >= 0) defined[s.temporary] = true;
   }
+}
+
+TEST_CASE("a sum adds the term that is ready last at its end", "[order]") {
+  // z[k] = a[k] + b[k] + c[k] + sin(x) y[k]: the product waits for the
+  // library call, the inputs do not. In the graph's canonical order the
+  // product would come last in about one sum of four; here in all ten.
+  Graph g;
+  ExpressionGraph& graph = g.graph;
+  const int late = graph.apply(Op::sin, graph.input("x[0]"));
+  std::vector<Assignment> assignments;
+  for (int k = 0; k < 10; ++k) {
+    const std::string i = "[" + std::to_string(k) + "]";
+    assignments.push_back(
+        {"z" + i, graph.sum({graph.input("a" + i), graph.input("b" + i), graph.input("c" + i),
+                             graph.product({late, graph.input("y" + i)})})});
+  }
+  const PrintedKernel kernel = print_kernel(graph, assignments, ScalarType());
+  int sums = 0;
+  for (const Statement& s : kernel.statements) {
+    if (s.temporary >= 0) continue;
+    INFO(s.target << " = " << s.expression);
+    const std::size_t last_term = s.expression.find_last_of("+-");
+    REQUIRE(last_term != std::string::npos);
+    CHECK(s.expression.find("y[", last_term) != std::string::npos);
+    ++sums;
+  }
+  CHECK(sums == 10);
 }

@@ -151,10 +151,14 @@ TEST_CASE("genalpha: the N four-bar passes its singular positions on the paralle
   // physical motion is the parallelogram's, 3 theta'' = -34.335 cos(theta)
   // (the model's description), from theta = pi/2 at -1 rad/s. At h = 0.5 ms
   // the steps never land on a singular position exactly, and the index-3
-  // Newton iteration follows the branch: measured crank errors after 10 s
-  // 7.9e-6, 2.7e-6, 3.7e-7 at h = 2, 1, 0.5 ms (second order), energy
-  // 2e-8 off its start at 10 s. Observed behaviour, not a guarantee: a step landing on the
-  // singular position itself has a singular iteration matrix.
+  // Newton iteration follows the branch. The crank's error after 10 s is
+  // second order down to h = 2 ms (8.5e-6), below that each passage adds
+  // phase that depends on where the steps land, so the kernels' rounding
+  // moves it: at h = 1, 0.5 and 0.25 ms -1.8e-6, -1.7e-7 and 2.0e-7 with the
+  // kernels of 2026-12-02, -2.0e-6, 3.4e-6 and -3.2e-6 with sums ordered by
+  // readiness (docs/closed-loops.md). Energy 2e-8 off its start at 10 s.
+  // Observed behaviour, not a guarantee: a step landing on the singular
+  // position itself has a singular iteration matrix.
   Model model = make_model<kanegen_models::nfourbar2::System>();
   const int n = model.info().nu;
   std::vector<double> q(n), u(n), tau(static_cast<size_t>(model.info().ntau), 0.0);
@@ -193,7 +197,7 @@ TEST_CASE("genalpha: the N four-bar passes its singular positions on the paralle
   INFO("crank0 " << ga.q()[0] << " rad at t = " << ga.t() << ", parallelogram " << reference[0]
                  << "; max |Phi| " << worst_phi << ", energy drift " << worst_drift);
   CHECK(ga.t() == Approx(10.0));
-  CHECK(std::abs(ga.q()[0] - reference[0]) < 1e-6);  // B0 = (cos, sin) of it: within 1e-6 too
+  CHECK(std::abs(ga.q()[0] - reference[0]) < 1e-5);  // B0 = (cos, sin) of it: within 1e-5 too
   CHECK(std::abs(ga.q()[1] - ga.q()[0]) < 1e-9);     // the cranks stay parallel
   CHECK(std::abs(ga.q()[2] - ga.q()[0]) < 1e-9);
   CHECK(worst_phi < 1e-10);
