@@ -155,8 +155,8 @@ TEST_CASE("genalpha: the N four-bar passes its singular positions on the paralle
   // second order down to h = 2 ms (8.5e-6), below that each passage adds
   // phase that depends on where the steps land, so the kernels' rounding
   // moves it: at h = 1, 0.5 and 0.25 ms -1.8e-6, -1.7e-7 and 2.0e-7 with the
-  // kernels of 2026-12-02, -2.0e-6, 3.4e-6 and -3.2e-6 with sums ordered by
-  // readiness (docs/closed-loops.md). Energy 2e-8 off its start at 10 s.
+  // kernels of 5bbed2d, -2.0e-6, 3.4e-6 and -3.2e-6 with bc2b592's (sums
+  // ordered by readiness; docs/closed-loops.md). Energy 2e-8 off its start.
   // Observed behaviour, not a guarantee: a step landing on the singular
   // position itself has a singular iteration matrix.
   Model model = make_model<kanegen_models::nfourbar2::System>();
