@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <map>
+#include <regex>
 #include <set>
 #include <vector>
 
@@ -93,6 +94,47 @@ struct Part {
   std::vector<std::string> arguments;  ///< the names it is called with
 };
 
+/// The order of part `p`'s statements: its library calls (sin, cos) that
+/// read only earlier parts' values or the arguments, each after the one
+/// statement of inputs that gives its argument (q[k] + c), first; then the
+/// rest in the printed order. A call may overwrite every floating-point
+/// register (the caller saves them), so it is made where few values are
+/// live: chain20's forward_dynamics, 15329 -> 15072 instructions.
+std::vector<std::size_t> calls_first(const PrintedKernel& printed, const Layout& layout, int p) {
+  static const std::regex call(R"(^(sin|cos|sinf|cosf)\([^()]*\)$)");
+  const std::size_t begin = layout.first[p], end = layout.first[p + 1];
+  std::map<int, std::size_t> local;  // temporary -> its statement in this part
+  for (std::size_t i = begin; i < end; ++i)
+    if (printed.statements[i].temporary >= 0) local[printed.statements[i].temporary] = i;
+  const auto reads_local = [&](std::size_t i) {
+    for (int k : printed.statements[i].temporaries)
+      if (local.count(k)) return true;
+    return false;
+  };
+  std::vector<bool> taken(end - begin, false);
+  std::vector<std::size_t> order;
+  for (std::size_t i = begin; i < end; ++i) {
+    const Statement& s = printed.statements[i];
+    if (!std::regex_match(s.expression, call)) continue;
+    std::vector<std::size_t> arguments;
+    bool movable = true;
+    for (int k : s.temporaries) {
+      const auto at = local.find(k);
+      if (at == local.end()) continue;
+      if (reads_local(at->second)) movable = false;
+      arguments.push_back(at->second);
+    }
+    if (!movable) continue;
+    for (std::size_t a : arguments)
+      if (!taken[a - begin]) taken[a - begin] = true, order.push_back(a);
+    taken[i - begin] = true;
+    order.push_back(i);
+  }
+  for (std::size_t i = begin; i < end; ++i)
+    if (!taken[i - begin]) order.push_back(i);
+  return order;
+}
+
 /// The function of part `p`: its parameters are the kernel's arguments that
 /// it reads or writes, in the kernel's order, and the workspace if it uses it.
 Part part_function(const PrintedKernel& printed, const Layout& layout, int p,
@@ -103,7 +145,7 @@ Part part_function(const PrintedKernel& printed, const Layout& layout, int p,
   std::set<int> imports;  // temporaries of earlier parts that it reads
   std::string body;
   bool workspace = false;
-  for (std::size_t i = layout.first[p]; i < layout.first[p + 1]; ++i) {
+  for (const std::size_t i : calls_first(printed, layout, p)) {
     const Statement& s = printed.statements[i];
     for (const std::string& input : s.inputs) names.insert(root(input));
     // A value of an earlier part is loaded where it is first read, not at
