@@ -388,8 +388,8 @@ void mass_matrix(const Params& p, const double* q, double* M) {
   M[40] = x8;
   const double x9 = ((p.m6*x7)*sin(q[5]))*p.uu;
   const double x10 = -x8;
-  M[48] = -(-p.i7 - (p.m6*p.uu*p.uu) - (p.m7*(p.ub*p.ub + p.ua*p.ua)) + x10 + 2.0*x9);
-  const double x11 = -(x10 + x9);
+  M[48] = p.i7 + (p.m6*p.uu*p.uu) + (p.m7*(p.ub*p.ub + p.ua*p.ua)) - x10 - 2.0*x9;
+  const double x11 = -x10 - x9;
   M[41] = x11;
   M[47] = x11;
 }
@@ -422,16 +422,16 @@ void forcing(const Params& p, [[maybe_unused]] double t, const double* q, const 
   f[3] = tau[3] + x19;
   const double x20 = sin(q[3]);
   const double x21 = u[3] + u[4];
-  f[4] = -(-tau[4] + p.tb*(p.m5*(p.ta*x16)) - (p.ta*(p.m5*(p.tb*x16))) - (x19 - (p.zt*(-(x20*x18) + x17*(p.m4*(x15*x21*x21 + p.zt*x16*x20))))));
+  f[4] = tau[4] - p.tb*(p.m5*(p.ta*x16)) + (p.ta*(p.m5*(p.tb*x16))) + (x19 - (p.zt*(-(x20*x18) + x17*(p.m4*(x15*x21*x21 + p.zt*x16*x20)))));
   const double x22 = p.zf - p.fa;
   const double x23 = cos(q[5]);
   const double x24 = u[6]*u[6];
   const double x25 = p.m6*(x23*p.uu*x24);
   const double x26 = x22*x25;
-  f[5] = -(-tau[5] + x26);
+  f[5] = tau[5] - x26;
   const double x27 = sin(q[5]);
   const double x28 = u[5] + u[6];
-  f[6] = -(-tau[6] + -(p.ua*((p.ub*x24)*p.m7) - (p.ub*(p.m7*(p.ua*x24)))) + x26 + p.uu*(-(x25*x27) + x23*((-(x28*x28*x22) + p.uu*x24*x27)*p.m6)));
+  f[6] = tau[6] + (p.ua*((p.ub*x24)*p.m7) - (p.ub*(p.m7*(p.ua*x24)))) - x26 - p.uu*(-(x25*x27) + x23*((-(x28*x28*x22) + p.uu*x24*x27)*p.m6));
 }
 
 int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
@@ -509,8 +509,8 @@ void generalized_momentum(const Params& p, const double* q, const double* u, dou
   const double x9 = p.i6 + p.m6*x7*x7;
   const double x10 = -x9;
   const double x11 = x10 + x8;
-  h[6] = -(u[5]*x11 + u[6]*(-p.i7 - (p.m6*p.uu*p.uu) - (p.m7*(p.ub*p.ub + p.ua*p.ua)) + x10 + 2.0*x8));
-  h[5] = -(-(u[5]*x9) + u[6]*x11);
+  h[6] = -u[5]*x11 - u[6]*(-p.i7 - (p.m6*p.uu*p.uu) - (p.m7*(p.ub*p.ub + p.ua*p.ua)) + x10 + 2.0*x8);
+  h[5] = (u[5]*x9) - u[6]*x11;
 }
 
 void outputs(const Params& p, double t, const double* q, const double* u, double* y) {
@@ -536,7 +536,7 @@ void outputs(const Params& p, double t, const double* q, const double* u, double
   const double x2 = sin(q[0]);
   const double x3 = sin(q[1]);
   const double x4 = x0*p.rr;
-  y[0] = -(-x4 + p.d*(x0*x1 - (x2*x3)));
+  y[0] = x4 - p.d*(x0*x1 - (x2*x3));
   y[3] = x4;
   const double x5 = x2*p.rr;
   y[1] = x5 - (p.d*(x0*x3 + x2*x1));
@@ -568,7 +568,7 @@ void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* 
   const double x6 = -(x0*(p.i2 + p.m2*p.da*p.da)) + p.m2*x5*p.da;
   tau[1] = -x6;
   const double x7 = u[1] + u[0];
-  tau[0] = -(p.mom - (udot[0]*(p.i1 + p.ra*p.ra*p.m1) - (x6 - ((((p.m2*x7*p.da)*x7 + p.m2*(x4*x2 - (x3*x1)))*x4 - (x1*(x0*p.m2*p.da - (p.m2*x5))))*p.rr))));
+  tau[0] = -p.mom + (udot[0]*(p.i1 + p.ra*p.ra*p.m1) - (x6 - ((((p.m2*x7*p.da)*x7 + p.m2*(x4*x2 - (x3*x1)))*x4 - (x1*(x0*p.m2*p.da - (p.m2*x5))))*p.rr)));
   const double x8 = cos(q[2]);
   const double x9 = sin(q[2]);
   const double x10 = p.yc - (p.yb + x9*p.sd - (p.sc*x8));
@@ -596,7 +596,7 @@ void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* 
   const double x29 = cos(q[5]);
   const double x30 = u[6]*(p.uu*u[6]);
   const double x31 = x27*x28 - (x29*x30);
-  const double x32 = -(-(x25*(p.i6 + p.m6*x26*x26)) + p.m6*x26*x31);
+  const double x32 = (x25*(p.i6 + p.m6*x26*x26)) - p.m6*x26*x31;
   tau[5] = x32;
   const double x33 = u[5] + u[6];
   tau[6] = udot[6]*(p.i7 + p.m7*(p.ub*p.ub + p.ua*p.ua)) + x32 + p.uu*((-(p.m6*x25*x26) + p.m6*x31)*x28 - (x29*(x33*(p.m6*x26*x33) - (p.m6*(x29*x27 + x28*x30)))));
@@ -620,7 +620,7 @@ void constraints(const Params& p, const double* q, double* phi) {
   const double x4 = p.d*(x0*x1 - (x2*x3));
   const double x5 = p.d*(x0*x3 + x2*x1);
   const double x6 = -(x0*p.rr);
-  phi[0] = -(p.xb + sin(q[2])*p.ss + x6 + x4);
+  phi[0] = -p.xb - sin(q[2])*p.ss - x6 - x4;
   const double x7 = x2*p.rr;
   phi[1] = -p.yb + p.ss*cos(q[2]) + x7 - x5;
   const double x8 = -x7;
@@ -628,14 +628,14 @@ void constraints(const Params& p, const double* q, double* phi) {
   const double x10 = sin(q[4]);
   const double x11 = sin(q[3]);
   const double x12 = cos(q[4]);
-  phi[2] = -(p.xa + p.zt*x12 + x6 + p.e*(x9*x10 + x11*x12) + x4);
-  phi[3] = -(p.ya + p.zt*x10 + x8 + x5 - (p.e*(x9*x12 - (x11*x10))));
+  phi[2] = -p.xa - p.zt*x12 - x6 - p.e*(x9*x10 + x11*x12) - x4;
+  phi[3] = -p.ya - p.zt*x10 - x8 - x5 + (p.e*(x9*x12 - (x11*x10)));
   const double x13 = sin(q[6]);
   const double x14 = cos(q[5]);
   const double x15 = cos(q[6]);
   const double x16 = sin(q[5]);
-  phi[4] = -(p.xa + x13*p.uu + x6 + x4 - (p.zf*(x13*x16 - (x14*x15))));
-  phi[5] = -(p.ya + x8 - (p.uu*x15) + x5 + p.zf*(x15*x16 + x14*x13));
+  phi[4] = -p.xa - x13*p.uu - x6 - x4 + (p.zf*(x13*x16 - (x14*x15)));
+  phi[5] = -p.ya - x8 + (p.uu*x15) - x5 - p.zf*(x15*x16 + x14*x13);
 }
 
 void constraint_jacobian(const Params& p, const double* q, double* C) {
@@ -667,10 +667,10 @@ void constraint_jacobian(const Params& p, const double* q, double* C) {
   const double x3 = cos(q[1]);
   const double x4 = p.d*(x1*x2 + x0*x3);
   const double x5 = x1*x3 - (x0*x2);
-  const double x6 = -(x0*p.rr - x4);
+  const double x6 = -x0*p.rr + x4;
   C[0] = x6;
   C[1] = x4;
-  const double x7 = -(-(x1*p.rr) + p.d*x5);
+  const double x7 = (x1*p.rr) - p.d*x5;
   C[7] = x7;
   const double x8 = -p.d*x5;
   C[8] = x8;
@@ -688,9 +688,9 @@ void constraint_jacobian(const Params& p, const double* q, double* C) {
   const double x12 = cos(q[4]);
   const double x13 = x11*x12 - (x9*x10);
   const double x14 = x11*x10 + x9*x12;
-  C[18] = -(-(p.zt*x10) + p.e*x13);
+  C[18] = (p.zt*x10) - p.e*x13;
   C[17] = -p.e*x13;
-  C[25] = -(p.zt*x12 + p.e*x14);
+  C[25] = -p.zt*x12 - p.e*x14;
   C[24] = -p.e*x14;
   const double x15 = cos(q[6]);
   const double x16 = sin(q[5]);
@@ -698,9 +698,9 @@ void constraint_jacobian(const Params& p, const double* q, double* C) {
   const double x18 = sin(q[6]);
   const double x19 = p.zf*(x15*x16 + x17*x18);
   const double x20 = p.zf*(x18*x16 - (x17*x15));
-  C[34] = -(p.uu*x15 - x19);
+  C[34] = -p.uu*x15 + x19;
   C[33] = x19;
-  C[41] = -(x18*p.uu - x20);
+  C[41] = -x18*p.uu + x20;
   C[40] = x20;
 }
 
@@ -715,11 +715,11 @@ void constraint_bias(const Params& p, const double* q, const double* u, double* 
   const double x7 = u[1]*p.d*x5;
   const double x8 = u[0]*(x7 + u[0]*(-(x1*p.rr) + p.d*x5));
   const double x9 = u[1]*(u[0]*p.d*x5 + x7);
-  gamma[0] = -(x0*sin(q[2])*p.ss + x9 + x8);
+  gamma[0] = -x0*sin(q[2])*p.ss - x9 - x8;
   const double x10 = u[1]*p.d*x6;
   const double x11 = u[0]*(x10 - ((x3*p.rr - (p.d*x6))*u[0]));
   const double x12 = u[1]*(u[0]*p.d*x6 + x10);
-  gamma[1] = -(-(x0*p.ss*cos(q[2])) + x12 + x11);
+  gamma[1] = (x0*p.ss*cos(q[2])) - x12 - x11;
   const double x13 = -x11;
   const double x14 = -x12;
   const double x15 = cos(q[3]);
@@ -729,7 +729,7 @@ void constraint_bias(const Params& p, const double* q, const double* u, double* 
   const double x19 = x15*x16 + x17*x18;
   const double x20 = x15*x18 - (x17*x16);
   const double x21 = u[3]*p.e*x19;
-  gamma[2] = -(u[3]*(p.e*u[4]*x19 + x21) + x9 + (x21 + u[4]*(p.zt*x18 + p.e*x19))*u[4] + x8);
+  gamma[2] = -u[3]*(p.e*u[4]*x19 + x21) - x9 - (x21 + u[4]*(p.zt*x18 + p.e*x19))*u[4] - x8;
   const double x22 = u[3]*p.e*x20;
   gamma[3] = (x22 + p.e*x20*u[4])*u[3] + x14 + u[4]*(x22 + u[4]*(-(p.zt*x16) + p.e*x20)) + x13;
   const double x23 = cos(q[5]);
@@ -739,7 +739,7 @@ void constraint_bias(const Params& p, const double* q, const double* u, double* 
   const double x27 = x25*x26 - (x23*x24);
   const double x28 = x24*x26 + x23*x25;
   const double x29 = p.zf*u[5]*x27;
-  gamma[4] = -(x9 - (u[5]*(x29 + p.zf*u[6]*x27)) + x8 - (u[6]*(x29 - ((x25*p.uu - (p.zf*x27))*u[6]))));
+  gamma[4] = -x9 + (u[5]*(x29 + p.zf*u[6]*x27)) - x8 + (u[6]*(x29 - ((x25*p.uu - (p.zf*x27))*u[6])));
   const double x30 = p.zf*u[5]*x28;
   gamma[5] = -((x30 + p.zf*u[6]*x28)*u[5]) + x14 + (-x30 + (p.uu*x24 - (p.zf*x28))*u[6])*u[6] + x13;
 }
@@ -767,8 +767,8 @@ int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const doubl
   const double x9 = -x8;
   const double x10 = sin(q[5]);
   const double x11 = ((p.m6*x7)*x10)*p.uu;
-  const double m6_5 = -(x9 + x11);
-  const double m6_6 = -(-p.i7 - (p.m6*p.uu*p.uu) - (p.m7*(p.ub*p.ub + p.ua*p.ua)) + x9 + 2.0*x11);
+  const double m6_5 = -x9 - x11;
+  const double m6_6 = p.i7 + (p.m6*p.uu*p.uu) + (p.m7*(p.ub*p.ub + p.ua*p.ua)) - x9 - 2.0*x11;
   const double x12 = sin(q[0]);
   const double x13 = cos(q[0]);
   const double x14 = sin(q[1]);
@@ -839,29 +839,29 @@ int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const doubl
   const double x54 = x3*x53;
   z[1] = tau[3] + x54;
   const double x55 = u[3] + u[4];
-  z[2] = -(-tau[4] + p.tb*(p.m5*(p.ta*x52)) - (p.ta*(p.m5*(p.tb*x52))) - (x54 - (p.zt*(-(x5*x53) + x26*(p.m4*(x3*x55*x55 + p.zt*x52*x5))))));
+  z[2] = tau[4] - p.tb*(p.m5*(p.ta*x52)) + (p.ta*(p.m5*(p.tb*x52))) + (x54 - (p.zt*(-(x5*x53) + x26*(p.m4*(x3*x55*x55 + p.zt*x52*x5)))));
   const double x56 = u[6]*u[6];
   const double x57 = p.m6*(x33*p.uu*x56);
   const double x58 = x7*x57;
-  z[3] = -(-tau[5] + x58);
+  z[3] = tau[5] - x58;
   const double x59 = u[5] + u[6];
-  z[4] = -(-tau[6] + -(p.ua*((p.ub*x56)*p.m7) - (p.ub*(p.m7*(p.ua*x56)))) + x58 + p.uu*(-(x57*x10) + x33*((-(x59*x59*x7) + p.uu*x56*x10)*p.m6)));
+  z[4] = tau[6] + (p.ua*((p.ub*x56)*p.m7) - (p.ub*(p.m7*(p.ua*x56)))) - x58 - p.uu*(-(x57*x10) + x33*((-(x59*x59*x7) + p.uu*x56*x10)*p.m6));
   const double x60 = u[1]*p.d*x18;
   const double x61 = u[0]*(x60 + u[0]*x19);
   const double x62 = u[1]*(u[0]*p.d*x18 + x60);
-  z[7] = -(x51*x24*p.ss + x62 + x61);
+  z[7] = -x51*x24*p.ss - x62 - x61;
   const double x63 = u[1]*p.d*x15;
   const double x64 = u[0]*(x63 - (x17*u[0]));
   const double x65 = u[1]*(u[0]*p.d*x15 + x63);
-  z[8] = -(-(x51*p.ss*x21) + x65 + x64);
+  z[8] = (x51*p.ss*x21) - x65 - x64;
   const double x66 = -x64;
   const double x67 = -x65;
   const double x68 = u[3]*p.e*x30;
-  z[9] = -(u[3]*(p.e*u[4]*x30 + x68) + x62 + (x68 + u[4]*x31)*u[4] + x61);
+  z[9] = -u[3]*(p.e*u[4]*x30 + x68) - x62 - (x68 + u[4]*x31)*u[4] - x61;
   const double x69 = u[3]*p.e*x28;
   z[10] = (x69 + p.e*x28*u[4])*u[3] + x67 + u[4]*(x69 + u[4]*x29) + x66;
   const double x70 = p.zf*u[5]*x38;
-  z[11] = -(x62 - (u[5]*(x70 + p.zf*u[6]*x38)) + x61 - (u[6]*(x70 - (x40*u[6]))));
+  z[11] = -x62 + (u[5]*(x70 + p.zf*u[6]*x38)) - x61 + (u[6]*(x70 - (x40*u[6])));
   const double x71 = p.zf*u[5]*x35;
   z[12] = -((x71 + p.zf*u[6]*x35)*u[5]) + x67 + (-x71 + x37*u[6])*u[6] + x66;
   // LDL^T of [M C^T; C 0], unrolled in the elimination order; sd<j> are the pivots.

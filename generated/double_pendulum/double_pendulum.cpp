@@ -151,14 +151,14 @@ double potential_energy(const Params& p, const double* q) {
   double V;
   const double x0 = sin(q[0]);
   const double x1 = p.l1*x0;
-  V = -(4.905*(p.m1*x1) + 9.81*(p.m2*(x1 + 0.5*(p.l2*(cos(q[0])*sin(q[1]) + x0*cos(q[1]))))));
+  V = -4.905*(p.m1*x1) - 9.81*(p.m2*(x1 + 0.5*(p.l2*(cos(q[0])*sin(q[1]) + x0*cos(q[1])))));
   return V;
 }
 
 double nonconservative_power(const Params& p, [[maybe_unused]] double t, [[maybe_unused]] const double* q,
                              const double* u, const double* tau) {
   double P;
-  P = -(u[0]*(u[0]*p.c1 - tau[0]) - (u[1]*(tau[1] - (u[1]*p.c2))));
+  P = -u[0]*(u[0]*p.c1 - tau[0]) + (u[1]*(tau[1] - (u[1]*p.c2)));
   return P;
 }
 
@@ -183,7 +183,7 @@ void outputs(const Params& p, [[maybe_unused]] double t, const double* q, [[mayb
   const double x2 = sin(q[0]);
   const double x3 = sin(q[1]);
   y[0] = x0*p.l1 + p.l2*(x0*x1 - (x2*x3));
-  y[2] = -(p.l1*x2 + p.l2*(x0*x3 + x2*x1));
+  y[2] = -p.l1*x2 - p.l2*(x0*x3 + x2*x1);
 }
 
 void inverse_dynamics(const Params& p, [[maybe_unused]] double t, const double* q, const double* u,
@@ -208,7 +208,7 @@ void gravity(const Params& p, const double* q, double* g) {
   const double x3 = sin(q[1]);
   const double x4 = 9.81*(x0*x1) - 9.81*(x2*x3);
   const double x5 = p.m2*p.l2*x4;
-  g[0] = -(4.905*(p.m1*x0*p.l1) + 0.5*x5 + p.l1*((p.m2*x4)*x1 + x3*(p.m2*(9.81*(x0*x3) + 9.81*(x2*x1)))));
+  g[0] = -4.905*(p.m1*x0*p.l1) - 0.5*x5 - p.l1*((p.m2*x4)*x1 + x3*(p.m2*(9.81*(x0*x3) + 9.81*(x2*x1))));
   g[1] = -0.5*x5;
 }
 

@@ -298,8 +298,8 @@ void constraints(const Params& p, const double* q, double* phi) {
   const double x1 = cos(q[1]);
   const double x2 = sin(q[0]);
   const double x3 = sin(q[1]);
-  phi[0] = -(p.d + p.c*cos(q[2]) - (x0*p.a) - (p.b*(x0*x1 - (x2*x3))));
-  phi[1] = -(p.c*sin(q[2]) - (p.a*x2) - (p.b*(x0*x3 + x2*x1)));
+  phi[0] = -p.d - p.c*cos(q[2]) + (x0*p.a) + (p.b*(x0*x1 - (x2*x3)));
+  phi[1] = -p.c*sin(q[2]) + (p.a*x2) + (p.b*(x0*x3 + x2*x1));
 }
 
 void constraint_jacobian(const Params& p, const double* q, double* C) {
@@ -311,7 +311,7 @@ void constraint_jacobian(const Params& p, const double* q, double* C) {
   const double x3 = cos(q[1]);
   const double x4 = x0*x1 + x2*x3;
   const double x5 = p.b*(x0*x3 - (x2*x1));
-  C[0] = -(p.a*x2 + p.b*x4);
+  C[0] = -p.a*x2 - p.b*x4;
   C[1] = -p.b*x4;
   C[3] = x0*p.a + x5;
   C[4] = x5;
@@ -326,7 +326,7 @@ void constraint_bias(const Params& p, const double* q, const double* u, double* 
   const double x5 = x1*x2 - (x3*x4);
   const double x6 = x1*x4 + x3*x2;
   const double x7 = u[1]*p.b*x5;
-  gamma[0] = -(p.c*x0*cos(q[2]) - (u[1]*(x7 + u[0]*p.b*x5)) - (u[0]*(x7 + u[0]*(x1*p.a + p.b*x5))));
+  gamma[0] = -p.c*x0*cos(q[2]) + (u[1]*(x7 + u[0]*p.b*x5)) + (u[0]*(x7 + u[0]*(x1*p.a + p.b*x5)));
   const double x8 = u[1]*p.b*x6;
   gamma[1] = -(p.c*x0*sin(q[2])) + u[1]*(x8 + u[0]*p.b*x6) + u[0]*(x8 + u[0]*(p.a*x3 + p.b*x6));
 }
@@ -370,7 +370,7 @@ int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const doubl
   z[1] = tau[0] - (4.905*((x5*p.m_a)*p.a) + 0.5*x19 + p.a*(x15*x3 + (p.m_b*(-0.5*(p.b*x20*x20) + 9.81*x7 - (x3*x14)))*x6));
   const double x21 = u[2]*u[2];
   const double x22 = u[1]*p.b*x13;
-  z[3] = -(p.c*x21*x18 - (u[1]*(x22 + u[0]*p.b*x13)) - (u[0]*(x22 + u[0]*x17)));
+  z[3] = -p.c*x21*x18 + (u[1]*(x22 + u[0]*p.b*x13)) + (u[0]*(x22 + u[0]*x17));
   const double x23 = u[1]*p.b*x9;
   z[4] = -(p.c*x21*x11) + u[1]*(x23 + u[0]*p.b*x9) + u[0]*(x23 + u[0]*x10);
   // LDL^T of [M C^T; C 0], unrolled in the elimination order; sd<j> are the pivots.

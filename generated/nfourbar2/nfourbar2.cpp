@@ -186,7 +186,7 @@ void forcing(const Params& p, [[maybe_unused]] double t, const double* q, const 
   const double x10 = cos(q[4]);
   const double x11 = p.m*(9.81*(x7*x10) - (x8*x9));
   const double x12 = 0.5*(p.l*x11);
-  f[4] = -(-tau[4] + x12);
+  f[4] = tau[4] - x12;
   const double x13 = u[1] + u[4];
   f[1] = tau[1] - (4.905*((p.m*x7)*p.l) + x12 + p.l*(x11*x10 - ((p.m*(0.5*(p.l*x13*x13) - (9.81*(x7*x9) + x8*x10)))*x9)));
 }
@@ -336,13 +336,13 @@ void constraints(const Params& p, const double* q, double* phi) {
   const double x3 = sin(q[0]);
   const double x4 = sin(q[3]);
   const double x5 = cos(q[3]);
-  phi[0] = -(p.l + x1 - (x2*p.l) + p.l*(x3*x4 - (x2*x5)));
+  phi[0] = -p.l - x1 + (x2*p.l) - p.l*(x3*x4 - (x2*x5));
   const double x6 = sin(q[1]);
   const double x7 = p.l*x6;
   phi[1] = p.l*x3 - x7 + p.l*(x2*x4 + x3*x5);
   const double x8 = cos(q[4]);
   const double x9 = sin(q[4]);
-  phi[2] = -(p.l + p.l*cos(q[2]) - x1 - (p.l*(x0*x8 - (x6*x9))));
+  phi[2] = -p.l - p.l*cos(q[2]) + x1 + (p.l*(x0*x8 - (x6*x9)));
   phi[3] = x7 - (p.l*sin(q[2])) + (x0*x9 + x6*x8)*p.l;
 }
 
@@ -363,7 +363,7 @@ void constraint_jacobian(const Params& p, const double* q, double* C) {
   const double x3 = cos(q[3]);
   const double x4 = x1*x2 + x0*x3;
   const double x5 = x0*x2 - (x1*x3);
-  C[0] = -(p.l*x0 + p.l*x4);
+  C[0] = -p.l*x0 - p.l*x4;
   C[3] = -p.l*x4;
   C[5] = x1*p.l - (p.l*x5);
   C[8] = -p.l*x5;
@@ -376,7 +376,7 @@ void constraint_jacobian(const Params& p, const double* q, double* C) {
   const double x10 = cos(q[4]);
   const double x11 = x8*x9 + x6*x10;
   const double x12 = p.l*(x8*x10 - (x6*x9));
-  C[11] = -(x7 + x11*p.l);
+  C[11] = -x7 - x11*p.l;
   C[14] = -x11*p.l;
   C[16] = p.l*x8 + x12;
   C[19] = x12;
@@ -392,10 +392,10 @@ void constraint_bias(const Params& p, const double* q, const double* u, double* 
   const double x6 = x2*x3 - (x4*x5);
   const double x7 = x4*x3 + x2*x5;
   const double x8 = u[3]*p.l*x6;
-  gamma[0] = -(p.l*x0*x1 + u[3]*(x8 + u[0]*p.l*x6) + u[0]*(x8 - (u[0]*(x4*p.l - (p.l*x6)))));
+  gamma[0] = -p.l*x0*x1 - u[3]*(x8 + u[0]*p.l*x6) - u[0]*(x8 - (u[0]*(x4*p.l - (p.l*x6))));
   const double x9 = sin(q[1]);
   const double x10 = u[3]*p.l*x7;
-  gamma[1] = -(p.l*x1*x9 - (u[3]*(u[0]*p.l*x7 + x10)) - (u[0]*(x10 + u[0]*(p.l*x2 + p.l*x7))));
+  gamma[1] = -p.l*x1*x9 + (u[3]*(u[0]*p.l*x7 + x10)) + (u[0]*(x10 + u[0]*(p.l*x2 + p.l*x7)));
   const double x11 = cos(q[4]);
   const double x12 = sin(q[4]);
   const double x13 = x0*x11 - (x9*x12);
@@ -472,13 +472,13 @@ int constrained_dynamics(const Params& p, [[maybe_unused]] double t, const doubl
   const double x37 = -(p.l*x36) + 9.81*x16;
   const double x38 = p.m*(9.81*x29 - (x37*x24));
   const double x39 = 0.5*(p.l*x38);
-  z[1] = -(-tau[4] + x39);
+  z[1] = tau[4] - x39;
   const double x40 = u[1] + u[4];
   z[4] = tau[1] - (4.905*((p.m*x23)*p.l) + x39 + p.l*(x38*x8 - ((p.m*(0.5*(p.l*x40*x40) - (9.81*x25 + x37*x8)))*x24)));
   const double x41 = u[3]*p.l*x19;
-  z[5] = -(p.l*x23*x36 + u[3]*(x41 + u[0]*p.l*x19) + u[0]*(x41 - (u[0]*x22)));
+  z[5] = -p.l*x23*x36 - u[3]*(x41 + u[0]*p.l*x19) - u[0]*(x41 - (u[0]*x22));
   const double x42 = u[3]*p.l*x14;
-  z[6] = -(p.l*x36*x16 - (u[3]*(u[0]*p.l*x14 + x42)) - (u[0]*(x42 + u[0]*x15)));
+  z[6] = -p.l*x36*x16 + (u[3]*(u[0]*p.l*x14 + x42)) + (u[0]*(x42 + u[0]*x15));
   const double x43 = p.l*u[4]*x30;
   const double x44 = u[2]*u[2];
   z[7] = -(p.l*x44*x33) + u[4]*(x43 + u[1]*p.l*x30) + u[1]*(x43 + u[1]*x32);

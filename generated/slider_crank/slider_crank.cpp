@@ -186,7 +186,7 @@ void forcing(const Params& p, [[maybe_unused]] double t, const double* q, const 
   f[1] = tau[1] - 0.5*x3;
   const double x4 = u[1] + u[0];
   const double x5 = cos(q[1]);
-  f[0] = -(0.5*x3 + (x5*x2 - (x1*(p.m2*(0.5*(x4*x4*p.L2) + x5*x0*p.L1))))*p.L1);
+  f[0] = -0.5*x3 - (x5*x2 - (x1*(p.m2*(0.5*(x4*x4*p.L2) + x5*x0*p.L1))))*p.L1;
 }
 
 int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
@@ -285,7 +285,7 @@ void constraints(const Params& p, const double* q, double* phi) {
   const double x1 = cos(q[1]);
   const double x2 = sin(q[0]);
   const double x3 = sin(q[1]);
-  phi[0] = -(q[2] - (x0*p.L1) - ((x0*x1 - (x2*x3))*p.L2));
+  phi[0] = -q[2] + (x0*p.L1) + ((x0*x1 - (x2*x3))*p.L2);
   phi[1] = x2*p.L1 + p.L2*(x0*x3 + x2*x1);
 }
 
@@ -298,7 +298,7 @@ void constraint_jacobian(const Params& p, const double* q, double* C) {
   const double x3 = cos(q[1]);
   const double x4 = x0*x1 + x2*x3;
   const double x5 = (x0*x3 - (x2*x1))*p.L2;
-  C[0] = -(x2*p.L1 + p.L2*x4);
+  C[0] = -x2*p.L1 - p.L2*x4;
   C[1] = -p.L2*x4;
   C[3] = x0*p.L1 + x5;
   C[4] = x5;

@@ -315,6 +315,55 @@ class Printer {
     return order;
   }
 
+  // A sum's text, its terms the earliest ready first; `negated`: of minus the
+  // sum, each term's sign flipped (the same value: negating is exact).
+  std::string sum(const Node& n, bool negated) const {
+    std::string s;
+    for (int a : by_readiness(n.args)) {
+      const Node& term = node(a);
+      bool negative = false;
+      std::string t;
+      if (term.op == Op::mul && !has_temp(a)) {
+        read_operations_ += cost(term);
+        t = product(term, negative);
+      } else if (term.op == Op::number) {
+        negative = term.value < 0;
+        t = scalar_.literal(std::abs(term.value));
+      } else if (term.op == Op::add && !has_temp(a)) {
+        // A sum in the sum is spliced in as it is (its terms continue the
+        // outer sum's order of additions), its signs flipped with the outer's.
+        read_operations_ += cost(term);
+        t = sum(term, negated);
+        if (s.empty())
+          s = t;
+        else
+          s += t[0] == '-' ? " - " + t.substr(1) : " + " + t;  // a + -b is a - b
+        continue;
+      } else {
+        t = text(a);
+      }
+      negative = negative != negated;
+      if (s.empty())
+        s = negative ? "-" + t : t;
+      else
+        s += (negative ? " - " : " + ") + t;
+    }
+    return s;
+  }
+
+  // For a product -1 * s with s a sum printed in place: s, else -1.
+  // Printed as -(c - q), g++ folds cos(-x) to cos(x) but not sin's, and the
+  // two calls of one angle no longer share an argument to become one sincos.
+  int negated_sum(const Node& n) const {
+    if (n.args.size() != 2) return -1;
+    for (int k = 0; k < 2; ++k) {
+      const int a = n.args[k], b = n.args[1 - k];
+      if (node(a).op == Op::number && node(a).value == -1.0 && node(b).op == Op::add && !has_temp(b))
+        return b;
+    }
+    return -1;
+  }
+
   // The <math.h> function (not <cmath>'s std::): the kernels compile freestanding.
   std::string call(const char* f, const Node& n) const {
     return scalar_.function(f) + "(" + text(n.args[0]) + ")";
@@ -328,29 +377,12 @@ class Printer {
       case Op::input:
         read_inputs_.insert(n.name);
         return n.name;
-      case Op::add: {
-        std::string s;
-        for (int a : by_readiness(n.args)) {
-          const Node& term = node(a);
-          bool negative = false;
-          std::string t;
-          if (term.op == Op::mul && !has_temp(a)) {
-            read_operations_ += cost(term);
-            t = product(term, negative);
-          } else if (term.op == Op::number) {
-            negative = term.value < 0;
-            t = scalar_.literal(std::abs(term.value));
-          } else {
-            t = text(a);
-          }
-          if (s.empty())
-            s = negative ? "-" + t : t;
-          else
-            s += (negative ? " - " : " + ") + t;
-        }
-        return s;
-      }
+      case Op::add: return sum(n, false);
       case Op::mul: {
+        if (const int s = negated_sum(n); s >= 0) {
+          read_operations_ += cost(node(s));
+          return sum(node(s), true);
+        }
         bool negative = false;
         const std::string s = product(n, negative);
         return negative ? "-" + s : s;

@@ -173,3 +173,32 @@ TEST_CASE("a sum adds the term that is ready last at its end", "[order]") {
   }
   CHECK(sums == 10);
 }
+
+TEST_CASE("minus a sum is printed as the sum with its signs flipped", "[order]") {
+  // angle = -(0.4 - q[0]) with its sin and cos: printed -(0.4 - q[0]),
+  // g++ folds cos(-x) into cos(0.4 - q[0]) but keeps sin's argument, and the
+  // two calls no longer become one sincos. Flipping the signs is exact.
+  Graph g;
+  ExpressionGraph& graph = g.graph;
+  const int q = graph.input("q[0]"), y = graph.input("y[0]");
+  const int angle = graph.product(
+      {graph.constant(-1), graph.sum({graph.constant(0.4), graph.product({graph.constant(-1), q})})});
+  const int nested = graph.product(
+      {graph.constant(-1),
+       graph.sum({y, graph.sum({graph.constant(0.5), graph.product({graph.constant(-2), q})})})});
+  const std::vector<Assignment> assignments{
+      {"s", graph.apply(Op::sin, angle)}, {"c", graph.apply(Op::cos, angle)}, {"z", nested}};
+  const PrintedKernel kernel = print_kernel(graph, assignments, ScalarType());
+  int angles = 0;
+  for (const Statement& s : kernel.statements) {
+    INFO(s.target << " = " << s.expression);
+    CHECK(s.expression.find("-(") == std::string::npos);
+    CHECK(s.expression.find("--") == std::string::npos);
+    if (s.temporary >= 0) {
+      CHECK(s.expression == "-0.4 + q[0]");
+      ++angles;
+    }
+    if (s.target == "z") CHECK(s.expression == "-y[0] - 0.5 + 2.0*q[0]");
+  }
+  CHECK(angles == 1);
+}
