@@ -468,7 +468,7 @@ double kinetic_energy(const Params& p, const double* q, const double* u) {
   const double x13 = u[0]*p.ra;
   const double x14 = p.tb*u[4];
   const double x15 = p.ta*u[4];
-  T = 0.5*(u[4]*(p.i5*u[4])) + 0.5*(u[2]*(p.i3*u[2])) + 0.5*(u[0]*(p.i1*u[0])) + 0.5*((p.i7*u[6])*u[6]) + 0.5*((p.i2*x0)*x0) + 0.5*(x1*(p.i6*x1)) + 0.5*((p.i4*x8)*x8) + 0.5*(p.m1*x13*x13) + 0.5*(p.m7*(x4*x4 + x5*x5)) + 0.5*((x6*x6 + x7*x7)*p.m3) + 0.5*(p.m5*(x14*x14 + x15*x15)) + 0.5*(p.m6*(x3*x3 + x2*x2)) + 0.5*(p.m4*(x11*x11 + x12*x12)) + 0.5*(p.m2*(x10*x10 + x9*x9));
+  T = 0.5*((u[4]*(p.i5*u[4])) + (u[2]*(p.i3*u[2])) + (u[0]*(p.i1*u[0])) + ((p.i7*u[6])*u[6]) + ((p.i2*x0)*x0) + (x1*(p.i6*x1)) + ((p.i4*x8)*x8) + (p.m1*x13*x13) + (p.m7*(x4*x4 + x5*x5)) + ((x6*x6 + x7*x7)*p.m3) + (p.m5*(x14*x14 + x15*x15)) + (p.m6*(x3*x3 + x2*x2)) + (p.m4*(x11*x11 + x12*x12)) + (p.m2*(x10*x10 + x9*x9)));
   return T;
 }
 

@@ -7,7 +7,7 @@
 //   mass_matrix: 62
 //   forcing: 123
 //   forward_dynamics: 743 (442 of them in the saddle-point solve, a sparse LDL^T; the dense solve would take 1157 in their place)
-//   kinetic_energy: 103
+//   kinetic_energy: 90
 //   potential_energy: 20
 //   nonconservative_power: 14
 //   outputs: 38

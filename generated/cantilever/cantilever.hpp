@@ -5,13 +5,13 @@
 //
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 0
-//   forcing: 733
-//   forward_dynamics: 979 (recursive; composite inertias and LDL^T: 1293)
-//   kinetic_energy: 279
-//   potential_energy: 599
+//   forcing: 699
+//   forward_dynamics: 945 (recursive; composite inertias and LDL^T: 1259)
+//   kinetic_energy: 237
+//   potential_energy: 529
 //   nonconservative_power: 1
-//   outputs: 36
-//   inverse_dynamics: 954 (M udot - f: flexible bodies)
+//   outputs: 34
+//   inverse_dynamics: 912 (M udot - f: flexible bodies)
 //   gravity: 0
 //
 // Arrays are plain C arrays with their sizes in the comments; no function

@@ -5,14 +5,14 @@
 //
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 6999 (a loop over 210 pairs of world axes and momenta; entry by entry: 6999)
-//   forcing: 4514
-//   forward_dynamics: 8404 (recursive; composite inertias and LDL^T: 14965) [split in 9 functions, 3,480 bytes of stack between them]
-//   kinetic_energy: 2029
+//   forcing: 4511
+//   forward_dynamics: 8170 (recursive; composite inertias and LDL^T: 14962) [split in 9 functions, 3,616 bytes of stack between them]
+//   kinetic_energy: 1935
 //   potential_energy: 941
 //   nonconservative_power: 39
 //   outputs: 0
-//   inverse_dynamics: 5342 (recursive; M udot - f from M and f: 11905)
-//   gravity: 1233
+//   inverse_dynamics: 4795 (recursive; M udot - f from M and f: 11902)
+//   gravity: 1231
 //
 // Arrays are plain C arrays with their sizes in the comments; no function
 // allocates, throws or keeps state, and nothing beyond <math.h> is needed.

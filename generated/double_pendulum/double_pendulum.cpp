@@ -143,7 +143,7 @@ double kinetic_energy(const Params& p, const double* q, const double* u) {
   const double x1 = 0.5*(p.l2*x0) + u[0]*p.l1*cos(q[1]);
   const double x2 = u[0]*p.l1*sin(q[1]);
   const double x3 = u[0]*p.l1;
-  T = 0.041666666666666664*(u[0]*(p.m1*u[0]*p.l1*p.l1)) + 0.125*(p.m1*x3*x3) + 0.041666666666666664*((p.m2*x0*p.l2*p.l2)*x0) + 0.5*(p.m2*(x2*x2 + x1*x1));
+  T = 0.125*(p.m1*x3*x3) + 0.041666666666666664*((u[0]*(p.m1*u[0]*p.l1*p.l1)) + ((p.m2*x0*p.l2*p.l2)*x0)) + 0.5*(p.m2*(x2*x2 + x1*x1));
   return T;
 }
 
@@ -206,9 +206,9 @@ void gravity(const Params& p, const double* q, double* g) {
   const double x1 = cos(q[1]);
   const double x2 = sin(q[0]);
   const double x3 = sin(q[1]);
-  const double x4 = 9.81*(x0*x1) - 9.81*(x2*x3);
+  const double x4 = 9.81*((x0*x1) - (x2*x3));
   const double x5 = p.m2*p.l2*x4;
-  g[0] = -4.905*(p.m1*x0*p.l1) - 0.5*x5 - p.l1*((p.m2*x4)*x1 + x3*(p.m2*(9.81*(x0*x3) + 9.81*(x2*x1))));
+  g[0] = -4.905*(p.m1*x0*p.l1) - 0.5*x5 - p.l1*((p.m2*x4)*x1 + x3*(p.m2*(9.81*((x0*x3) + (x2*x1)))));
   g[1] = -0.5*x5;
 }
 

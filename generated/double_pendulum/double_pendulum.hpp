@@ -7,12 +7,12 @@
 //   mass_matrix: 18
 //   forcing: 40
 //   forward_dynamics: 69 (composite inertias, 12 of them in LDL^T; recursive: 79)
-//   kinetic_energy: 32
+//   kinetic_energy: 31
 //   potential_energy: 16
 //   nonconservative_power: 7
 //   outputs: 16
 //   inverse_dynamics: 60 (recursive; M udot - f from M and f: 63)
-//   gravity: 29
+//   gravity: 27
 //
 // Arrays are plain C arrays with their sizes in the comments; no function
 // allocates, throws or keeps state, and nothing beyond <math.h> is needed.

@@ -205,7 +205,7 @@ double kinetic_energy(const Params& p, const double* q, const double* u) {
   const double x2 = u[0]*p.a*sin(q[1]);
   const double x3 = p.c*u[2];
   const double x4 = u[0]*p.a;
-  T = 0.041666666666666664*(u[0]*(u[0]*p.m_a*p.a*p.a)) + 0.125*(p.m_c*x3*x3) + 0.125*(p.m_a*x4*x4) + 0.041666666666666664*(u[2]*(u[2]*p.m_c*p.c*p.c)) + 0.041666666666666664*((p.m_b*p.b*p.b*x0)*x0) + 0.5*(p.m_b*(x2*x2 + x1*x1));
+  T = 0.125*((p.m_c*x3*x3) + (p.m_a*x4*x4)) + 0.041666666666666664*((u[0]*(u[0]*p.m_a*p.a*p.a)) + (u[2]*(u[2]*p.m_c*p.c*p.c)) + ((p.m_b*p.b*p.b*x0)*x0)) + 0.5*(p.m_b*(x2*x2 + x1*x1));
   return T;
 }
 
@@ -213,7 +213,7 @@ double potential_energy(const Params& p, const double* q) {
   double V;
   const double x0 = sin(q[0]);
   const double x1 = p.a*x0;
-  V = 4.905*(p.m_c*(p.c*sin(q[2]))) + 4.905*(p.m_a*x1) + 9.81*((x1 + 0.5*(p.b*(cos(q[0])*sin(q[1]) + x0*cos(q[1]))))*p.m_b);
+  V = 4.905*((p.m_c*(p.c*sin(q[2]))) + (p.m_a*x1)) + 9.81*((x1 + 0.5*(p.b*(cos(q[0])*sin(q[1]) + x0*cos(q[1]))))*p.m_b);
   return V;
 }
 
@@ -287,9 +287,9 @@ void gravity(const Params& p, const double* q, double* g) {
   const double x1 = cos(q[1]);
   const double x2 = sin(q[0]);
   const double x3 = sin(q[1]);
-  const double x4 = 9.81*(x0*x1) - 9.81*(x2*x3);
+  const double x4 = 9.81*((x0*x1) - (x2*x3));
   const double x5 = 0.5*(p.b*p.m_b*x4);
-  g[0] = 4.905*(x0*p.a*p.m_a) + x5 + p.a*(x3*(p.m_b*(9.81*(x0*x3) + 9.81*(x2*x1))) + (p.m_b*x4)*x1);
+  g[0] = 4.905*(x0*p.a*p.m_a) + x5 + p.a*(x3*(p.m_b*(9.81*((x0*x3) + (x2*x1)))) + (p.m_b*x4)*x1);
   g[1] = x5;
 }
 

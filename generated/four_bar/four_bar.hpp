@@ -7,12 +7,12 @@
 //   mass_matrix: 21
 //   forcing: 42
 //   forward_dynamics: 181 (78 of them in the saddle-point solve, a sparse LDL^T; the dense solve would take 105 in their place)
-//   kinetic_energy: 43
-//   potential_energy: 21
+//   kinetic_energy: 40
+//   potential_energy: 20
 //   nonconservative_power: 5
 //   outputs: 23
 //   inverse_dynamics: 65 (recursive; M udot - f from M and f: 67)
-//   gravity: 32
+//   gravity: 30
 //   constraints: 23
 //   constraint_jacobian: 21
 //   constraint_bias: 45

@@ -5,13 +5,13 @@
 //
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 0
-//   forcing: 835
-//   forward_dynamics: 2231 (recursive; composite inertias and LDL^T: 4291)
-//   kinetic_energy: 1187
-//   potential_energy: 1188
+//   forcing: 775
+//   forward_dynamics: 2171 (recursive; composite inertias and LDL^T: 4231)
+//   kinetic_energy: 1054
+//   potential_energy: 1008
 //   nonconservative_power: 0
 //   outputs: 6
-//   inverse_dynamics: 1797 (M udot - f: flexible bodies)
+//   inverse_dynamics: 1717 (M udot - f: flexible bodies)
 //   gravity: 0
 //
 // Arrays are plain C arrays with their sizes in the comments; no function

@@ -217,7 +217,7 @@ double kinetic_energy(const Params& p, const double* q, const double* u) {
   const double x7 = 0.5*(p.l*x5) + u[1]*p.l*cos(q[4]);
   const double x8 = u[0]*p.l*sin(q[3]);
   const double x9 = 0.5*(p.l*x4) + u[0]*p.l*cos(q[3]);
-  T = 0.125*(p.m*x0*x0) + 0.125*(p.m*x1*x1) + 0.125*(x2*x2*p.m) + 0.041666666666666664*(u[1]*(u[1]*p.m*x3)) + 0.041666666666666664*(u[0]*(u[0]*p.m*x3)) + 0.041666666666666664*(u[2]*(p.m*u[2]*x3)) + 0.041666666666666664*((p.m*x3*x4)*x4) + 0.041666666666666664*(x5*(p.m*x3*x5)) + 0.5*(p.m*(x6*x6 + x7*x7)) + 0.5*(p.m*(x8*x8 + x9*x9));
+  T = 0.125*((p.m*x0*x0) + (p.m*x1*x1) + (x2*x2*p.m)) + 0.041666666666666664*((u[1]*(u[1]*p.m*x3)) + (u[0]*(u[0]*p.m*x3)) + (u[2]*(p.m*u[2]*x3)) + ((p.m*x3*x4)*x4) + (x5*(p.m*x3*x5))) + 0.5*((p.m*(x6*x6 + x7*x7)) + (p.m*(x8*x8 + x9*x9)));
   return T;
 }
 
@@ -227,7 +227,7 @@ double potential_energy(const Params& p, const double* q) {
   const double x1 = p.l*x0;
   const double x2 = sin(q[1]);
   const double x3 = p.l*x2;
-  V = 4.905*((p.l*sin(q[2]))*p.m) + 4.905*(p.m*x3) + 4.905*(x1*p.m) + 9.81*((x1 + 0.5*(p.l*(cos(q[0])*sin(q[3]) + x0*cos(q[3]))))*p.m) + 9.81*(p.m*(x3 + 0.5*((cos(q[1])*sin(q[4]) + x2*cos(q[4]))*p.l)));
+  V = 4.905*(((p.l*sin(q[2]))*p.m) + (p.m*x3) + (x1*p.m)) + 9.81*(((x1 + 0.5*(p.l*(cos(q[0])*sin(q[3]) + x0*cos(q[3]))))*p.m) + (p.m*(x3 + 0.5*((cos(q[1])*sin(q[4]) + x2*cos(q[4]))*p.l))));
   return V;
 }
 
@@ -315,17 +315,17 @@ void gravity(const Params& p, const double* q, double* g) {
   const double x1 = cos(q[3]);
   const double x2 = sin(q[0]);
   const double x3 = sin(q[3]);
-  const double x4 = -9.81*(x0*x1) + 9.81*(x2*x3);
+  const double x4 = -9.81*((x0*x1) - (x2*x3));
   const double x5 = p.m*p.l*x4;
-  g[0] = 4.905*(x0*p.m*p.l) - (0.5*x5 + p.l*((p.m*x4)*x1 - ((p.m*(9.81*(x2*x1) + 9.81*(x0*x3)))*x3)));
+  g[0] = 4.905*(x0*p.m*p.l) - (0.5*x5 + p.l*((p.m*x4)*x1 - ((p.m*(9.81*((x2*x1) + (x0*x3))))*x3)));
   g[3] = -0.5*x5;
   const double x6 = cos(q[1]);
   const double x7 = cos(q[4]);
   const double x8 = sin(q[1]);
   const double x9 = sin(q[4]);
-  const double x10 = 9.81*(x6*x7) - 9.81*(x8*x9);
+  const double x10 = 9.81*((x6*x7) - (x8*x9));
   const double x11 = 0.5*(p.m*p.l*x10);
-  g[1] = 4.905*(p.m*p.l*x6) + x11 + ((p.m*(9.81*(x8*x7) + 9.81*(x6*x9)))*x9 + (p.m*x10)*x7)*p.l;
+  g[1] = 4.905*(p.m*p.l*x6) + x11 + ((p.m*(9.81*((x8*x7) + (x6*x9))))*x9 + (p.m*x10)*x7)*p.l;
   g[4] = x11;
 }
 

@@ -7,12 +7,12 @@
 //   mass_matrix: 19
 //   forcing: 77
 //   forward_dynamics: 372 (198 of them in the saddle-point solve, a sparse LDL^T; the dense solve would take 447 in their place)
-//   kinetic_energy: 72
-//   potential_energy: 38
+//   kinetic_energy: 65
+//   potential_energy: 35
 //   nonconservative_power: 9
 //   outputs: 15
 //   inverse_dynamics: 117 (recursive; M udot - f from M and f: 109)
-//   gravity: 61
+//   gravity: 57
 //   constraints: 42
 //   constraint_jacobian: 40
 //   constraint_bias: 88

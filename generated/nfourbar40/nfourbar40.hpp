@@ -7,12 +7,12 @@
 //   mass_matrix: 247
 //   forcing: 1460
 //   forward_dynamics: 7972 (4758 of them in the saddle-point solve, a sparse LDL^T; the dense solve would take 1455923 in their place)
-//   kinetic_energy: 1250
-//   potential_energy: 684
+//   kinetic_energy: 1091
+//   potential_energy: 605
 //   nonconservative_power: 161
 //   outputs: 4
 //   inverse_dynamics: 2169 (recursive; M udot - f from M and f: 1943)
-//   gravity: 1140
+//   gravity: 1060
 //   constraints: 764
 //   constraint_jacobian: 747
 //   constraint_bias: 1722

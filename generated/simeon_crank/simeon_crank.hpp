@@ -6,16 +6,16 @@
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 60
 //   forcing: 99
-//   forward_dynamics: 337 (125 of them in the saddle-point solve, a sparse LDL^T; the dense solve would take 332 in their place)
-//   kinetic_energy: 112
-//   potential_energy: 17
+//   forward_dynamics: 335 (125 of them in the saddle-point solve, a sparse LDL^T; the dense solve would take 332 in their place)
+//   kinetic_energy: 106
+//   potential_energy: 16
 //   nonconservative_power: 3
 //   outputs: 1
 //   inverse_dynamics: 197 (M udot - f: flexible bodies)
 //   gravity: 0
 //   constraints: 24
-//   constraint_jacobian: 32
-//   constraint_bias: 80
+//   constraint_jacobian: 30
+//   constraint_bias: 78
 //
 // Arrays are plain C arrays with their sizes in the comments; no function
 // allocates, throws or keeps state, and nothing beyond <math.h> is needed.

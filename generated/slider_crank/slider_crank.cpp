@@ -207,7 +207,7 @@ double kinetic_energy(const Params& p, const double* q, const double* u) {
   const double x1 = 0.5*(x0*p.L2) + u[0]*cos(q[1])*p.L1;
   const double x2 = u[0]*sin(q[1])*p.L1;
   const double x3 = u[0]*p.L1;
-  T = 0.5*(p.m3*u[2]*u[2]) + 0.125*(p.m1*x3*x3) + 0.125*(((4.0*p.J2 - (p.m2*p.L2*p.L2))*x0)*x0) + 0.125*((u[0]*(4.0*p.J1 - (p.m1*p.L1*p.L1)))*u[0]) + 0.5*(p.m2*(x2*x2 + x1*x1));
+  T = 0.125*((p.m1*x3*x3) + (((4.0*p.J2 - (p.m2*p.L2*p.L2))*x0)*x0) + ((u[0]*(4.0*p.J1 - (p.m1*p.L1*p.L1)))*u[0])) + 0.5*((p.m3*u[2]*u[2]) + (p.m2*(x2*x2 + x1*x1)));
   return T;
 }
 

@@ -7,7 +7,7 @@
 //   mass_matrix: 11
 //   forcing: 23
 //   forward_dynamics: 95 (40 of them in the saddle-point solve, a sparse LDL^T; the dense solve would take 62 in their place)
-//   kinetic_energy: 40
+//   kinetic_energy: 37
 //   potential_energy: 0
 //   nonconservative_power: 3
 //   outputs: 18

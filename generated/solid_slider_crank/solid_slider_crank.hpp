@@ -5,17 +5,17 @@
 //
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 1234
-//   forcing: 1783
-//   forward_dynamics: 3648 (1153 of them in the saddle-point solve, a sparse LDL^T; the dense solve would take 2757 in their place)
-//   kinetic_energy: 1580
-//   potential_energy: 253
+//   forcing: 1782
+//   forward_dynamics: 3635 (1153 of them in the saddle-point solve, a sparse LDL^T; the dense solve would take 2757 in their place)
+//   kinetic_energy: 1563
+//   potential_energy: 240
 //   nonconservative_power: 3
 //   outputs: 31
-//   inverse_dynamics: 2762 (M udot - f: flexible bodies)
+//   inverse_dynamics: 2761 (M udot - f: flexible bodies)
 //   gravity: 0
 //   constraints: 33
-//   constraint_jacobian: 72
-//   constraint_bias: 168
+//   constraint_jacobian: 60
+//   constraint_bias: 156
 //
 // Arrays are plain C arrays with their sizes in the comments; no function
 // allocates, throws or keeps state, and nothing beyond <math.h> is needed.

@@ -5,13 +5,13 @@
 //
 // Operation counts (additions, multiplications, divisions, function calls):
 //   mass_matrix: 88
-//   forcing: 1047
-//   forward_dynamics: 1383 (560 of them in LDL^T)
-//   kinetic_energy: 377
-//   potential_energy: 632
+//   forcing: 993
+//   forward_dynamics: 1335 (560 of them in LDL^T)
+//   kinetic_energy: 345
+//   potential_energy: 542
 //   nonconservative_power: 0
-//   outputs: 31
-//   inverse_dynamics: 1320 (M udot - f: flexible bodies)
+//   outputs: 29
+//   inverse_dynamics: 1262 (M udot - f: flexible bodies)
 //   gravity: 0
 //
 // Arrays are plain C arrays with their sizes in the comments; no function

@@ -66,6 +66,7 @@ class Printer {
   PrintedKernel run(const std::vector<Assignment>& assignments) {
     out_.temp_prefix = prefix_;
     for (const Assignment& a : assignments) count_uses(a.node);
+    out_.operations -= shared_multiplications();
     // The printer's order: each temporary just before its first use. Then
     // the order that keeps fewer values live (statement_order.hpp), unless
     // the kernel reads what it assigns, where the order is the meaning.
@@ -100,7 +101,7 @@ class Printer {
 
   long count(const std::vector<Assignment>& assignments) {
     for (const Assignment& a : assignments) count_uses(a.node);
-    return out_.operations;
+    return out_.operations - shared_multiplications();
   }
 
  private:
@@ -315,38 +316,116 @@ class Printer {
     return order;
   }
 
-  // A sum's text, its terms the earliest ready first; `negated`: of minus the
-  // sum, each term's sign flipped (the same value: negating is exact).
-  std::string sum(const Node& n, bool negated) const {
+  // The numeric coefficient of a product, or 0 when its text would not be
+  // the coefficient times its factors (no factor, or a divisor).
+  double plain_coefficient(const Node& n) const {
+    double coefficient = 1.0;
+    bool factors = false;
+    for (int a : n.args) {
+      const Node& f = node(a);
+      if (f.op == Op::number)
+        coefficient *= f.value;
+      else if (f.op == Op::power && is_integer(f.value) && f.value < 0 && !wants_temp(a))
+        return 0;
+      else
+        factors = true;
+    }
+    return factors ? coefficient : 0;
+  }
+
+  // The multiplications that sums save by sharing a coefficient (sum()):
+  // the count is of the code as printed.
+  long shared_multiplications() const {
+    long shared = 0;
+    for (std::size_t id = 0; id < graph_.size(); ++id) {
+      const Node& n = node(static_cast<int>(id));
+      if (uses_[id] == 0 || n.op != Op::add) continue;
+      std::map<double, int> sharing;
+      for (int a : n.args)
+        if (node(a).op == Op::mul && !wants_temp(a))
+          if (const double c = std::abs(plain_coefficient(node(a))); c != 0 && c != 1) ++sharing[c];
+      for (const auto& entry : sharing) shared += entry.second - 1;
+    }
+    return shared;
+  }
+
+  // The factors of such a product, without its coefficient.
+  std::string factors_text(const Node& n) const {
     std::string s;
-    for (int a : by_readiness(n.args)) {
+    for (int a : n.args)
+      if (node(a).op != Op::number) s += (s.empty() ? "" : "*") + factor(a);
+    return s;
+  }
+
+  // A sum's text, its terms the earliest ready first; `negated`: of minus the
+  // sum, each term's sign flipped (the same value: negating is exact). Terms
+  // with the same coefficient (other than +-1) share one multiplication,
+  // c*(a + b) for c*a + c*b, placed where the last of them is ready.
+  std::string sum(const Node& n, bool negated) const {
+    const std::vector<int> terms = by_readiness(n.args);
+    std::map<double, int> sharing;  // |coefficient| -> terms with it
+    for (int a : terms)
+      if (node(a).op == Op::mul && !has_temp(a))
+        if (const double c = std::abs(plain_coefficient(node(a))); c != 0 && c != 1) ++sharing[c];
+    struct Item {
+      double ready;
+      std::string text;
+      bool negative;
+      bool spliced;  ///< a sum's own text, signs included
+    };
+    std::vector<Item> items;
+    std::map<double, std::size_t> group;  // |coefficient| -> its item
+    std::map<double, int> members;
+    for (int a : terms) {
       const Node& term = node(a);
-      bool negative = false;
-      std::string t;
       if (term.op == Op::mul && !has_temp(a)) {
         read_operations_ += cost(term);
-        t = product(term, negative);
+        const double c = plain_coefficient(term);
+        if (c != 0 && std::abs(c) != 1 && sharing[std::abs(c)] > 1) {
+          const bool negative = (c < 0) != negated;
+          const std::string t = factors_text(term);
+          auto [it, first] = group.emplace(std::abs(c), items.size());
+          if (first) {
+            items.push_back({readiness(a), t, negative, false});
+          } else {
+            read_operations_ -= 1;  // the coefficient's multiplication, shared
+            Item& g = items[it->second];
+            g.ready = std::max(g.ready, readiness(a));
+            g.text += (negative != g.negative ? " - " : " + ") + t;
+          }
+          ++members[std::abs(c)];
+          continue;
+        }
+        bool negative = false;
+        const std::string t = product(term, negative);
+        items.push_back({readiness(a), t, negative != negated, false});
       } else if (term.op == Op::number) {
-        negative = term.value < 0;
-        t = scalar_.literal(std::abs(term.value));
+        items.push_back({0, scalar_.literal(std::abs(term.value)), (term.value < 0) != negated, false});
       } else if (term.op == Op::add && !has_temp(a)) {
         // A sum in the sum is spliced in as it is (its terms continue the
         // outer sum's order of additions), its signs flipped with the outer's.
         read_operations_ += cost(term);
-        t = sum(term, negated);
-        if (s.empty())
-          s = t;
-        else
-          s += t[0] == '-' ? " - " + t.substr(1) : " + " + t;  // a + -b is a - b
-        continue;
+        items.push_back({readiness(a), sum(term, negated), false, true});
       } else {
-        t = text(a);
+        items.push_back({readiness(a), text(a), negated, false});
       }
-      negative = negative != negated;
-      if (s.empty())
-        s = negative ? "-" + t : t;
-      else
-        s += (negative ? " - " : " + ") + t;
+    }
+    for (const auto& [c, k] : group)
+      if (members[c] > 1) items[k].text = scalar_.literal(c) + "*(" + items[k].text + ")";
+    std::stable_sort(items.begin(), items.end(),
+                     [](const Item& a, const Item& b) { return a.ready < b.ready; });
+    std::string s;
+    for (const Item& item : items) {
+      if (item.spliced) {
+        if (s.empty())
+          s = item.text;
+        else
+          s += item.text[0] == '-' ? " - " + item.text.substr(1) : " + " + item.text;  // a + -b is a - b
+      } else if (s.empty()) {
+        s = item.negative ? "-" + item.text : item.text;
+      } else {
+        s += (item.negative ? " - " : " + ") + item.text;
+      }
     }
     return s;
   }

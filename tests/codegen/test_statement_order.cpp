@@ -202,3 +202,34 @@ TEST_CASE("minus a sum is printed as the sum with its signs flipped", "[order]")
   }
   CHECK(angles == 1);
 }
+
+TEST_CASE("terms of a sum with the same coefficient share one multiplication", "[order]") {
+  // z = 0.3 a - 0.3 b + 0.7 c + 0.7 d + 0.5 e + 2 y: 0.3 and 0.7 are each
+  // printed once, as 0.3*(a - b) and 0.7*(c + d); 0.5 e alone keeps its own.
+  Graph g;
+  ExpressionGraph& graph = g.graph;
+  auto term = [&](double c, const char* name) {
+    return graph.product({graph.constant(c), graph.input(name)});
+  };
+  const int z = graph.sum({term(0.3, "a[0]"), term(-0.3, "b[0]"), term(0.7, "c[0]"), term(0.7, "d[0]"),
+                           term(0.5, "e[0]"),
+                           graph.product({graph.constant(2), graph.input("y[0]"), graph.input("a[0]")})});
+  const PrintedKernel kernel = print_kernel(graph, {{"z", z}}, ScalarType());
+  REQUIRE(kernel.statements.size() == 1);
+  const std::string& text = kernel.statements[0].expression;
+  INFO("z = " << text);
+  CHECK((text.find("+ 0.3*(a[0] - b[0])") != std::string::npos || text.rfind("0.3*(a[0] - b[0])", 0) == 0 ||
+         text.find("- 0.3*(b[0] - a[0])") != std::string::npos));
+  CHECK((text.find("0.7*(c[0] + d[0])") != std::string::npos ||
+         text.find("0.7*(d[0] + c[0])") != std::string::npos));
+  CHECK(text.find("0.5*e[0]") != std::string::npos);
+  CHECK(text.find("2.0*") != std::string::npos);
+  for (const char* c : {"0.3", "0.7", "0.5", "2.0"}) {
+    const std::size_t first = text.find(c);
+    CHECK(text.find(c, first + 1) == std::string::npos);
+  }
+  // Counted as printed: 2 + 2 for the shared ones, 1 for 0.5 e, 2 for 2 y a,
+  // 3 to add the four; the count without printing agrees.
+  CHECK(kernel.statements[0].operations == 10);
+  CHECK(count_operations(graph, {{"z", z}}) == 10);
+}
