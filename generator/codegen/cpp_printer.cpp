@@ -375,7 +375,6 @@ class Printer {
     };
     std::vector<Item> items;
     std::map<double, std::size_t> group;  // |coefficient| -> its item
-    std::map<double, int> members;
     for (int a : terms) {
       const Node& term = node(a);
       if (term.op == Op::mul && !has_temp(a)) {
@@ -393,7 +392,6 @@ class Printer {
             g.ready = std::max(g.ready, readiness(a));
             g.text += (negative != g.negative ? " - " : " + ") + t;
           }
-          ++members[std::abs(c)];
           continue;
         }
         bool negative = false;
@@ -410,8 +408,7 @@ class Printer {
         items.push_back({readiness(a), text(a), negated, false});
       }
     }
-    for (const auto& [c, k] : group)
-      if (members[c] > 1) items[k].text = scalar_.literal(c) + "*(" + items[k].text + ")";
+    for (const auto& [c, k] : group) items[k].text = scalar_.literal(c) + "*(" + items[k].text + ")";
     std::stable_sort(items.begin(), items.end(),
                      [](const Item& a, const Item& b) { return a.ready < b.ready; });
     std::string s;
