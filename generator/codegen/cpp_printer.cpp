@@ -333,19 +333,23 @@ class Printer {
     return factors ? coefficient : 0;
   }
 
+  // A sum's terms printed in place by their coefficient: |coefficient| ->
+  // how many of its terms have it (products other than +-1 times factors).
+  std::map<double, int> coefficients(const Node& sum) const {
+    std::map<double, int> terms;
+    for (int a : sum.args)
+      if (node(a).op == Op::mul && !wants_temp(a))
+        if (const double c = std::abs(plain_coefficient(node(a))); c != 0 && c != 1) ++terms[c];
+    return terms;
+  }
+
   // The multiplications that sums save by sharing a coefficient (sum()):
   // the count is of the code as printed.
   long shared_multiplications() const {
     long shared = 0;
-    for (std::size_t id = 0; id < graph_.size(); ++id) {
-      const Node& n = node(static_cast<int>(id));
-      if (uses_[id] == 0 || n.op != Op::add) continue;
-      std::map<double, int> sharing;
-      for (int a : n.args)
-        if (node(a).op == Op::mul && !wants_temp(a))
-          if (const double c = std::abs(plain_coefficient(node(a))); c != 0 && c != 1) ++sharing[c];
-      for (const auto& entry : sharing) shared += entry.second - 1;
-    }
+    for (std::size_t id = 0; id < graph_.size(); ++id)
+      if (uses_[id] > 0 && node(static_cast<int>(id)).op == Op::add)
+        for (const auto& entry : coefficients(node(static_cast<int>(id)))) shared += entry.second - 1;
     return shared;
   }
 
@@ -362,30 +366,25 @@ class Printer {
   // with the same coefficient (other than +-1) share one multiplication,
   // c*(a + b) for c*a + c*b, placed where the last of them is ready.
   std::string sum(const Node& n, bool negated) const {
-    const std::vector<int> terms = by_readiness(n.args);
-    std::map<double, int> sharing;  // |coefficient| -> terms with it
-    for (int a : terms)
-      if (node(a).op == Op::mul && !has_temp(a))
-        if (const double c = std::abs(plain_coefficient(node(a))); c != 0 && c != 1) ++sharing[c];
+    const std::map<double, int> sharing = coefficients(n);
     struct Item {
       double ready;
       std::string text;
       bool negative;
-      bool spliced;  ///< a sum's own text, signs included
     };
     std::vector<Item> items;
     std::map<double, std::size_t> group;  // |coefficient| -> its item
-    for (int a : terms) {
+    for (int a : by_readiness(n.args)) {
       const Node& term = node(a);
       if (term.op == Op::mul && !has_temp(a)) {
         read_operations_ += cost(term);
         const double c = plain_coefficient(term);
-        if (c != 0 && std::abs(c) != 1 && sharing[std::abs(c)] > 1) {
+        if (const auto shared = sharing.find(std::abs(c)); shared != sharing.end() && shared->second > 1) {
           const bool negative = (c < 0) != negated;
           const std::string t = factors_text(term);
           auto [it, first] = group.emplace(std::abs(c), items.size());
           if (first) {
-            items.push_back({readiness(a), t, negative, false});
+            items.push_back({readiness(a), t, negative});
           } else {
             read_operations_ -= 1;  // the coefficient's multiplication, shared
             Item& g = items[it->second];
@@ -396,16 +395,21 @@ class Printer {
         }
         bool negative = false;
         const std::string t = product(term, negative);
-        items.push_back({readiness(a), t, negative != negated, false});
+        items.push_back({readiness(a), t, negative != negated});
       } else if (term.op == Op::number) {
-        items.push_back({0, scalar_.literal(std::abs(term.value)), (term.value < 0) != negated, false});
+        items.push_back({0, scalar_.literal(std::abs(term.value)), (term.value < 0) != negated});
       } else if (term.op == Op::add && !has_temp(a)) {
         // A sum in the sum is spliced in as it is (its terms continue the
         // outer sum's order of additions), its signs flipped with the outer's.
+        // Its leading sign becomes the item's: a + -b is printed a - b.
         read_operations_ += cost(term);
-        items.push_back({readiness(a), sum(term, negated), false, true});
+        const std::string t = sum(term, negated);
+        if (t[0] == '-')
+          items.push_back({readiness(a), t.substr(1), true});
+        else
+          items.push_back({readiness(a), t, false});
       } else {
-        items.push_back({readiness(a), text(a), negated, false});
+        items.push_back({readiness(a), text(a), negated});
       }
     }
     for (const auto& [c, k] : group) items[k].text = scalar_.literal(c) + "*(" + items[k].text + ")";
@@ -413,16 +417,10 @@ class Printer {
                      [](const Item& a, const Item& b) { return a.ready < b.ready; });
     std::string s;
     for (const Item& item : items) {
-      if (item.spliced) {
-        if (s.empty())
-          s = item.text;
-        else
-          s += item.text[0] == '-' ? " - " + item.text.substr(1) : " + " + item.text;  // a + -b is a - b
-      } else if (s.empty()) {
+      if (s.empty())
         s = item.negative ? "-" + item.text : item.text;
-      } else {
+      else
         s += (item.negative ? " - " : " + ") + item.text;
-      }
     }
     return s;
   }
