@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "codegen/cpp_printer.hpp"
+#include "codegen/cpp_text.hpp"
 #include "codegen/embedded_templates.hpp"
 #include "codegen/expression_graph.hpp"
 #include "codegen/kernel_printer.hpp"
@@ -21,11 +22,7 @@ using TemplateValues = std::map<std::string, std::string>;
 
 std::string quoted_list(const std::vector<std::string>& names) {
   std::string s;
-  for (const std::string& n : names) {
-    std::string escaped;  // URDF names may hold any character
-    for (char c : n) escaped += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
-    s += (s.empty() ? "\"" : ", \"") + escaped + "\"";
-  }
+  for (const std::string& n : names) s += (s.empty() ? "" : ", ") + cpp_string_literal(n);
   return s;
 }
 
@@ -87,17 +84,18 @@ TemplateValues model_values(const model::Model& model, const kane::Equations& eq
   std::string fields;
   for (const model::Parameter& par : model.parameters) {
     parameter_names.push_back(par.name);
-    fields += "  " + std::string(scalar.name()) + " " + par.name + " = " + scalar.literal(par.value) + ";\n";
+    fields += "  " + std::string(scalar.name()) + " " + cpp_identifier(par.name) + " = " +
+              scalar.literal(par.value) + ";\n";
   }
   const std::size_t ntau = eq.input_names.size(), ny = eq.output_names.size();
   return {
-      {"MODEL_NAME", emitted_name(model.name, scalar)},
+      {"MODEL_NAME", cpp_identifier(emitted_name(model.name, scalar))},
       {"SCALAR", scalar.name()},
       {"PRECISION_NOTE", scalar.is_double()
                              ? ""
                              : "// Single precision (kanegen generate --precision float): every "
                                "argument, local and literal is float.\n"},
-      {"MODEL_FILE", std::filesystem::path(model.source_file).filename().string()},
+      {"MODEL_FILE", cpp_comment_text(std::filesystem::path(model.source_file).filename().string())},
       {"MODEL_HASH", model_hash},
       {"GENERATOR_VERSION", KANEGEN_VERSION},
       {"PARAMS_FIELDS", fields},
@@ -234,6 +232,7 @@ EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, co
   emitted.files[name + ".cpp"] = fill_template(embedded::model_cpp_template, values);
   if (scalar.is_double())  // the runner is the runtime's, which is double
     emitted.files[name + "_runner.cpp"] = fill_template(embedded::runner_cpp_template, values);
+  for (const auto& [file, code] : emitted.files) check_emitted_text(file, code);
   return emitted;
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "codegen/cpp_printer.hpp"
+#include "codegen/cpp_text.hpp"
 #include "codegen/graph_derivative.hpp"
 #include "codegen/kernel_splitter.hpp"
 #include "codegen/unrolled_ldlt.hpp"
@@ -66,7 +67,7 @@ void print_prescribed_accelerations(Derivation& d) {
     const std::string a = symbolic::prescribed_acceleration_name(ps.speed);
     std::string& text = d.prescribed.body;
     text += "  " + std::string(d.scalar.name()) + " " + a + " = " + d.scalar.literal(0.0) +
-            ";  // prescribed acceleration of " + d.eq.speed_names[ps.speed] + "\n";
+            ";  // prescribed acceleration of " + cpp_comment_text(d.eq.speed_names[ps.speed]) + "\n";
     for (std::size_t k = 0; k < ps.pieces.size(); ++k) {
       const kane::PrescribedSpeed::Piece& piece = ps.pieces[k];
       const PrintedKernel p = print_kernel(d.graph, {{a, d.graph.add(piece.acceleration)}}, d.scalar, "    ",
@@ -103,14 +104,16 @@ KernelCode set_parameter_kernel(const Derivation& d) {
         "    return *c == *candidate;\n"
         "  };\n";
   for (const model::Parameter& par : d.model.parameters)
-    body += "  if (is(\"" + par.name + "\")) {\n    p." + par.name + " = value;\n    return true;\n  }\n";
+    body += "  if (is(" + cpp_string_literal(par.name) + ")) {\n    p." + cpp_identifier(par.name) +
+            " = value;\n    return true;\n  }\n";
   return {Kernel::set_parameter, body + "  return false;\n", 0, ""};
 }
 
 KernelCode get_parameter_kernel(const Derivation& d) {
   std::string body = "  switch (i) {\n";
   for (std::size_t i = 0; i < d.model.parameters.size(); ++i)
-    body += "    case " + str(static_cast<long>(i)) + ": return p." + d.model.parameters[i].name + ";\n";
+    body += "    case " + str(static_cast<long>(i)) + ": return p." +
+            cpp_identifier(d.model.parameters[i].name) + ";\n";
   return {Kernel::get_parameter, body + "    default: return " + d.scalar.literal(0.0) + ";\n  }\n", 0, ""};
 }
 

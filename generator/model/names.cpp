@@ -9,10 +9,52 @@
 
 namespace kanegen::model {
 
+namespace {
+
+// ASCII only, whatever the locale: std::isalpha takes Latin-1 letters in some.
+bool ascii_letter(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
+bool ascii_alnum(char c) { return ascii_letter(c) || (c >= '0' && c <= '9'); }
+
+/// The length of the valid UTF-8 sequence at text[i] (1-4), or 0.
+std::size_t utf8_sequence(const std::string& text, std::size_t i) {
+  const auto b = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+  const unsigned char lead = b(i);
+  if (lead < 0x80) return 1;
+  // The sequence's length, and its smallest code point (a smaller one is overlong).
+  const std::size_t length = lead >= 0xf0 ? 4 : lead >= 0xe0 ? 3 : 2;
+  const unsigned min = length == 4 ? 0x10000 : length == 3 ? 0x800 : 0x80;
+  if (lead < 0xc2 || lead > 0xf4) return 0;  // a continuation byte, or an overlong or too large lead
+  if (i + length > text.size()) return 0;
+  unsigned code = lead & (0x7f >> length);
+  for (std::size_t k = 1; k < length; ++k) {
+    if ((b(i + k) & 0xc0) != 0x80) return 0;
+    code = (code << 6) | (b(i + k) & 0x3f);
+  }
+  // No overlong form, no surrogate, nothing past U+10FFFF.
+  if (code < min || (code >= 0xd800 && code <= 0xdfff) || code > 0x10ffff) return 0;
+  return length;
+}
+
+}  // namespace
+
 bool is_identifier(const std::string& name) {
-  if (name.empty() || !std::isalpha(static_cast<unsigned char>(name[0]))) return false;
-  return std::all_of(name.begin(), name.end(),
-                     [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+  if (name.empty() || !ascii_letter(name[0])) return false;
+  return std::all_of(name.begin(), name.end(), [](char c) { return ascii_alnum(c) || c == '_'; });
+}
+
+std::string name_text_problem(const std::string& name) {
+  for (std::size_t i = 0; i < name.size();) {
+    const auto byte = static_cast<unsigned char>(name[i]);
+    if (byte < 0x20 || byte == 0x7f) {
+      static const char* const hex = "0123456789abcdef";
+      return std::string("a control character (byte 0x") + hex[byte >> 4] + hex[byte & 15] + ") at byte " +
+             std::to_string(i + 1);
+    }
+    const std::size_t length = utf8_sequence(name, i);
+    if (length == 0) return "a byte that is not UTF-8 at byte " + std::to_string(i + 1);
+    i += length;
+  }
+  return "";
 }
 
 bool is_cpp_keyword(const std::string& name) {
@@ -46,8 +88,8 @@ bool is_reserved_parameter_name(const std::string& name) {
 
 std::string sanitize_identifier(const std::string& text) {
   std::string out;
-  for (char c : text) out += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-  if (out.empty() || !std::isalpha(static_cast<unsigned char>(out[0]))) out = "model_" + out;
+  for (char c : text) out += ascii_alnum(c) ? c : '_';
+  if (out.empty() || !ascii_letter(out[0])) out = "model_" + out;
   if (is_cpp_keyword(out)) out += '_';
   return out;
 }

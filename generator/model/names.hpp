@@ -12,6 +12,12 @@ namespace kanegen::model {
 /// [A-Za-z][A-Za-z0-9_]* (GiNaC's lexer rejects a leading '_').
 bool is_identifier(const std::string& name);
 
+/// Why a name (a URDF link's or joint's) cannot be used: "" if it is valid
+/// UTF-8 without control characters (newline, tab, NUL, DEL, ...), else what
+/// is wrong and at which byte. Such names become CSV columns, JSON keys and
+/// string literals in generated code (docs/errors.md#security).
+std::string name_text_problem(const std::string& name);
+
 /// C++ keywords and alternative tokens (C++20 included, so generated code
 /// stays valid with newer compilers).
 bool is_cpp_keyword(const std::string& name);

@@ -100,6 +100,12 @@ void index_urdf(const std::string& text, const std::string& file, UrdfIndex& ind
     const char* name = e->Attribute("name");
     if (!name || !*name)
       throw ModelError(file, element_place(e, ""), "<" + tag + "> without a name", "add name=\"...\"");
+    // Names become CSV columns, JSON keys and string literals of generated
+    // code: no control characters, UTF-8 only (docs/errors.md#security).
+    if (const std::string problem = name_text_problem(name); !problem.empty())
+      throw ModelError(file, element_place(e, name) + "/name", "the " + tag + " name holds " + problem,
+                       "rename it: names are UTF-8 text without control characters (newline, tab, NUL, "
+                       "escape); letters, digits, '_', '-' and '.' are safe");
     std::vector<Element>& list = tag == "link" ? index.links : index.joints;
     for (const Element& other : list)
       if (other.name == name)

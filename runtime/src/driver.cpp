@@ -302,7 +302,9 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
   // component n, integrated to the method's tolerance; the implicit methods
   // own their state layout and take the trapezoid rule over the rows instead.
   const bool work = a.energies && info.nonconservative;
-  const bool work_in_state = work && a.method != Method::kImplicit && a.method != Method::kGenAlpha;
+  // (is_implicit, not a list of names: radau and bdf integrate nq + nu
+  // components too, and an extra one would be written past their buffers.)
+  const bool work_in_state = work && !is_implicit(a.method);
   const int n_state = work_in_state ? n + 1 : n;
   x.resize(static_cast<size_t>(std::max(n_state, 1)));
   if (work_in_state) x[n] = 0.0;
