@@ -13,6 +13,7 @@
 #include "cli/preflight.hpp"
 #include "cli/runner_build.hpp"
 #include "kanegen/runtime/options.hpp"
+#include "model/model_error.hpp"
 #include "model/names.hpp"
 
 namespace kanegen::cli {
@@ -41,8 +42,14 @@ std::vector<std::string> csv_header(const std::string& csv) {
   return header;
 }
 
-/// gnuplot's single-quoted string: a quote is written twice.
+/// gnuplot's single-quoted string: a quote is written twice. A line break
+/// would end the command and start another (gnuplot runs shell commands), so
+/// text with control characters (a column name or path from elsewhere) is refused.
 std::string quoted(const std::string& text) {
+  for (const char c : text)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      throw std::runtime_error(model::ModelError::printable(text) +
+                               ": holds a control character, which cannot be passed to gnuplot; rename it");
   std::string out = "'";
   for (char c : text) out += c == '\'' ? std::string("''") : std::string(1, c);
   return out + "'";

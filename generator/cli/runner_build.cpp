@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "cli/generation_interrupt.hpp"
+#include "cli/runner_cache.hpp"
 #include "codegen/cpp_printer.hpp"
 #include "codegen/embedded_templates.hpp"
 #include "codegen/emitter.hpp"
@@ -47,13 +48,6 @@ std::string compiler() {
   const char* cxx = std::getenv("KANEGEN_CXX");
   if (!cxx || !*cxx) cxx = std::getenv("CXX");
   return cxx && *cxx ? cxx : "c++";
-}
-
-fs::path cache_root() {
-  if (const char* dir = std::getenv("KANEGEN_CACHE_DIR"); dir && *dir) return dir;
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return fs::path(xdg) / "kanegen";
-  if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".cache" / "kanegen";
-  return fs::temp_directory_path() / "kanegen-cache";
 }
 
 /// Everything that changes the runner: the model, the generation options,
@@ -175,6 +169,25 @@ void compile_runner(const fs::path& source_dir, const std::string& name, const R
   fs::rename(temporary, runner);
 }
 
+/// Whether the locked entry holds a runner as it was built; an entry changed
+/// since (an edited source, a replaced runner) is discarded and reported, and
+/// its runner never run.
+bool usable_entry(const fs::path& dir) {
+  std::string changed;
+  switch (entry_state(dir, &changed)) {
+    case EntryState::intact:
+      return true;
+    case EntryState::changed:
+      std::fprintf(stderr, "kanegen: the cached runner in %s is not as it was built (%s); rebuilding it\n",
+                   dir.c_str(), changed.c_str());
+      discard_entry(dir);
+      return false;
+    case EntryState::missing:
+      return false;
+  }
+  return false;
+}
+
 RuntimeLocation checked_runtime() {
   const RuntimeLocation runtime = locate_runtime();
   if (!fs::exists(runtime.library))
@@ -187,9 +200,10 @@ RuntimeLocation checked_runtime() {
 
 std::string build_runner(const std::string& model_path, const BuildOptions& options) {
   const RuntimeLocation runtime = checked_runtime();
-  const fs::path dir = cache_root() / cache_key(model_path, runtime, options);
+  const fs::path dir = checked_cache_root() / cache_key(model_path, runtime, options);
   const fs::path runner = dir / "runner";
-  if (fs::exists(runner)) return runner.string();
+  const EntryLock lock(dir, options.verbose);  // one builder per entry; the others wait and use its runner
+  if (usable_entry(dir)) return runner.string();
 
   const auto start = std::chrono::steady_clock::now();
   if (options.verbose) std::fprintf(stderr, "kanegen: generating %s ...\n", model_path.c_str());
@@ -209,6 +223,9 @@ std::string build_runner(const std::string& model_path, const BuildOptions& opti
   compile_runner(dir, generated.name, runtime, runner,
                  "the generated code did not compile (see the compiler's messages above); please report this "
                  "as a kanegen bug");
+  std::vector<std::string> sources;
+  for (const auto& file : generated.files) sources.push_back(file.first);
+  seal_entry(dir, sources);
   if (options.verbose)
     std::fprintf(stderr, "kanegen: ready in %.1f s (cached in %s)\n",
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
@@ -251,17 +268,18 @@ std::string build_runner_from_directory(const std::string& kernels_dir, const Bu
   for (const auto& entry : fs::recursive_directory_iterator(runtime.include_dir / "kanegen"))
     if (entry.is_regular_file()) bytes += pipeline::read_file(entry.path().string());
   bytes += pipeline::read_file(runtime.library.string());
-  const fs::path dir = cache_root() / ("kernels-" + pipeline::digest(bytes));
+  const fs::path dir = checked_cache_root() / ("kernels-" + pipeline::digest(bytes));
   const fs::path runner = dir / "runner";
-  if (fs::exists(runner)) return runner.string();
+  const EntryLock lock(dir, options.verbose);
+  if (usable_entry(dir)) return runner.string();
 
   const auto start = std::chrono::steady_clock::now();
   if (options.verbose)
     std::fprintf(stderr, "kanegen: compiling %s from %s ...\n", name.c_str(), kernels_dir.c_str());
-  fs::create_directories(dir);
   compile_runner(source, name, runtime, runner,
                  "the code did not compile (see the compiler's messages above); the files in " + kernels_dir +
                      " must be as written by 'kanegen generate', and edits must compile");
+  seal_entry(dir, {});  // the sources are the user's, keyed by their content
   if (options.verbose)
     std::fprintf(stderr, "kanegen: ready in %.1f s (cached in %s)\n",
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),

@@ -344,8 +344,8 @@ std::vector<Row> controller_rows(RunnerProcess& process, const std::vector<Contr
     compared[kSkew] = point.skew(C);
     compared[kJacobian] =
         point.output_jacobian(sized(json_rows_flat(reply["output_jacobian"]), ny * n, "output_jacobian"));
-    compared[kRate] =
-        point.output_jacobian_rate(sized(json_numbers(reply["output_jacobian_rate"]), ny, "output_jacobian_rate"));
+    compared[kRate] = point.output_jacobian_rate(
+        sized(json_numbers(reply["output_jacobian_rate"]), ny, "output_jacobian_rate"));
     std::tie(compared[kA], compared[kB]) = point.linearization(
         sized(json_rows_flat(reply["linearize_A"]), nx * nx, "linearize A"),
         sized(json_rows_flat(reply["linearize_B"]), nx * static_cast<std::size_t>(ntau), "linearize B"),
@@ -354,8 +354,8 @@ std::vector<Row> controller_rows(RunnerProcess& process, const std::vector<Contr
       const Compared& c = compared[j];
       if (c.reference.empty()) continue;
       rows[j].consider(compare_entries(c.generated, c.reference,
-                                       difference_scales(c.reference, c.noise, c.columns, check.tolerance), names[j],
-                                       p.sample));
+                                       difference_scales(c.reference, c.noise, c.columns, check.tolerance),
+                                       names[j], p.sample));
       ++rows[j].compared;
     }
   }

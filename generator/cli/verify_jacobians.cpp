@@ -154,8 +154,8 @@ std::vector<Row> jacobian_rows(RunnerProcess& process, const std::vector<Jacobia
     loops = !c.generated[3].empty();
     for (int j = 0; j < (loops ? 4 : 3); ++j) {
       rows[j].consider(compare_entries(c.generated[j], c.reference[j],
-                                       difference_scales(c.reference[j], c.noise[j], n, check.tolerance), name,
-                                       p.sample));
+                                       difference_scales(c.reference[j], c.noise[j], n, check.tolerance),
+                                       name, p.sample));
       ++rows[j].compared;
     }
   }
@@ -167,7 +167,8 @@ std::vector<Row> jacobian_rows(RunnerProcess& process, const std::vector<Jacobia
 }
 
 Row jacobians_absent_row(bool requested) {
-  return optional_kernels_absent_row("Jacobians", "differences of the numeric path", "--jacobians", requested);
+  return optional_kernels_absent_row("Jacobians", "differences of the numeric path", "--jacobians",
+                                     requested);
 }
 
 }  // namespace kanegen::cli

@@ -709,6 +709,24 @@ TEST_CASE("kanegen plot draws columns of a result into a PNG with gnuplot", "[cl
   CHECK(foreign.err.find("the first line is not a header starting with t") != std::string::npos);
 }
 
+TEST_CASE("kanegen plot refuses a file name with a line break (gnuplot would run the next line)", "[cli]") {
+  // The file name is the plot's default title: a line break in it ends
+  // gnuplot's command and the next line runs as one (system() runs shell
+  // commands). Checked with gnuplot 5.4: the old quoting ran it.
+  // (A file name holds no '/': the marker is made in the working directory.)
+  const fs::path marker = fs::current_path() / "gnuplot_ran_it";
+  fs::remove(marker);
+  const fs::path csv = scratch() / "a\nsystem(\"touch gnuplot_ran_it\")\n.csv";
+  std::ofstream(csv) << "t,a\n0,1\n1,2\n";
+  const Result r = kanegen("plot '" + csv.string() + "' -o " + (scratch() / "hostile.png").string());
+  INFO(r.err);
+  CHECK(r.status != 0);
+  CHECK(r.err.find("holds a control character, which cannot be passed to gnuplot; rename it") !=
+        std::string::npos);
+  CHECK(!fs::exists(marker));
+  CHECK(!fs::exists(scratch() / "hostile.png"));
+}
+
 TEST_CASE("simulate --plot simulates and plots in one step and stdout still gets the CSV", "[cli]") {
   const fs::path png = scratch() / "one_step" / "double.png";
   const Result r =

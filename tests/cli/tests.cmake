@@ -20,3 +20,14 @@ target_compile_definitions(test_energies PRIVATE KANEGEN_EXE="$<TARGET_FILE:kane
 target_link_libraries(test_energies PRIVATE kanegen_catch_main)
 add_dependencies(test_energies kanegen kanegen_runtime)
 catch_discover_tests(test_energies TEST_PREFIX "energies: ")
+
+# The runner cache: concurrent builds, entries changed after they were built,
+# a cache directory others may write to.
+add_executable(test_runner_cache ${CMAKE_CURRENT_LIST_DIR}/test_runner_cache.cpp)
+target_compile_options(test_runner_cache PRIVATE ${KANEGEN_WARNINGS})
+target_compile_definitions(test_runner_cache PRIVATE KANEGEN_EXE="$<TARGET_FILE:kanegen>"
+                                                     KANEGEN_MODELS_DIR="${PROJECT_SOURCE_DIR}/models"
+                                                     KANEGEN_SCRATCH_DIR="${CMAKE_CURRENT_BINARY_DIR}/cache_scratch")
+target_link_libraries(test_runner_cache PRIVATE kanegen_catch_main)
+add_dependencies(test_runner_cache kanegen kanegen_runtime)
+catch_discover_tests(test_runner_cache TEST_PREFIX "cache: ")

@@ -15,7 +15,8 @@ add_executable(test_codegen ${CMAKE_CURRENT_LIST_DIR}/test_solve_saddle.cpp
                             ${CMAKE_CURRENT_LIST_DIR}/test_unrolled_saddle.cpp
                             ${CMAKE_CURRENT_LIST_DIR}/test_dynamics_choice.cpp
                             ${CMAKE_CURRENT_LIST_DIR}/test_split_kernels.cpp
-                            ${CMAKE_CURRENT_LIST_DIR}/test_statement_order.cpp)
+                            ${CMAKE_CURRENT_LIST_DIR}/test_statement_order.cpp
+                            ${CMAKE_CURRENT_LIST_DIR}/test_hostile_names.cpp)
 target_include_directories(test_codegen PRIVATE ${PROJECT_SOURCE_DIR}/templates)
 target_compile_definitions(test_codegen PRIVATE KANEGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 target_compile_options(test_codegen PRIVATE ${KANEGEN_WARNINGS})
@@ -29,9 +30,14 @@ kanegen_add_model(kanegen_model_arm7_split_float ${CMAKE_CURRENT_BINARY_DIR}/arm
                   PRECISION float)
 target_compile_options(kanegen_model_arm7_split PRIVATE ${KANEGEN_WARNINGS} -Werror)
 target_compile_options(kanegen_model_arm7_split_float PRIVATE ${KANEGEN_WARNINGS} -Werror)
+# Names with backslashes, quotes, trigraph starts, comment ends, directives and
+# UTF-8 in every text field (test_hostile_names.cpp), compiled with -Werror.
+kanegen_add_model(kanegen_model_hostile_names ${PROJECT_SOURCE_DIR}/tests/data/models/hostile_names.urdf)
+target_compile_options(kanegen_model_hostile_names PRIVATE ${KANEGEN_WARNINGS} -Werror)
 target_compile_definitions(test_codegen PRIVATE
                            ARM7_SPLIT_HEADER="${CMAKE_CURRENT_BINARY_DIR}/kanegen_generated/kanegen_model_arm7_split/arm7_split.hpp")
 target_link_libraries(test_codegen PRIVATE kanegen_generator kanegen_model_arm7 kanegen_model_chain20 kanegen_model_flexible_arm2
                                            kanegen_model_four_bar kanegen_model_arm7_split
-                                           kanegen_model_arm7_split_float Eigen3::Eigen kanegen_catch_main)
+                                           kanegen_model_arm7_split_float kanegen_model_hostile_names Eigen3::Eigen
+                                           kanegen_catch_main)
 catch_discover_tests(test_codegen TEST_PREFIX "codegen: ")
