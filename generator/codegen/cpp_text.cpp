@@ -43,7 +43,7 @@ std::string cpp_comment_text(const std::string& text) {
 }
 
 const std::string& cpp_identifier(const std::string& name) {
-  if (!model::is_identifier(name) || model::is_cpp_keyword(name))
+  if (!model::is_identifier(name) || model::is_cpp_keyword(name) || model::is_library_macro(name))
     throw std::logic_error("not a C++ identifier, refused for generated code: " + cpp_string_literal(name));
   return name;
 }

@@ -27,7 +27,7 @@ class JsonReader {
     Model m;
     m.source_file = file_;
     m.name = doc_["name"].get<std::string>();
-    check_identifier(m.name, "/name", "model name");
+    check_code_identifier(m.name, "/name", "model name");
     read_parameters(m);
     m.gravity = vec3(doc_, "gravity", "", {0.0, 0.0, -9.81});
     for (std::size_t i = 0; i < doc_["bodies"].size(); ++i) m.bodies.push_back(body(i));
@@ -52,11 +52,21 @@ class JsonReader {
       error(place, what + " '" + name + "' is a C++ keyword", "choose another name, e.g. '" + name + "_'");
   }
 
+  /// A name the generated code uses as a C++ identifier (the model's: its
+  /// namespace; a parameter's: a field of Params), not only as a string.
+  void check_code_identifier(const std::string& name, const std::string& place,
+                             const std::string& what) const {
+    check_identifier(name, place, what);
+    if (is_library_macro(name))
+      error(place, what + " '" + name + "' is a macro of the C library headers that generated code includes",
+            "choose another name, e.g. '" + name + "_'");
+  }
+
   void read_parameters(Model& m) const {
     if (!doc_.contains("parameters")) return;
     for (const auto& [name, value] : doc_["parameters"].items()) {
       const std::string place = "/parameters/" + pointer_token(name);
-      check_identifier(name, place, "parameter name");
+      check_code_identifier(name, place, "parameter name");
       if (is_reserved_parameter_name(name))
         error(place, "parameter name '" + name + "' is reserved",
               "rename it: t, q, u, tau, p, pi, I, Pi, Euler, Catalan and the function names are taken");
@@ -121,16 +131,19 @@ class JsonReader {
             "add \"section\": {\"A\": ..., \"Iz\": ...} for a beam, or give a \"mesh\"");
     FlexibleBeam f;
     f.where = place;
-    f.formulation = j.value("formulation", "planar") == "spatial" ? BeamFormulation::spatial : BeamFormulation::planar;
+    f.formulation =
+        j.value("formulation", "planar") == "spatial" ? BeamFormulation::spatial : BeamFormulation::planar;
     if (j.contains("segments") == j.contains("length"))
-      error(place, j.contains("length") ? "both 'length' and 'segments' given" : "missing 'length' (or 'segments')",
+      error(place,
+            j.contains("length") ? "both 'length' and 'segments' given" : "missing 'length' (or 'segments')",
             "give either \"length\" and \"elements\" (a beam along the body x axis) or \"segments\"");
     const bool assumed = j.contains("assumed_modes");
     if (assumed) read_assumed_modes(j, place, f);
     if (j.contains("length")) {
       // Assumed modes are sampled on an internal mesh, fine unless told otherwise.
       if (!j.contains("elements") && !assumed)
-        error(place, "missing required key 'elements'", "add \"elements\": the number of finite elements (1 to 200)");
+        error(place, "missing required key 'elements'",
+              "add \"elements\": the number of finite elements (1 to 200)");
       f.segments.push_back({{j["length"].get<double>(), 0.0, 0.0},
                             j.value("elements", kAssumedModeElements),
                             place + "/length"});
@@ -373,10 +386,12 @@ class JsonReader {
     }
     if (j.contains("prescribed")) {
       const std::string at = place + "/prescribed";
-      if (!out.moves()) error(at, "fixed joint '" + out.name + "' has no coordinate to prescribe", "remove it");
+      if (!out.moves())
+        error(at, "fixed joint '" + out.name + "' has no coordinate to prescribe", "remove it");
       for (const char* key : {"spring", "damping", "actuated", "initial"})
         if (j.contains(key))
-          error(place + "/" + key, "'" + std::string(key) + "' does not apply to prescribed joint '" + out.name + "'",
+          error(place + "/" + key,
+                "'" + std::string(key) + "' does not apply to prescribed joint '" + out.name + "'",
                 "remove it: the motion is given by \"prescribed\"");
       out.actuated = false;
       const json& p = j["prescribed"];
@@ -390,7 +405,8 @@ class JsonReader {
             error(piece, last ? "the last piece has an 'until'" : "missing 'until'",
                   last ? "remove it: the last piece holds for all later times"
                        : "give the time the piece ends, \"until\": seconds");
-          PrescribedPiece x{p[i]["q"].get<std::string>(), !last, last ? 0.0 : p[i]["until"].get<double>(), piece + "/q"};
+          PrescribedPiece x{p[i]["q"].get<std::string>(), !last, last ? 0.0 : p[i]["until"].get<double>(),
+                            piece + "/q"};
           if (i > 0 && !last && !(x.until > out.prescribed.back().until))
             error(piece + "/until", "pieces must end at increasing times", "order the pieces by time");
           out.prescribed.push_back(x);

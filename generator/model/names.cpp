@@ -57,6 +57,14 @@ std::string name_text_problem(const std::string& name) {
   return "";
 }
 
+extern const char* const library_macros[];  // library_macros.cpp, made by cmake/LibraryMacros.cmake
+extern const std::size_t library_macro_count;
+
+bool is_library_macro(const std::string& name) {
+  return std::find(library_macros, library_macros + library_macro_count, name) !=
+         library_macros + library_macro_count;
+}
+
 bool is_cpp_keyword(const std::string& name) {
   static const std::set<std::string> keywords{
       "alignas",     "alignof",   "and",        "and_eq",    "asm",      "auto",         "bitand",
@@ -90,7 +98,7 @@ std::string sanitize_identifier(const std::string& text) {
   std::string out;
   for (char c : text) out += ascii_alnum(c) ? c : '_';
   if (out.empty() || !ascii_letter(out[0])) out = "model_" + out;
-  if (is_cpp_keyword(out)) out += '_';
+  if (is_cpp_keyword(out) || is_library_macro(out)) out += '_';
   return out;
 }
 

@@ -22,12 +22,18 @@ std::string name_text_problem(const std::string& name);
 /// stays valid with newer compilers).
 bool is_cpp_keyword(const std::string& name);
 
+/// Whether `name` is a macro of the headers generated code includes (errno,
+/// EOF, M_PI, linux, ...; read off the compiler at configure time): as a C++
+/// identifier (a model's or a parameter's name) the preprocessor would replace it.
+bool is_library_macro(const std::string& name);
+
 /// Names a parameter cannot take: the generated code's own names (t, q, u,
 /// tau, p), the constant pi, the expression functions and GiNaC's literals.
 bool is_reserved_parameter_name(const std::string& name);
 
 /// Turns any text into an identifier (for URDF robot names): other characters
-/// become '_', a leading digit or '_' gets a prefix, a keyword a suffix.
+/// become '_', a leading digit or '_' gets a prefix, a keyword or a library
+/// macro a suffix.
 std::string sanitize_identifier(const std::string& text);
 
 /// Levenshtein distance, for suggestions.

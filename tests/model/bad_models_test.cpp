@@ -99,6 +99,15 @@ TEST_CASE("bad model: C++ keyword as model name", "[bad][json]") {
                      "choose another name");
 }
 
+TEST_CASE("bad model: library macro as model or parameter name", "[bad][json]") {
+  // The preprocessor would replace them in the generated code (namespace errno).
+  expect_model_error(bad_model("macro_model_name.json"), "/name",
+                     "model name 'errno' is a macro of the C library headers that generated code includes",
+                     "choose another name, e.g. 'errno_'");
+  expect_model_error(bad_model("macro_parameter_name.json"), "/parameters/EOF",
+                     "parameter name 'EOF' is a macro of the C library headers", "choose another name");
+}
+
 TEST_CASE("bad model: body named like the ground", "[bad][json]") {
   expect_model_error(bad_model("body_named_ground.json"), "/bodies/1/name", "names the fixed ground",
                      "rename the body");
