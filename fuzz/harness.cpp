@@ -62,30 +62,6 @@ class MemoryFile {
   std::string path_;
 };
 
-/// The message of a ModelError must name the file and a place: "FILE: PLACE: problem[; fix]".
-void check_error(const ModelError& e, const std::string& file) {
-  const std::string message = e.what();
-  if (e.file() != file) failure("ModelError names file '" + e.file() + "', not '" + file + "': " + message);
-  if (message.rfind(file + ": ", 0) != 0) failure("ModelError does not start with the file: " + message);
-  const std::string rest = message.substr(file.size() + 2);
-  const auto colon = rest.find(": ");
-  if (colon == std::string::npos || colon == 0 || rest.size() <= colon + 2)
-    failure("ModelError has no place or no problem: " + message);
-  // One line, or three for an expression shown with a caret under the
-  // culprit: "problem\n  TEXT\n  <spaces>^[; fix]".
-  const auto first = message.find('\n');
-  if (first == std::string::npos) return;
-  const auto second = message.find('\n', first + 1);
-  const bool caret_layout = second != std::string::npos &&
-                            message.find('\n', second + 1) == std::string::npos &&
-                            message.compare(first + 1, 2, "  ") == 0 &&
-                            message.find_first_not_of(' ', second + 1) != std::string::npos &&
-                            message[message.find_first_not_of(' ', second + 1)] == '^' &&
-                            message.find_first_not_of(' ', second + 1) >= second + 3;
-  if (!caret_layout)
-    failure("ModelError takes more than one line, and not as an expression with a caret: " + message);
-}
-
 void for_each_scalar(const Model& m, const std::function<void(const Scalar&)>& visit) {
   for (const Scalar& s : m.gravity) visit(s);
   for (const auto& b : m.bodies) {
@@ -142,7 +118,8 @@ void check_invariants(const Model& m) {
     if (!parent_of.emplace(j.child, &j).second) failure("accepted body '" + j.child + "' has two parents");
   }
   // Something must move: a joint, or the elastic coordinates of a flexible body.
-  const bool flexible = std::any_of(m.bodies.begin(), m.bodies.end(), [](const auto& b) { return b.flexible; });
+  const bool flexible =
+      std::any_of(m.bodies.begin(), m.bodies.end(), [](const auto& b) { return b.flexible; });
   if (!moving && !flexible) failure("accepted model has no moving joint and no flexible body");
   for (const auto& b : m.bodies) {
     if (b.mass.is_literal && b.mass.value < 0) failure("accepted body '" + b.name + "' has a negative mass");
@@ -208,6 +185,32 @@ void load(const std::uint8_t* data, std::size_t size, MemoryFile& file, Load&& l
 }
 
 }  // namespace
+
+void check_error(const ModelError& e, const std::string& file) {
+  const std::string message = e.what();
+  if (e.file() != file) failure("ModelError names file '" + e.file() + "', not '" + file + "': " + message);
+  // The message shows the file's control characters escaped (ModelError::printable).
+  const std::string shown_file = ModelError::printable(file);
+  if (message.rfind(shown_file + ": ", 0) != 0)
+    failure("ModelError does not start with the file: " + message);
+  const std::string rest = message.substr(shown_file.size() + 2);
+  const auto colon = rest.find(": ");
+  if (colon == std::string::npos || colon == 0 || rest.size() <= colon + 2)
+    failure("ModelError has no place or no problem: " + message);
+  // One line, or three for an expression shown with a caret under the
+  // culprit: "problem\n  TEXT\n  <spaces>^[; fix]".
+  const auto first = message.find('\n');
+  if (first == std::string::npos) return;
+  const auto second = message.find('\n', first + 1);
+  const bool caret_layout = second != std::string::npos &&
+                            message.find('\n', second + 1) == std::string::npos &&
+                            message.compare(first + 1, 2, "  ") == 0 &&
+                            message.find_first_not_of(' ', second + 1) != std::string::npos &&
+                            message[message.find_first_not_of(' ', second + 1)] == '^' &&
+                            message.find_first_not_of(' ', second + 1) >= second + 3;
+  if (!caret_layout)
+    failure("ModelError takes more than one line, and not as an expression with a caret: " + message);
+}
 
 void json_model(const std::uint8_t* data, std::size_t size) {
   static MemoryFile file;

@@ -11,6 +11,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
+#include <string>
+
+#include "model/model_error.hpp"
 
 namespace kanegen::fuzz {
 
@@ -18,6 +21,11 @@ namespace kanegen::fuzz {
 struct HarnessFailure : std::logic_error {
   using std::logic_error::logic_error;
 };
+
+/// Throws HarnessFailure unless the message of `e` names `file` and a place
+/// and says the problem in one line ("FILE: PLACE: problem[; fix]"), or in
+/// three for an expression shown with a caret under the culprit.
+void check_error(const model::ModelError& e, const std::string& file);
 
 /// The bytes as a kanegen JSON model; on success every expression of the
 /// model is also read by GiNaC (kanegen::symbolic::Variables::scalar).

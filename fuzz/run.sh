@@ -8,7 +8,8 @@
 # Usage: fuzz/run.sh BUILD_DIR [SECONDS_PER_TARGET [TARGET...]]
 #   BUILD_DIR: configured with -DCMAKE_CXX_COMPILER=clang++ -DKANEGEN_BUILD_FUZZERS=ON
 #              -DKANEGEN_SANITIZE=address,undefined and the fuzz_* targets built
-#   TARGET:    json_model, urdf_model, expression (default: all three)
+#   TARGET:    json_model, urdf_model, expression, names (default: all four;
+#              names runs g++ -E on each accepted input, so g++ must be on PATH)
 # Inputs found are kept in BUILD_DIR/fuzz-work/TARGET/corpus for the next run.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -16,7 +17,7 @@ build=$(cd "${1:?usage: fuzz/run.sh BUILD_DIR [SECONDS [TARGET...]]}" && pwd)
 seconds=${2:-60}
 shift $(($# < 2 ? $# : 2))
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(json_model urdf_model expression)
+[ ${#targets[@]} -gt 0 ] || targets=(json_model urdf_model expression names)
 
 # Every finding is fatal and leaks count (also compiled in: cmake/sanitizer_defaults.cpp).
 export ASAN_OPTIONS=${ASAN_OPTIONS:-halt_on_error=1:detect_leaks=1:abort_on_error=0}
@@ -28,6 +29,7 @@ seed_files() {
     json_model) find "$root/models" "$root/tests" -name '*.json' -type f ;;
     urdf_model) find "$root/models" "$root/tests" -name '*.urdf' -type f ;;
     expression) ;;  # made from the JSON models below
+    names) ;;       # written below
   esac
   find "$root/tests/data/fuzz_regressions/${1%_model}" -type f ! -name '.*' 2>/dev/null || true
 }
@@ -63,6 +65,26 @@ for top in ("models", "tests"):
 EOF
 }
 
+# Names seeds (fuzz/names_fuzzer.cpp): a format byte, then the fields
+# separated by the byte 0xfe; plain names, odd ones that must stay text, and
+# the injection of the security issue.
+names_seeds() {
+  python3 - "$1" <<'EOF'
+import os, sys
+out = sys.argv[1]
+urdf = [b"robot", b"ground", b"link1", b"link2", b"j1", b"j2", b"model"]
+odd = [b"my robot", b"base link", "\u00e9l\u00e9ment".encode(), "\u8155".encode(), b'j"1\\', b"j*/2??=", b"m*/"]
+injection = [b"r\n#define x", b"ground", b"l1", b"l2", b"j1\n#include </etc/shadow>", b"j2*/", b"f\n#error"]
+json = [b"m", b"a model", b"b1", b"b2", b"j1", b"j2", b"p1", b"p2", b"o1", b"o2", b"model"]
+bad_json = [b"m", b"caf\xc3\xa9 \xff", b"b1", b"b\n2", b"j1", b"j2", b"p1", b"p2", b"o1", b"o2", b"m\n#x"]
+seeds = [(0, urdf), (1, urdf), (0, odd), (1, odd), (0, injection), (1, injection), (2, json), (3, json),
+         (2, bad_json), (3, bad_json)]
+for n, (mode, fields) in enumerate(seeds):
+    with open(os.path.join(out, "seed%02d" % n), "wb") as f:
+        f.write(bytes([mode]) + b"\xfe".join(fields))
+EOF
+}
+
 status=0
 for target in "${targets[@]}"; do
   exe=$build/fuzz/fuzz_$target
@@ -72,6 +94,7 @@ for target in "${targets[@]}"; do
   mkdir -p "$work/seeds" "$work/corpus" "$work/artifacts"
   seed_files "$target" | while read -r f; do cp "$f" "$work/seeds/$(basename "$(dirname "$f")")_$(basename "$f")"; done
   [ "$target" != expression ] || expression_seeds "$work/seeds"
+  [ "$target" != names ] || names_seeds "$work/seeds"
   echo "fuzz_$target: ${seconds} s from $(ls "$work/seeds" | wc -l) seeds and $(ls "$work/corpus" | wc -l) kept inputs"
   start=$(date +%s)
   if "$exe" -seed=1 -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
