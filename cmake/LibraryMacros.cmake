@@ -1,4 +1,4 @@
-# SPDX-License-Identifier: GPL-2.0-or-later
+# SPDX-License-Identifier: MIT
 # kanegen_library_macros(<out.cpp>): the names of the macros that the headers
 # of generated code define (<math.h> for the kernels, the runtime's driver.hpp
 # for the runner), as `kanegen::model::library_macros`, read off this
