@@ -19,6 +19,7 @@
 #include "codegen/cpp_printer.hpp"
 #include "codegen/embedded_templates.hpp"
 #include "codegen/emitter.hpp"
+#include "kanegen/runtime/methods.hpp"
 #include "pipeline/pipeline.hpp"
 
 namespace kanegen::cli {
@@ -75,7 +76,11 @@ std::string cache_key(const std::string& model_path, const RuntimeLocation& runt
 }  // namespace
 
 bool integrator_needs_jacobians(const std::string& integrator) {
-  return integrator == "implicit" || integrator == "radau" || integrator == "bdf" || integrator == "genalpha";
+  // The runtime's registry decides; "" is the runner's default, an unknown
+  // name is the runner's to report.
+  const runtime::MethodSpec* method =
+      integrator.empty() ? &runtime::method_spec(runtime::kDefaultMethod) : runtime::find_method(integrator);
+  return method != nullptr && method->needs_jacobians;
 }
 
 namespace {

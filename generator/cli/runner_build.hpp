@@ -25,7 +25,8 @@ struct BuildOptions {
 };
 
 /// Whether the runner's `simulate --integrator VALUE` needs the Jacobian
-/// kernels: the implicit integrators ("implicit", "genalpha") do.
+/// kernels: those of the runtime's registry (methods.hpp) marked so, the
+/// implicit ones.
 bool integrator_needs_jacobians(const std::string& integrator);
 
 /// The user stopped a build (SIGINT, SIGTERM or SIGHUP while compiling):

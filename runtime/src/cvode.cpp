@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "integration_run.hpp"
+#include "kanegen/runtime/methods.hpp"
 
 namespace kanegen::runtime::detail {
 namespace {

@@ -12,6 +12,7 @@
 #include "kanegen/runtime/csv.hpp"
 #include "kanegen/runtime/integrators.hpp"
 #include "kanegen/runtime/loops.hpp"
+#include "kanegen/runtime/methods.hpp"
 #include "kanegen/runtime/options.hpp"
 #include "kanegen/runtime/state_jacobian.hpp"
 #include "kanegen/runtime/text.hpp"
@@ -190,7 +191,7 @@ class StopOnSignal {
 
 struct SimulateArgs {
   IntegrationOptions opt;
-  Method method = Method::kDopri5;
+  Method method = kDefaultMethod;
   std::vector<Assignment> sets, q0, u0;
   std::string output;
   bool stats = false;
@@ -223,11 +224,8 @@ SimulateArgs simulate_args(const ParsedOptions& p) {
   if (o.rtol == 0 && o.atol == 0) throw UsageError("--rtol and --atol cannot both be zero");
   if (a.rho_inf > 1) throw UsageError("--rho-inf must be in [0, 1]");
   if (o.max_order > 5) throw UsageError("--max-order must be 1 to 5");
-  if (a.method == Method::kGenAlpha) try {
-      detail::genalpha_steps(o);
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(e.what());
-    }
+  if (const detail::OptionsCheck check = resolved_spec(a.method).check)
+    if (const std::string why = check(o); !why.empty()) throw UsageError(why);
   return a;
 }
 
@@ -237,18 +235,16 @@ std::vector<std::string> state_names(const ModelInfo& info) {
   return names;
 }
 
-bool is_implicit(Method method) { return is_adaptive_implicit(method) || method == Method::kGenAlpha; }
-
 // --stats: the counters of every method, and the Newton counters of the implicit ones.
 void print_stats(std::FILE* err, Method method, const IntegrationResult& r) {
   const StepStats& s = r.stats;
-  // "implicit" is reported as the method it selected.
-  if (method == Method::kImplicit) method = implicit_method();
-  std::string line = std::string("stats: integrator=") + method_name(method) +
+  // An alias ("implicit") is reported as the method it selected.
+  const MethodSpec& spec = resolved_spec(method);
+  std::string line = std::string("stats: integrator=") + spec.name +
                      " accepted=" + std::to_string(s.accepted) + " rejected=" + std::to_string(s.rejected);
-  // genalpha evaluates residuals, not the right-hand side.
-  if (method != Method::kGenAlpha) line += " rhs_evals=" + std::to_string(s.rhs_evals);
-  if (is_implicit(method))
+  // A method that steps the Model (genalpha) evaluates residuals, not the right-hand side.
+  if (spec.ode != nullptr) line += " rhs_evals=" + std::to_string(s.rhs_evals);
+  if (is_implicit(spec.kind))
     line += " newton_iterations=" + std::to_string(s.newton_iterations) +
             " newton_failures=" + std::to_string(s.newton_failures) +
             " jacobian_evals=" + std::to_string(s.jacobian_evaluations) +
@@ -261,23 +257,19 @@ void print_stats(std::FILE* err, Method method, const IntegrationResult& r) {
 // ones with the model's Jacobian kernels (model_integrators.hpp).
 IntegrationResult run_method(const Model& model, const SimulateArgs& a, const Rhs& rhs, double* x,
                              const IntegrationOptions& opt, const Observer& observer, const double* tau) {
-  const int n = model.info().nq + model.info().nu;
+  const int n = model.info().nq + model.info().nu + (a.energies && model.info().nonconservative ? 1 : 0);
   try {
-    if (is_adaptive_implicit(a.method))
-      return detail::integrate_implicit(a.method, model, rhs, tau, x, opt, observer);
-    if (a.method == Method::kGenAlpha)
-      return detail::integrate_genalpha(model, a.rho_inf, tau, x, opt, observer);
+    return detail::integrate_model(a.method, {model, rhs, tau, x, n, opt, observer, a.rho_inf});
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
-  return integrate(a.method, rhs, 0.0, x, n + (a.energies && model.info().nonconservative ? 1 : 0), opt,
-                   observer);
 }
 
 int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err) {
   const ModelInfo& info = model.info();
   // Before anything is written: a model without Jacobians cannot run implicitly.
-  if (is_implicit(a.method) && !model.has_jacobians()) throw UsageError(missing_jacobians_message(info));
+  const bool jacobians = resolved_spec(a.method).needs_jacobians;
+  if (jacobians && !model.has_jacobians()) throw UsageError(missing_jacobians_message(info));
   const int nq = info.nq, n = info.nq + info.nu;
   apply_parameters(model, a.sets);
   std::vector<double> x(static_cast<size_t>(std::max(n, 1)), 0.0);
@@ -302,9 +294,8 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
   // component n, integrated to the method's tolerance; the implicit methods
   // own their state layout and take the trapezoid rule over the rows instead.
   const bool work = a.energies && info.nonconservative;
-  // (is_implicit, not a list of names: radau and bdf integrate nq + nu
-  // components too, and an extra one would be written past their buffers.)
-  const bool work_in_state = work && !is_implicit(a.method);
+  // (needs_jacobians, not names: radau and bdf write nq + nu components, no more.)
+  const bool work_in_state = work && !jacobians;
   const int n_state = work_in_state ? n + 1 : n;
   x.resize(static_cast<size_t>(std::max(n_state, 1)));
   if (work_in_state) x[n] = 0.0;

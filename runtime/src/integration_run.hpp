@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
-// What every integrator of integrators.cpp and cvode.cpp shares: the output
-// grid, and the Run that counts, checks every derivative, calls the observer
-// and turns failures into results that name the time and state. Private to
-// the runtime library.
+// What every ODE method (rk4.cpp, dopri5.cpp, radau.cpp, cvode.cpp) shares:
+// the output grid, and the Run that counts, checks every derivative, calls
+// the observer and turns failures into results that name the time and
+// state. Private to the runtime library. It sits below the methods and the
+// registry (methods.hpp): the types only, nothing that dispatches.
 #pragma once
 
 #include <algorithm>
@@ -12,7 +13,7 @@
 #include <limits>
 #include <string>
 
-#include "kanegen/runtime/integrators.hpp"
+#include "kanegen/runtime/integration_types.hpp"
 
 namespace kanegen::runtime::detail {
 
@@ -176,11 +177,6 @@ class Run {
   const Observer& observer_;
   IntegrationResult result_;
 };
-
-/// The adaptive implicit methods, CVODE's BDF (cvode.cpp) and Radau IIA
-/// (radau.cpp); return the result with the time of the state left in x.
-IntegrationResult integrate_cvode(Run& run, const Jacobian& jacobian, double t0, double* x);
-IntegrationResult integrate_radau(Run& run, const Jacobian& jacobian, double t0, double* x);
 
 /// "reached max_steps = N before t_end = T".
 inline std::string max_steps_message(const IntegrationOptions& opt) {

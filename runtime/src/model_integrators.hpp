@@ -1,35 +1,21 @@
 // SPDX-License-Identifier: MIT
-// The integrators that need the Model itself, not only x' = f(t, x): the
-// adaptive implicit method (the ODE integrator of integrators.hpp with the
-// model's exact Jacobian, StateJacobian) and the fixed-step methods that
-// step the model's equations (GenAlpha), marched over the output grid with
-// the conventions of integrate(): the observer at every output time,
-// max_steps, and failures that name the time and state. Private to the
-// runtime library (driver.cpp).
+// Runs a registry method (methods.hpp) on the runner's model: a method that
+// steps the Model itself through its own entry, an ODE method on the
+// model's right-hand side with integrate(), the implicit ones with the
+// model's exact Jacobian (StateJacobian). Private to the runtime library
+// (driver.cpp); it sits on top of the registry with integrate().
 #pragma once
 
 #include "kanegen/runtime/integrators.hpp"
+#include "kanegen/runtime/methods.hpp"
 #include "kanegen/runtime/model.hpp"
 
 namespace kanegen::runtime::detail {
 
-/// An adaptive implicit method (kImplicit, kRadau, kBdf) on x = (q, u):
-/// `rhs` as for the explicit methods, the Jacobian from the model's kernels
-/// with the inputs tau. Throws std::invalid_argument if the model has no
-/// Jacobian kernels.
-IntegrationResult integrate_implicit(Method method, const Model& model, const Rhs& rhs, const double* tau,
-                                     double* x, const IntegrationOptions& opt, const Observer& observer);
-
-/// The number of genalpha steps of opt.dt to opt.t_end; throws
-/// std::invalid_argument if it is not whole.
-long genalpha_steps(const IntegrationOptions& opt);
-
-/// Method::kGenAlpha from t = 0: one step of opt.dt per output row (t_end
-/// must be a whole number of steps), rho_inf its spectral radius at
-/// infinity. opt.project is not used: the method holds the loops closed
-/// itself. Throws std::invalid_argument for bad options or a model without
-/// Jacobian kernels.
-IntegrationResult integrate_genalpha(const Model& model, double rho_inf, const double* tau, double* x,
-                                     const IntegrationOptions& opt, const Observer& observer);
+/// Integrates run.model with `method` from t = 0. An implicit ODE method
+/// integrates the nq + nu components of x (run.n is for the explicit ones).
+/// Throws std::invalid_argument for a model without the Jacobian kernels
+/// the method needs, or options it cannot take.
+IntegrationResult integrate_model(Method method, const ModelRun& run);
 
 }  // namespace kanegen::runtime::detail

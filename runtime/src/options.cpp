@@ -7,6 +7,7 @@
 #include <set>
 #include <utility>
 
+#include "kanegen/runtime/methods.hpp"
 #include "kanegen/runtime/text.hpp"
 
 namespace kanegen::runtime {
@@ -14,39 +15,77 @@ namespace {
 
 using K = ValueKind;
 
+// ---------------------------------------------------------------- the methods' help, from the registry
+
+// The names of the methods with `property`, in table order: "a/b/c" with
+// sep = last = "/", or "a, b and c".
+std::string method_list(bool (*property)(const MethodSpec&), const char* sep, const char* last) {
+  std::vector<std::string> names;
+  for (const MethodSpec& m : kMethods)
+    if (property(m)) names.emplace_back(m.name);
+  std::string text;
+  for (size_t i = 0; i < names.size(); ++i)
+    text += (i == 0 ? "" : i + 1 == names.size() ? last : sep) + names[i];
+  return text;
+}
+
+// --integrator's help: every method with its description, the default and what an alias selects.
+std::string integrator_help() {
+  std::string text;
+  for (size_t i = 0; i < kMethodCount; ++i) {
+    const MethodSpec& m = kMethods[i];
+    text += std::string(i == 0 ? "" : i + 1 == kMethodCount ? " or " : ", ") + m.name + " (" + m.description;
+    if (m.method == kDefaultMethod) text += ", default";
+    if (m.alias_of != m.method) text += std::string("; it is ") + method_name(m.alias_of);
+    text += ")";
+  }
+  return text;
+}
+
+const std::string kIntegratorChoices = method_list([](const MethodSpec&) { return true; }, ",", ",");
+const std::string kIntegratorHelp = integrator_help();
+const std::string kDtHelp = "output interval, also the " +
+                            method_list([](const MethodSpec& m) { return m.steps_by_dt; }, ", ", " and ") +
+                            " step";
+// The methods --rtol, --atol, --h0, --h-min and --h-max apply to: "dopri5/implicit/radau/bdf".
+const std::string kAdaptive = method_list([](const MethodSpec& m) { return m.takes_tolerances; }, "/", "/");
+const std::string kRtolHelp = kAdaptive + " relative tolerance";
+const std::string kAtolHelp = kAdaptive + " absolute tolerance";
+const std::string kH0Help = kAdaptive + " initial step";
+const std::string kHMinHelp = kAdaptive + ": fail if the step must go below H";
+const std::string kHMaxHelp = kAdaptive + " largest step";
+const std::string kStatsHelp =
+    "after the run, print on stderr the step statistics (and Newton iterations, Jacobian evaluations and LU "
+    "factorizations for " +
+    method_list([](const MethodSpec& m) { return is_implicit(m.kind); }, ", ", " and ") +
+    ") and a summary line: steps, final time, the largest change of T+V and, with loops, the largest loop "
+    "residual";
+
 // The defaults of simulate are IntegrationOptions' (integrators.hpp); a unit
 // test holds the two together. --max-steps is 10 million, what `kanegen
 // simulate` has always passed: explicit dopri5 on a flexible model takes
 // more than 100000 steps for a few seconds of motion.
 const std::vector<OptionSpec> kSimulate = {
     {"--t-end", "", "T", "", nullptr, "final time", K::kNonNegative, true},
-    {"--dt", "", "H", "0.01", nullptr, "output interval, also the rk4 and genalpha step", K::kPositive},
-    {"--integrator", "", "NAME", "dopri5", "",
-     "dopri5 (adaptive explicit, default), implicit (adaptive implicit for stiff models: use it for elastic "
-     "links, with --rtol 1e-2 to 1e-4 and --atol 100 times smaller; it is radau), radau (Radau IIA of order "
-     "5), bdf (SUNDIALS CVODE's BDF), genalpha (fixed step dt, real time) or rk4 (fixed step dt)",
-     K::kChoice, false, false, "rk4,dopri5,implicit,radau,bdf,genalpha"},
+    {"--dt", "", "H", "0.01", nullptr, kDtHelp.c_str(), K::kPositive},
+    {"--integrator", "", "NAME", method_spec(kDefaultMethod).name, "", kIntegratorHelp.c_str(), K::kChoice,
+     false, false, kIntegratorChoices.c_str()},
     {"--rho-inf", "", "R", "0.8", nullptr, "genalpha: spectral radius at infinity in [0, 1] (1: no damping)",
      K::kNonNegative},
     {"--max-order", "", "K", "2", nullptr,
      "bdf: highest BDF order, 1 to 5 (orders above 2 are not A-stable: elastic links crawl)",
      K::kPositiveInteger},
-    {"--rtol", "", "R", "1e-8", nullptr, "dopri5/implicit/radau/bdf relative tolerance", K::kNonNegative},
-    {"--atol", "", "A", "1e-10", nullptr, "dopri5/implicit/radau/bdf absolute tolerance", K::kNonNegative},
-    {"--h0", "", "H", "0", "estimated", "dopri5/implicit/radau/bdf initial step", K::kNonNegative},
-    {"--h-min", "", "H", "0", "round-off limit",
-     "dopri5/implicit/radau/bdf: fail if the step must go below H", K::kNonNegative},
-    {"--h-max", "", "H", "0", "T", "dopri5/implicit/radau/bdf largest step", K::kNonNegative},
+    {"--rtol", "", "R", "1e-8", nullptr, kRtolHelp.c_str(), K::kNonNegative},
+    {"--atol", "", "A", "1e-10", nullptr, kAtolHelp.c_str(), K::kNonNegative},
+    {"--h0", "", "H", "0", "estimated", kH0Help.c_str(), K::kNonNegative},
+    {"--h-min", "", "H", "0", "round-off limit", kHMinHelp.c_str(), K::kNonNegative},
+    {"--h-max", "", "H", "0", "T", kHMaxHelp.c_str(), K::kNonNegative},
     {"--max-steps", "", "N", "10000000", nullptr, "fail after N attempted steps", K::kPositiveInteger},
     {"--set", "", "NAME=VALUE", "", nullptr, "set a parameter", K::kAssignment, false, true},
     {"--q0", "", "NAME=VALUE", "", "the model's q0", "initial coordinate", K::kAssignment, false, true},
     {"--u0", "", "NAME=VALUE", "", "the model's u0", "initial speed", K::kAssignment, false, true},
     {"--output", "-o", "FILE", "-", "", "write the CSV to FILE instead of stdout", K::kText},
-    {"--stats", "", "", "", nullptr,
-     "after the run, print on stderr the step statistics (and Newton iterations, Jacobian evaluations and "
-     "LU factorizations for implicit, radau, bdf and genalpha) and a summary line: steps, final time, the "
-     "largest change of T+V and, with loops, the largest loop residual",
-     K::kFlag},
+    {"--stats", "", "", "", nullptr, kStatsHelp.c_str(), K::kFlag},
     {"--energies", "", "", "", nullptr,
      "add kinetic_energy, potential_energy and total_energy columns, and nonconservative_work (the work "
      "W_nc of dampers, joint efforts, body-fixed forces and prescribed motions since t = 0; "

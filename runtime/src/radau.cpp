@@ -21,6 +21,7 @@
 
 #include "dense_lu.hpp"
 #include "integration_run.hpp"
+#include "kanegen/runtime/methods.hpp"
 
 namespace kanegen::runtime::detail {
 namespace {

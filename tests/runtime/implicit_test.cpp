@@ -484,3 +484,23 @@ TEST_CASE("genalpha: t_end must be a whole number of steps, and rho_inf at most 
   CHECK(o.code == 2);
   CHECK(o.err.find("--rho-inf") != std::string::npos);
 }
+
+// Every row of the registry (methods.hpp) through the runner, so that a new
+// method is run here without a line of its own: a row per output time and
+// its --stats line under the name of the method that ran (an alias's target).
+TEST_CASE("every registered method simulates the chain through the runner", "[implicit][methods]") {
+  Model model(chain_table(true));
+  for (const MethodSpec& m : kMethods) {
+    INFO(m.name);
+    // dt below the stiff mode's stability limit (omega = 1414 rad/s) for rk4.
+    const Outcome o = run(model, {"simulate", "--t-end", "0.01", "--dt", "0.001", "--integrator", m.name,
+                                  "--rtol", "1e-6", "--atol", "1e-9", "--stats"});
+    INFO(o.err);
+    REQUIRE(o.code == 0);
+    const auto table = rows(o.out);
+    REQUIRE(table.size() == 11);
+    CHECK(table.back()[0] == 0.01);
+    CHECK(o.err.find(std::string("stats: integrator=") + resolved_spec(m.method).name + " ") !=
+          std::string::npos);
+  }
+}

@@ -6,7 +6,8 @@ set(KANEGEN_RUNTIME_TEST_DIR ${CMAKE_CURRENT_LIST_DIR})
 add_executable(test_runtime ${KANEGEN_RUNTIME_TEST_DIR}/integrators_test.cpp
                             ${KANEGEN_RUNTIME_TEST_DIR}/text_csv_test.cpp ${KANEGEN_RUNTIME_TEST_DIR}/driver_test.cpp
                             ${KANEGEN_RUNTIME_TEST_DIR}/options_test.cpp ${KANEGEN_RUNTIME_TEST_DIR}/implicit_test.cpp
-                            ${KANEGEN_RUNTIME_TEST_DIR}/envelope_lu_test.cpp)
+                            ${KANEGEN_RUNTIME_TEST_DIR}/envelope_lu_test.cpp
+                            ${KANEGEN_RUNTIME_TEST_DIR}/methods_test.cpp)
 target_compile_options(test_runtime PRIVATE ${KANEGEN_WARNINGS})
 # envelope_lu_test.cpp tests a header private to the runtime library.
 target_include_directories(test_runtime PRIVATE ${PROJECT_SOURCE_DIR}/runtime/src)
