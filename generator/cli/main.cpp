@@ -17,16 +17,16 @@
 #include <utility>
 #include <vector>
 
-#include "cli/generation_interrupt.hpp"
 #include "cli/modes.hpp"
 #include "cli/plot.hpp"
 #include "cli/preflight.hpp"
-#include "cli/runner_build.hpp"
 #include "cli/verify.hpp"
 #include "codegen/emitter.hpp"
 #include "kanegen/runtime/options.hpp"
 #include "model/model_error.hpp"
 #include "pipeline/pipeline.hpp"
+#include "runner/generation_interrupt.hpp"
+#include "runner/runner_build.hpp"
 
 namespace {
 

@@ -8,7 +8,7 @@
 
 #include <string>
 
-#include "cli/runner_build.hpp"
+#include "runner/runner_build.hpp"
 
 namespace kanegen::cli {
 
