@@ -15,7 +15,7 @@
 #include <Eigen/Dense>
 #include <vector>
 
-#include "cli/verify_runner.hpp"
+#include "verify/verify_runner.hpp"
 
 namespace kanegen::cli {
 

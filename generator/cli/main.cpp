@@ -20,13 +20,13 @@
 #include "cli/modes.hpp"
 #include "cli/plot.hpp"
 #include "cli/preflight.hpp"
-#include "cli/verify.hpp"
 #include "codegen/emitter.hpp"
 #include "kanegen/runtime/options.hpp"
 #include "model/model_error.hpp"
 #include "pipeline/pipeline.hpp"
 #include "runner/generation_interrupt.hpp"
 #include "runner/runner_build.hpp"
+#include "verify/verify.hpp"
 
 namespace {
 

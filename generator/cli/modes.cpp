@@ -11,11 +11,11 @@
 #include <stdexcept>
 
 #include "cli/linearize.hpp"
-#include "cli/verify_runner.hpp"
 #include "fem/modal.hpp"
 #include "model/load.hpp"
 #include "model/model_error.hpp"
 #include "symbolic/variables.hpp"
+#include "verify/verify_runner.hpp"
 
 namespace kanegen::cli {
 namespace {

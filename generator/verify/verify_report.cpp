@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-#include "cli/verify_report.hpp"
+#include "verify/verify_report.hpp"
 
 #include <cmath>
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-#include "cli/verify_power.hpp"
+#include "verify/verify_power.hpp"
 
 #include <cmath>
 #include <limits>

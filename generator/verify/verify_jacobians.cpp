@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-#include "cli/verify_jacobians.hpp"
+#include "verify/verify_jacobians.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <functional>
 #include <random>
 
-#include "cli/verify_differences.hpp"
+#include "verify/verify_differences.hpp"
 
 namespace kanegen::cli {
 namespace {

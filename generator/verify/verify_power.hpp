@@ -9,10 +9,10 @@
 
 #include <vector>
 
-#include "cli/verify_report.hpp"
-#include "cli/verify_runner.hpp"
 #include "numeric/dynamics.hpp"
 #include "numeric/instance.hpp"
+#include "verify/verify_report.hpp"
+#include "verify/verify_runner.hpp"
 
 namespace kanegen::cli {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-#include "cli/verify.hpp"
+#include "verify/verify.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -11,18 +11,18 @@
 #include <random>
 #include <stdexcept>
 
-#include "cli/verify_controller.hpp"
-#include "cli/verify_differences.hpp"
-#include "cli/verify_jacobians.hpp"
-#include "cli/verify_power.hpp"
-#include "cli/verify_report.hpp"
-#include "cli/verify_runner.hpp"
 #include "model/expression_eval.hpp"
 #include "model/load.hpp"
 #include "model/model_error.hpp"
 #include "numeric/dynamics.hpp"
 #include "numeric/instance.hpp"
 #include "numeric/loops.hpp"
+#include "verify/verify_controller.hpp"
+#include "verify/verify_differences.hpp"
+#include "verify/verify_jacobians.hpp"
+#include "verify/verify_power.hpp"
+#include "verify/verify_report.hpp"
+#include "verify/verify_runner.hpp"
 
 namespace kanegen::cli {
 namespace {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-#include "cli/verify_runner.hpp"
+#include "verify/verify_runner.hpp"
 
 #include <fcntl.h>
 #include <sys/wait.h>

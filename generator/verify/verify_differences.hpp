@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/verify_report.hpp"
+#include "verify/verify_report.hpp"
 
 namespace kanegen::cli {
 

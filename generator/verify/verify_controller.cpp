@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-#include "cli/verify_controller.hpp"
+#include "verify/verify_controller.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,8 +8,8 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "cli/verify_differences.hpp"
 #include "numeric/beam.hpp"
+#include "verify/verify_differences.hpp"
 
 namespace kanegen::cli {
 namespace {
