@@ -24,7 +24,7 @@
 #include "verify/verify_report.hpp"
 #include "verify/verify_runner.hpp"
 
-namespace kanegen::cli {
+namespace kanegen::verify {
 namespace {
 
 using nlohmann::json;
@@ -964,10 +964,10 @@ int verify(const VerifyOptions& o) {
   const model::Model model = model::load_model(o.model, o.build.load);
   const numeric::Instance base = numeric::instantiate(model, model::default_parameter_values(model));
   // --controller on a model that cannot have the kernels: its rows say why.
-  BuildOptions build = o.build;
+  cli::BuildOptions build = o.build;
   build.controller = build.controller && controller_refusal(base).empty();
-  const std::string runner = o.kernels_dir.empty() ? build_runner(o.model, build)
-                                                   : build_runner_from_directory(o.kernels_dir, build);
+  const std::string runner = o.kernels_dir.empty() ? cli::build_runner(o.model, build)
+                                                   : cli::build_runner_from_directory(o.kernels_dir, build);
   const json info = runner_info(runner);
   const Link link = link_runner(model, base, info);
 
@@ -995,4 +995,4 @@ int verify(const VerifyOptions& o) {
   return failures.empty() ? 0 : 1;
 }
 
-}  // namespace kanegen::cli
+}  // namespace kanegen::verify

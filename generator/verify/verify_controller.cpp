@@ -11,7 +11,7 @@
 #include "numeric/beam.hpp"
 #include "verify/verify_differences.hpp"
 
-namespace kanegen::cli {
+namespace kanegen::verify {
 namespace {
 
 using nlohmann::json;
@@ -384,4 +384,4 @@ Row controller_absent_row(bool requested) {
   return optional_kernels_absent_row("controller kernels", "numeric path", "--controller", requested);
 }
 
-}  // namespace kanegen::cli
+}  // namespace kanegen::verify

@@ -8,7 +8,7 @@
 
 #include "verify/verify_differences.hpp"
 
-namespace kanegen::cli {
+namespace kanegen::verify {
 namespace {
 
 using nlohmann::json;
@@ -171,4 +171,4 @@ Row jacobians_absent_row(bool requested) {
                                      requested);
 }
 
-}  // namespace kanegen::cli
+}  // namespace kanegen::verify

@@ -17,7 +17,7 @@
 #include "verify/verify_report.hpp"
 #include "verify/verify_runner.hpp"
 
-namespace kanegen::cli {
+namespace kanegen::verify {
 
 /// One state at which the Jacobians are compared.
 struct JacobianPoint {
@@ -46,4 +46,4 @@ std::vector<Row> jacobian_rows(RunnerProcess& process, const std::vector<Jacobia
 /// The one row that stands for them when the kernels have no Jacobians.
 Row jacobians_absent_row(bool requested);
 
-}  // namespace kanegen::cli
+}  // namespace kanegen::verify

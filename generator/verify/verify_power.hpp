@@ -14,7 +14,7 @@
 #include "verify/verify_report.hpp"
 #include "verify/verify_runner.hpp"
 
-namespace kanegen::cli {
+namespace kanegen::verify {
 
 struct TrajectoryStart {
   const numeric::Instance* instance = nullptr;  ///< the model at the trajectory's parameter values
@@ -28,4 +28,4 @@ struct TrajectoryStart {
 Worst power_balance(RunnerProcess& runner, const TrajectoryStart& start, double duration, int index,
                     long* points);
 
-}  // namespace kanegen::cli
+}  // namespace kanegen::verify

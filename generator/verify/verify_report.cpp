@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-namespace kanegen::cli {
+namespace kanegen::verify {
 namespace {
 
 std::string sci(double x) {
@@ -128,4 +128,4 @@ nlohmann::json report_json(const ReportHeader& h, const std::vector<Row>& rows,
   return j;
 }
 
-}  // namespace kanegen::cli
+}  // namespace kanegen::verify

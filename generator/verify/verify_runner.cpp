@@ -8,7 +8,7 @@
 #include <csignal>
 #include <stdexcept>
 
-namespace kanegen::cli {
+namespace kanegen::verify {
 
 RunnerProcess::RunnerProcess(const std::string& runner, const std::vector<std::string>& args)
     : program_(runner) {
@@ -106,4 +106,4 @@ nlohmann::json batch_request(RunnerProcess& process, const nlohmann::json& reque
   return reply;
 }
 
-}  // namespace kanegen::cli
+}  // namespace kanegen::verify
