@@ -156,7 +156,8 @@ function(kanegen_check_layers)
 endfunction()
 
 function(kanegen_enforce_layers)
-  set(above_numeric kanegen_symbolic kanegen_generator)
+  # runner/ and verify/ (generator/CMakeLists.txt) stand on the symbolic side.
+  set(above_numeric kanegen_symbolic kanegen_generator kanegen_runner kanegen_verify)
   # CVODE: the implicit integrator (runtime/src/cvode.cpp), a C library.
   kanegen_layer(kanegen_runtime STANDARD_LIBRARY_ONLY ALLOW SUNDIALS::cvode)
   kanegen_layer(kanegen_model FORBID kanegen_fem kanegen_numeric ${above_numeric})

@@ -15,7 +15,7 @@
 #include <Eigen/Dense>
 #include <vector>
 
-#include "cli/verify_runner.hpp"
+#include "verify/verify_runner.hpp"
 
 namespace kanegen::cli {
 
@@ -42,6 +42,7 @@ struct Linearization {
 };
 
 /// Throws std::runtime_error if the runner fails or gives a non-finite value.
-Linearization linearize(RunnerProcess& runner, const OperatingPoint& point, const LinearizeOptions& options);
+Linearization linearize(verify::RunnerProcess& runner, const OperatingPoint& point,
+                        const LinearizeOptions& options);
 
 }  // namespace kanegen::cli

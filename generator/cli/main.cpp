@@ -17,16 +17,16 @@
 #include <utility>
 #include <vector>
 
-#include "cli/generation_interrupt.hpp"
 #include "cli/modes.hpp"
 #include "cli/plot.hpp"
 #include "cli/preflight.hpp"
-#include "cli/runner_build.hpp"
-#include "cli/verify.hpp"
 #include "codegen/emitter.hpp"
 #include "kanegen/runtime/options.hpp"
 #include "model/model_error.hpp"
 #include "pipeline/pipeline.hpp"
+#include "runner/generation_interrupt.hpp"
+#include "runner/runner_build.hpp"
+#include "verify/verify.hpp"
 
 namespace {
 
@@ -346,7 +346,7 @@ int run_eval(const EvalCommand& c) {
 struct VerifyCommand {
   CLI::App* command = nullptr;
   RunOptions run;
-  kanegen::cli::VerifyOptions options;
+  kanegen::verify::VerifyOptions options;
   bool jacobians = false;
   bool controller = false;
 };
@@ -362,7 +362,7 @@ void add_verify(CLI::App& app, VerifyCommand& c) {
       "the power balance d(T+V)/dt = P_nc along short trajectories. --jacobians and --controller add the\n"
       "optional kernels. Exit status 0: all agree; 1: a mismatch (named on stderr with its state). See "
       "docs/verify.md.");
-  kanegen::cli::VerifyOptions& o = c.options;
+  kanegen::verify::VerifyOptions& o = c.options;
   ver->add_option("--samples", o.samples, "number of random states")->capture_default_str()->check(kPositive);
   ver->add_option("--seed", o.seed, "random seed")->capture_default_str();
   ver->add_option("--rtol", o.rtol, "tolerance of the relative error measures (power balance: 100x)")
@@ -432,7 +432,7 @@ int run_verify(VerifyCommand& c) {
                                        c.run.dynamics + "' or leave --dynamics out");
   c.options.build.jacobians = c.jacobians;
   c.options.build.controller = c.controller;
-  return kanegen::cli::verify(c.options);
+  return kanegen::verify::verify(c.options);
 }
 
 struct ModesCommand {

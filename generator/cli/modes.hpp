@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/runner_build.hpp"
+#include "runner/runner_build.hpp"
 
 namespace kanegen::cli {
 

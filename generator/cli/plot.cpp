@@ -11,10 +11,10 @@
 #include <stdexcept>
 
 #include "cli/preflight.hpp"
-#include "cli/runner_build.hpp"
 #include "kanegen/runtime/options.hpp"
 #include "model/model_error.hpp"
 #include "model/names.hpp"
+#include "runner/runner_build.hpp"
 
 namespace kanegen::cli {
 namespace fs = std::filesystem;

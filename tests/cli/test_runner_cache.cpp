@@ -2,7 +2,7 @@
 // The runner cache as users meet it: several kanegen processes building one
 // new model at once, an entry changed after it was built (an edited source, a
 // replaced runner), and a cache directory others may write to
-// (generator/cli/runner_cache.hpp, docs/errors.md#security).
+// (generator/runner/runner_cache.hpp, docs/errors.md#security).
 #include <sys/stat.h>
 
 #include <catch2/catch.hpp>

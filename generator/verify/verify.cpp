@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-#include "cli/verify.hpp"
+#include "verify/verify.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -11,20 +11,20 @@
 #include <random>
 #include <stdexcept>
 
-#include "cli/verify_controller.hpp"
-#include "cli/verify_differences.hpp"
-#include "cli/verify_jacobians.hpp"
-#include "cli/verify_power.hpp"
-#include "cli/verify_report.hpp"
-#include "cli/verify_runner.hpp"
 #include "model/expression_eval.hpp"
 #include "model/load.hpp"
 #include "model/model_error.hpp"
 #include "numeric/dynamics.hpp"
 #include "numeric/instance.hpp"
 #include "numeric/loops.hpp"
+#include "verify/verify_controller.hpp"
+#include "verify/verify_differences.hpp"
+#include "verify/verify_jacobians.hpp"
+#include "verify/verify_power.hpp"
+#include "verify/verify_report.hpp"
+#include "verify/verify_runner.hpp"
 
-namespace kanegen::cli {
+namespace kanegen::verify {
 namespace {
 
 using nlohmann::json;
@@ -964,10 +964,10 @@ int verify(const VerifyOptions& o) {
   const model::Model model = model::load_model(o.model, o.build.load);
   const numeric::Instance base = numeric::instantiate(model, model::default_parameter_values(model));
   // --controller on a model that cannot have the kernels: its rows say why.
-  BuildOptions build = o.build;
+  cli::BuildOptions build = o.build;
   build.controller = build.controller && controller_refusal(base).empty();
-  const std::string runner = o.kernels_dir.empty() ? build_runner(o.model, build)
-                                                   : build_runner_from_directory(o.kernels_dir, build);
+  const std::string runner = o.kernels_dir.empty() ? cli::build_runner(o.model, build)
+                                                   : cli::build_runner_from_directory(o.kernels_dir, build);
   const json info = runner_info(runner);
   const Link link = link_runner(model, base, info);
 
@@ -995,4 +995,4 @@ int verify(const VerifyOptions& o) {
   return failures.empty() ? 0 : 1;
 }
 
-}  // namespace kanegen::cli
+}  // namespace kanegen::verify

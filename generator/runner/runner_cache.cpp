@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-#include "cli/runner_cache.hpp"
+#include "runner/runner_cache.hpp"
 
 #include <fcntl.h>
 #include <sys/file.h>

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace kanegen::cli {
+namespace kanegen::verify {
 
 class RunnerProcess {
  public:
@@ -43,4 +43,4 @@ nlohmann::json runner_info(const std::string& runner);
 /// One `batch` request; throws std::runtime_error if the answer is an error.
 nlohmann::json batch_request(RunnerProcess& process, const nlohmann::json& request);
 
-}  // namespace kanegen::cli
+}  // namespace kanegen::verify

@@ -12,12 +12,12 @@
 #include <string>
 #include <vector>
 
-#include "cli/verify_report.hpp"
-#include "cli/verify_runner.hpp"
 #include "numeric/dynamics.hpp"
 #include "numeric/instance.hpp"
+#include "verify/verify_report.hpp"
+#include "verify/verify_runner.hpp"
 
-namespace kanegen::cli {
+namespace kanegen::verify {
 
 /// One state at which the Jacobians are compared.
 struct JacobianPoint {
@@ -46,4 +46,4 @@ std::vector<Row> jacobian_rows(RunnerProcess& process, const std::vector<Jacobia
 /// The one row that stands for them when the kernels have no Jacobians.
 Row jacobians_absent_row(bool requested);
 
-}  // namespace kanegen::cli
+}  // namespace kanegen::verify

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "cli/verify_report.hpp"
+#include "verify/verify_report.hpp"
 
-namespace kanegen::cli {
+namespace kanegen::verify {
 
 constexpr double kDifferenceEpsilon = 2.2e-16;
 /// The differences' round-off is taken as this many eps of the magnitude of
@@ -48,4 +48,4 @@ std::vector<double> difference_scales(const std::vector<double>& reference, cons
 Row optional_kernels_absent_row(const std::string& title, const std::string& reference,
                                 const std::string& flag, bool requested);
 
-}  // namespace kanegen::cli
+}  // namespace kanegen::verify

@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-#include "cli/verify_jacobians.hpp"
+#include "verify/verify_jacobians.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <functional>
 #include <random>
 
-#include "cli/verify_differences.hpp"
+#include "verify/verify_differences.hpp"
 
-namespace kanegen::cli {
+namespace kanegen::verify {
 namespace {
 
 using nlohmann::json;
@@ -171,4 +171,4 @@ Row jacobians_absent_row(bool requested) {
                                      requested);
 }
 
-}  // namespace kanegen::cli
+}  // namespace kanegen::verify

@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-namespace kanegen::cli {
+namespace kanegen::verify {
 
 /// The worst comparison of a quantity so far.
 struct Worst {
@@ -69,4 +69,4 @@ void print_table(std::FILE* out, const ReportHeader& header, const std::vector<R
 nlohmann::json report_json(const ReportHeader& header, const std::vector<Row>& rows,
                            const std::vector<std::string>& failures);
 
-}  // namespace kanegen::cli
+}  // namespace kanegen::verify

@@ -8,21 +8,21 @@
 
 #include <string>
 
-#include "cli/runner_build.hpp"
+#include "runner/runner_build.hpp"
 
-namespace kanegen::cli {
+namespace kanegen::verify {
 
 struct VerifyOptions {
   std::string model;        ///< model file (the numeric path reads it)
   std::string kernels_dir;  ///< verify these generated files instead of generating afresh
   int samples = 100;
   unsigned long seed = 1;
-  double rtol = 1e-9;     ///< tolerance of the error measures (power balance: 100 rtol)
-  double spread = 0.2;    ///< parameters drawn in default * [1 - spread, 1 + spread]
-  int trajectories = 3;   ///< power-balance trajectories
-  double duration = 0.2;  ///< of each trajectory, s
-  bool json = false;      ///< report as JSON on stdout
-  BuildOptions build;     ///< build.verbose: progress lines on stderr
+  double rtol = 1e-9;       ///< tolerance of the error measures (power balance: 100 rtol)
+  double spread = 0.2;      ///< parameters drawn in default * [1 - spread, 1 + spread]
+  int trajectories = 3;     ///< power-balance trajectories
+  double duration = 0.2;    ///< of each trajectory, s
+  bool json = false;        ///< report as JSON on stdout
+  cli::BuildOptions build;  ///< build.verbose: progress lines on stderr
 };
 
 /// Runs the verification and prints the report. Returns 0 if everything
@@ -31,4 +31,4 @@ struct VerifyOptions {
 /// (kernels that do not match the model, a runner that cannot be built).
 int verify(const VerifyOptions& options);
 
-}  // namespace kanegen::cli
+}  // namespace kanegen::verify

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-#include "cli/verify_controller.hpp"
+#include "verify/verify_controller.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,10 +8,10 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "cli/verify_differences.hpp"
 #include "numeric/beam.hpp"
+#include "verify/verify_differences.hpp"
 
-namespace kanegen::cli {
+namespace kanegen::verify {
 namespace {
 
 using nlohmann::json;
@@ -384,4 +384,4 @@ Row controller_absent_row(bool requested) {
   return optional_kernels_absent_row("controller kernels", "numeric path", "--controller", requested);
 }
 
-}  // namespace kanegen::cli
+}  // namespace kanegen::verify

@@ -15,12 +15,12 @@
 #include <string>
 #include <vector>
 
-#include "cli/verify_report.hpp"
-#include "cli/verify_runner.hpp"
 #include "numeric/dynamics.hpp"
 #include "numeric/instance.hpp"
+#include "verify/verify_report.hpp"
+#include "verify/verify_runner.hpp"
 
-namespace kanegen::cli {
+namespace kanegen::verify {
 
 /// One state at which the controller kernels are compared.
 struct ControllerPoint {
@@ -52,4 +52,4 @@ std::vector<Row> controller_rows_not_applicable(const std::string& reason);
 /// The one row that stands for them when they were not asked for.
 Row controller_absent_row(bool requested);
 
-}  // namespace kanegen::cli
+}  // namespace kanegen::verify

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-#include "cli/generation_interrupt.hpp"
+#include "runner/generation_interrupt.hpp"
 
 #include <unistd.h>
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-#include "cli/verify_runner.hpp"
+#include "verify/verify_runner.hpp"
 
 #include <fcntl.h>
 #include <sys/wait.h>
@@ -8,7 +8,7 @@
 #include <csignal>
 #include <stdexcept>
 
-namespace kanegen::cli {
+namespace kanegen::verify {
 
 RunnerProcess::RunnerProcess(const std::string& runner, const std::vector<std::string>& args)
     : program_(runner) {
@@ -106,4 +106,4 @@ nlohmann::json batch_request(RunnerProcess& process, const nlohmann::json& reque
   return reply;
 }
 
-}  // namespace kanegen::cli
+}  // namespace kanegen::verify

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-#include "cli/verify_report.hpp"
+#include "verify/verify_report.hpp"
 
 #include <cmath>
 
-namespace kanegen::cli {
+namespace kanegen::verify {
 namespace {
 
 std::string sci(double x) {
@@ -128,4 +128,4 @@ nlohmann::json report_json(const ReportHeader& h, const std::vector<Row>& rows,
   return j;
 }
 
-}  // namespace kanegen::cli
+}  // namespace kanegen::verify

@@ -9,12 +9,12 @@
 
 #include <vector>
 
-#include "cli/verify_report.hpp"
-#include "cli/verify_runner.hpp"
 #include "numeric/dynamics.hpp"
 #include "numeric/instance.hpp"
+#include "verify/verify_report.hpp"
+#include "verify/verify_runner.hpp"
 
-namespace kanegen::cli {
+namespace kanegen::verify {
 
 struct TrajectoryStart {
   const numeric::Instance* instance = nullptr;  ///< the model at the trajectory's parameter values
@@ -28,4 +28,4 @@ struct TrajectoryStart {
 Worst power_balance(RunnerProcess& runner, const TrajectoryStart& start, double duration, int index,
                     long* points);
 
-}  // namespace kanegen::cli
+}  // namespace kanegen::verify

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-#include "cli/verify_power.hpp"
+#include "verify/verify_power.hpp"
 
 #include <cmath>
 #include <limits>
@@ -8,7 +8,7 @@
 
 #include "kanegen/runtime/integrators.hpp"
 
-namespace kanegen::cli {
+namespace kanegen::verify {
 namespace {
 
 /// Tight enough that the integration error (about this size, relative to the
@@ -114,4 +114,4 @@ Worst power_balance(RunnerProcess& runner, const TrajectoryStart& start, double 
   return worst;
 }
 
-}  // namespace kanegen::cli
+}  // namespace kanegen::verify

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-#include "cli/runner_build.hpp"
+#include "runner/runner_build.hpp"
 
 #include <signal.h>
 #include <sys/wait.h>
@@ -14,13 +14,13 @@
 #include <stdexcept>
 #include <vector>
 
-#include "cli/generation_interrupt.hpp"
-#include "cli/runner_cache.hpp"
 #include "codegen/cpp_printer.hpp"
 #include "codegen/embedded_templates.hpp"
 #include "codegen/emitter.hpp"
 #include "kanegen/runtime/methods.hpp"
 #include "pipeline/pipeline.hpp"
+#include "runner/generation_interrupt.hpp"
+#include "runner/runner_cache.hpp"
 
 namespace kanegen::cli {
 namespace fs = std::filesystem;

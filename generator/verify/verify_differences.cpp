@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-#include "cli/verify_differences.hpp"
+#include "verify/verify_differences.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace kanegen::cli {
+namespace kanegen::verify {
 
 std::vector<double> json_numbers(const nlohmann::json& array) {
   std::vector<double> v;
@@ -46,4 +46,4 @@ Row optional_kernels_absent_row(const std::string& title, const std::string& ref
   return row;
 }
 
-}  // namespace kanegen::cli
+}  // namespace kanegen::verify
