@@ -255,11 +255,12 @@ void print_stats(std::FILE* err, Method method, const IntegrationResult& r) {
 
 // Integrates with the chosen method: the explicit ones on rhs, the implicit
 // ones with the model's Jacobian kernels (model_integrators.hpp).
+// n_state: the components of x, nq + nu and W_nc when simulate carries it.
 IntegrationResult run_method(const Model& model, const SimulateArgs& a, const Rhs& rhs, double* x,
-                             const IntegrationOptions& opt, const Observer& observer, const double* tau) {
-  const int n = model.info().nq + model.info().nu + (a.energies && model.info().nonconservative ? 1 : 0);
+                             int n_state, const IntegrationOptions& opt, const Observer& observer,
+                             const double* tau) {
   try {
-    return detail::integrate_model(a.method, {model, rhs, tau, x, n, opt, observer, a.rho_inf});
+    return detail::integrate_model(a.method, {model, rhs, tau, x, n_state, opt, observer, a.rho_inf});
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
@@ -374,7 +375,7 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
   opt.on_step = [&](double t, long steps) { progress.on_step(t, steps); };
   if (loops.active())
     opt.project = [&](double, double* xs, std::string* why) { return loops.project(xs, xs + nq, why); };
-  const IntegrationResult r = run_method(model, a, rhs, x.data(), opt, observer, tau.data());
+  const IntegrationResult r = run_method(model, a, rhs, x.data(), n_state, opt, observer, tau.data());
   progress.finish();
   if (a.stats) print_stats(err, a.method, r);
   if (a.stats) print(err, run_summary(r.stats.accepted, r.t, energy, loops.active(), largest_loop_residual));
