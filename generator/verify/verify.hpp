@@ -22,7 +22,7 @@ struct VerifyOptions {
   int trajectories = 3;     ///< power-balance trajectories
   double duration = 0.2;    ///< of each trajectory, s
   bool json = false;        ///< report as JSON on stdout
-  cli::BuildOptions build;  ///< build.verbose: progress lines on stderr
+  runner::BuildOptions build;  ///< build.verbose: progress lines on stderr
 };
 
 /// Runs the verification and prints the report. Returns 0 if everything
