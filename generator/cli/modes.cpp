@@ -14,8 +14,8 @@
 #include "fem/modal.hpp"
 #include "model/load.hpp"
 #include "model/model_error.hpp"
-#include "symbolic/variables.hpp"
 #include "runner/runner_process.hpp"
+#include "symbolic/variables.hpp"
 
 namespace kanegen::cli {
 namespace {

@@ -17,12 +17,12 @@
 #include "numeric/dynamics.hpp"
 #include "numeric/instance.hpp"
 #include "numeric/loops.hpp"
+#include "runner/runner_process.hpp"
 #include "verify/verify_controller.hpp"
 #include "verify/verify_differences.hpp"
 #include "verify/verify_jacobians.hpp"
 #include "verify/verify_power.hpp"
 #include "verify/verify_report.hpp"
-#include "runner/runner_process.hpp"
 
 namespace kanegen::verify {
 namespace {
@@ -836,7 +836,8 @@ Worst trajectory_power_balance(runner::RunnerProcess& process, const Sample& s, 
   return w;
 }
 
-Row power_balance_row(runner::RunnerProcess& process, const std::vector<Sample>& samples, const VerifyOptions& o) {
+Row power_balance_row(runner::RunnerProcess& process, const std::vector<Sample>& samples,
+                      const VerifyOptions& o) {
   Row power("power balance", "integral of numeric P_nc", 100 * o.rtol);
   power.where_kind = "trajectory";
   const int trajectories = std::min(o.trajectories, o.samples);
@@ -966,8 +967,9 @@ int verify(const VerifyOptions& o) {
   // --controller on a model that cannot have the kernels: its rows say why.
   runner::BuildOptions build = o.build;
   build.controller = build.controller && controller_refusal(base).empty();
-  const std::string runner = o.kernels_dir.empty() ? runner::build_runner(o.model, build)
-                                                   : runner::build_runner_from_directory(o.kernels_dir, build);
+  const std::string runner = o.kernels_dir.empty()
+                                 ? runner::build_runner(o.model, build)
+                                 : runner::build_runner_from_directory(o.kernels_dir, build);
   const json info = runner::runner_info(runner);
   const Link link = link_runner(model, base, info);
 

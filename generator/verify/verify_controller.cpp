@@ -330,12 +330,12 @@ std::vector<Row> controller_rows(runner::RunnerProcess& process, const std::vect
   std::vector<Row> rows = empty_rows(check.tolerance);
   for (const ControllerPoint& p : points) {
     const json reply = runner::batch_request(process, json{{"t", p.state.t},
-                                                   {"q", p.state.q},
-                                                   {"u", p.state.u},
-                                                   {"tau", p.runner_tau},
-                                                   {"p", p.runner_p},
-                                                   {"eval", "energy"},
-                                                   {"controller", true}});
+                                                           {"q", p.state.q},
+                                                           {"u", p.state.u},
+                                                           {"tau", p.runner_tau},
+                                                           {"p", p.runner_p},
+                                                           {"eval", "energy"},
+                                                           {"controller", true}});
     const PointCheck point(p, check);
     Compared compared[kRows];
     const std::size_t n = check.coordinates.size(), ny = check.outputs.size(), nx = 2 * n;

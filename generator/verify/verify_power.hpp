@@ -11,8 +11,8 @@
 
 #include "numeric/dynamics.hpp"
 #include "numeric/instance.hpp"
-#include "verify/verify_report.hpp"
 #include "runner/runner_process.hpp"
+#include "verify/verify_report.hpp"
 
 namespace kanegen::verify {
 
