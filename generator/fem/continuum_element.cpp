@@ -4,52 +4,9 @@
 #include <cmath>
 #include <sstream>
 
-#include "fem/quadrature.hpp"
-
 namespace kanegen::fem {
 
 namespace {
-
-bool is_quadratic(ContinuumFamily family) {
-  return family == ContinuumFamily::kQuad8 || family == ContinuumFamily::kHex20;
-}
-
-/// Gauss points per direction: full integration, as CalculiX's CPS4/C3D8 (2) and CPS8/C3D20 (3).
-int gauss_order(ContinuumFamily family) { return is_quadratic(family) ? 3 : 2; }
-
-/// The shape function of the node at natural coordinates c, and its gradient, at x.
-/// Linear: prod_k (1 + x_k c_k) / 2. Serendipity corner: that product times
-/// (sum_k x_k c_k - (d - 1)); serendipity mid-edge node (c_m = 0): (1 - x_m^2)
-/// prod_{k != m} (1 + x_k c_k) / 2.
-double node_shape(bool quadratic, int d, const Eigen::VectorXd& c, const Eigen::Vector3d& x,
-                  Eigen::Ref<Eigen::RowVectorXd, 0, Eigen::InnerStride<>> grad) {
-  int mid = -1;
-  for (int k = 0; k < d; ++k)
-    if (c[k] == 0.0) mid = k;
-  // p_k = (1 + x_k c_k) / 2 over the non-mid directions; prod_except(j) leaves p_j out.
-  auto p = [&](int k) { return 0.5 * (1.0 + x[k] * c[k]); };
-  auto prod_except = [&](int skip1, int skip2) {
-    double out = 1.0;
-    for (int k = 0; k < d; ++k)
-      if (k != skip1 && k != skip2) out *= p(k);
-    return out;
-  };
-  if (mid >= 0) {
-    const double bubble = 1.0 - x[mid] * x[mid];
-    for (int j = 0; j < d; ++j)
-      grad[j] = j == mid ? -2.0 * x[mid] * prod_except(mid, -1) : bubble * 0.5 * c[j] * prod_except(mid, j);
-    return bubble * prod_except(mid, -1);
-  }
-  const double product = prod_except(-1, -1);
-  if (!quadratic) {
-    for (int j = 0; j < d; ++j) grad[j] = 0.5 * c[j] * prod_except(j, -1);
-    return product;
-  }
-  double s = -(d - 1.0);
-  for (int k = 0; k < d; ++k) s += x[k] * c[k];
-  for (int j = 0; j < d; ++j) grad[j] = 0.5 * c[j] * prod_except(j, -1) * s + product * c[j];
-  return product * s;
-}
 
 /// Isotropic elasticity matrix: plane stress (3 x 3, strains xx, yy, gamma_xy)
 /// or 3D (6 x 6, strains xx, yy, zz, gamma_xy, gamma_yz, gamma_zx).
@@ -102,59 +59,6 @@ std::string describe(const Eigen::Vector3d& xi, int dimension) {
 
 }  // namespace
 
-const char* ccx_type_name(ContinuumFamily family) {
-  switch (family) {
-    case ContinuumFamily::kQuad4:
-      return "CPS4";
-    case ContinuumFamily::kQuad8:
-      return "CPS8";
-    case ContinuumFamily::kHex8:
-      return "C3D8";
-    case ContinuumFamily::kHex20:
-      return "C3D20";
-  }
-  return "?";
-}
-
-int family_num_nodes(ContinuumFamily family) {
-  switch (family) {
-    case ContinuumFamily::kQuad4:
-      return 4;
-    case ContinuumFamily::kQuad8:
-    case ContinuumFamily::kHex8:
-      return 8;
-    case ContinuumFamily::kHex20:
-      return 20;
-  }
-  return 0;
-}
-
-int family_dimension(ContinuumFamily family) {
-  return family == ContinuumFamily::kQuad4 || family == ContinuumFamily::kQuad8 ? 2 : 3;
-}
-
-Eigen::MatrixXd family_natural_nodes(ContinuumFamily family) {
-  // Corners counter-clockwise seen from +z (bottom face first for hexahedra),
-  // then the mid-edge nodes in CalculiX's order.
-  static const double quad[2][8] = {{-1, 1, 1, -1, 0, 1, 0, -1}, {-1, -1, 1, 1, -1, 0, 1, 0}};
-  static const double hex[3][20] = {{-1, 1, 1, -1, -1, 1, 1, -1, 0, 1, 0, -1, 0, 1, 0, -1, -1, 1, 1, -1},
-                                    {-1, -1, 1, 1, -1, -1, 1, 1, -1, 0, 1, 0, -1, 0, 1, 0, -1, -1, 1, 1},
-                                    {-1, -1, -1, -1, 1, 1, 1, 1, -1, -1, -1, -1, 1, 1, 1, 1, 0, 0, 0, 0}};
-  const int d = family_dimension(family), n = family_num_nodes(family);
-  Eigen::MatrixXd c(d, n);
-  for (int k = 0; k < d; ++k)
-    for (int i = 0; i < n; ++i) c(k, i) = d == 2 ? quad[k][i] : hex[k][i];
-  return c;
-}
-
-NaturalShape natural_shape(ContinuumFamily family, const Eigen::Vector3d& xi) {
-  const Eigen::MatrixXd c = family_natural_nodes(family);
-  const int d = static_cast<int>(c.rows()), n = static_cast<int>(c.cols());
-  NaturalShape s{Eigen::VectorXd(n), Eigen::MatrixXd(n, d)};
-  for (int i = 0; i < n; ++i) s.N[i] = node_shape(is_quadratic(family), d, c.col(i), xi, s.dN.row(i));
-  return s;
-}
-
 ContinuumElement::ContinuumElement(ContinuumFamily family, const Eigen::Matrix3Xd& nodes,
                                    const ContinuumMaterial& material, double thickness)
     : family_(family), nodes_(nodes), material_(material), thickness_(thickness) {
@@ -181,21 +85,11 @@ ContinuumElement::ContinuumElement(ContinuumFamily family, const Eigen::Matrix3X
     xi.head(d) = corners.col(i);
     physical_gradient(natural_shape(family, xi), xi, det_j);
   }
-  const QuadratureRule rule = gauss_legendre(gauss_order(family));
-  const int m = static_cast<int>(rule.points.size());
-  const int count = d == 2 ? m * m : m * m * m;
-  for (int p = 0; p < count; ++p) {
-    // Map [0, 1] to [-1, 1]: the weights double per direction.
-    const int index[3] = {p % m, (p / m) % m, p / (m * m)};
-    Eigen::Vector3d xi = Eigen::Vector3d::Zero();
-    double w = thickness_;
-    for (int k = 0; k < d; ++k) {
-      xi[k] = 2.0 * rule.points[index[k]] - 1.0;
-      w *= 2.0 * rule.weights[index[k]];
-    }
+  for (const NaturalPoint& point : family_row(family).quadrature(thickness_)) {
+    const Eigen::Vector3d& xi = point.xi;
     const NaturalShape s = natural_shape(family, xi);
     const Eigen::MatrixXd dNdx = physical_gradient(s, xi, det_j);
-    gauss_.push_back({xi, s.N, dNdx, w * det_j});
+    gauss_.push_back({xi, s.N, dNdx, point.weight * det_j});
   }
 }
 

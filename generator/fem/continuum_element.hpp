@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-// Isoparametric continuum elements (issue 18): 4- and 8-node plane-stress
-// quadrilaterals of thickness t, and 8- and 20-node (serendipity) hexahedra,
-// isotropic and linear elastic. Their nodes carry translations only
+// Isoparametric continuum elements (issue 18) of the families of
+// element_families.hpp: 4- and 8-node plane-stress quadrilaterals of
+// thickness t, and 8- and 20-node (serendipity) hexahedra, isotropic and
+// linear elastic. Their nodes carry translations only
 // (plane_layout, solid_layout), numbered as CalculiX and Abaqus number CPS4,
 // CPS8, C3D8 and C3D20, so that a mesh from those tools (or Gmsh) is used as
 // written. The element frame is the link frame: nodes are given where they
@@ -21,25 +22,9 @@
 #include <vector>
 
 #include "fem/element.hpp"
+#include "fem/element_families.hpp"
 
 namespace kanegen::fem {
-
-enum class ContinuumFamily { kQuad4, kQuad8, kHex8, kHex20 };
-
-/// CalculiX / Abaqus type name of the family: CPS4, CPS8, C3D8, C3D20.
-const char* ccx_type_name(ContinuumFamily family);
-int family_num_nodes(ContinuumFamily family);
-/// 2 for the plane-stress quadrilaterals, 3 for the hexahedra.
-int family_dimension(ContinuumFamily family);
-/// dimension x num_nodes: the nodes' natural coordinates (entries -1, 0, 1), CalculiX order.
-Eigen::MatrixXd family_natural_nodes(ContinuumFamily family);
-
-/// Shape functions N (num_nodes) and their derivatives dN/dxi (num_nodes x dimension) at xi.
-struct NaturalShape {
-  Eigen::VectorXd N;
-  Eigen::MatrixXd dN;
-};
-NaturalShape natural_shape(ContinuumFamily family, const Eigen::Vector3d& xi);
 
 /// The pairs of n modes i <= j: n (n + 1) / 2 of them, ordered (0, 0), (0, 1),
 /// ..., (0, n - 1), (1, 1), ...; pair_index(i, j) = pair_index(j, i).

@@ -43,22 +43,10 @@ std::vector<std::string> fields(const std::string& line) {
   return out;
 }
 
-const char* kSupported = "CPS4, CPS8, C3D8, C3D20";
 constexpr long kMaxGenerated = 10000000;
 
 /// Two- and three-node truss elements: Gmsh's elements of a physical curve.
 bool is_gmsh_line_type(const std::string& type) { return type == "T3D2" || type == "T3D3"; }
-
-bool family_of(const std::string& type, ContinuumFamily& family) {
-  static const std::map<std::string, ContinuumFamily> types = {{"CPS4", ContinuumFamily::kQuad4},
-                                                               {"CPS8", ContinuumFamily::kQuad8},
-                                                               {"C3D8", ContinuumFamily::kHex8},
-                                                               {"C3D20", ContinuumFamily::kHex20}};
-  const auto it = types.find(type);
-  if (it == types.end()) return false;
-  family = it->second;
-  return true;
-}
 
 class Reader {
  public:
@@ -138,16 +126,17 @@ class Reader {
       block_ = Block::kElement;
       const auto type = params.find("TYPE");
       if (type == params.end())
-        fail(line_, "*ELEMENT without TYPE=", std::string("give the element type, one of ") + kSupported);
+        fail(line_,
+             "*ELEMENT without TYPE=", std::string("give the element type, one of ") + supported_ccx_names());
       if (is_gmsh_line_type(upper(type->second))) {
         // The line elements Gmsh writes for a physical curve (a 2D mesh's
         // boundary node set): only their node set matters.
         block_ = Block::kLineElements;
         return;
       }
-      if (!family_of(upper(type->second), family_))
+      if (!family_from_ccx_name(upper(type->second), family_))
         fail(line_, "unknown element type '" + type->second + "'",
-             std::string("kanegen reads ") + kSupported +
+             std::string("kanegen reads ") + supported_ccx_names() +
                  " (mesh with these, e.g. Gmsh: Recombine and Mesh.SecondOrderIncomplete = 1)");
       if (params.count("ELSET")) set_ = set_name(params, "ELSET", "*ELEMENT");
     } else if (word == "*NSET") {
@@ -274,7 +263,8 @@ class Reader {
 
   void check() {
     if (mesh_.elements.empty())
-      fail(line_, "the file has no elements", std::string("add an *ELEMENT block of type ") + kSupported);
+      fail(line_, "the file has no elements",
+           std::string("add an *ELEMENT block of type ") + supported_ccx_names());
     for (const MeshElement& e : mesh_.elements)
       for (int id : e.nodes)
         if (!mesh_.node_index_of_id.count(id))

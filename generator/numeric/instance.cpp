@@ -49,10 +49,7 @@ void mesh_data(const model::Body& body, const std::string& file, FlexibleData& d
   for (int id : layout.element_ids) {
     const fem::MeshElement& me = *by_id.at(id);
     SolidElementData e;
-    e.family = me.family == fem::ContinuumFamily::kQuad4   ? SolidElementData::kQuad4
-               : me.family == fem::ContinuumFamily::kQuad8 ? SolidElementData::kQuad8
-               : me.family == fem::ContinuumFamily::kHex8  ? SolidElementData::kHex8
-                                                           : SolidElementData::kHex20;
+    e.type = fem::ccx_type_name(me.family);
     std::vector<Vec<double>> x;
     for (int n : me.nodes) {
       e.nodes.push_back(layout.node_of.at(n));
@@ -63,7 +60,7 @@ void mesh_data(const model::Body& body, const std::string& file, FlexibleData& d
   }
   d.mesh = true;
   d.planar = false;
-  d.dofs_per_node = d.solids.front().dimension();
+  d.dofs_per_node = d.solids.front().dimension;
   for (const model::MeshInterface& set : body.beam.mesh.interfaces) {
     FlexibleData::Interface in;
     for (int id : mesh.node_set(set.node_set)) in.nodes.push_back(layout.node_of.at(id));

@@ -54,8 +54,8 @@ struct BeamElementData {
 /// One plane or solid element of a mesh body (numeric/solid.hpp), with its
 /// quadrature precomputed in the undeformed link frame.
 struct SolidElementData {
-  enum Family { kQuad4, kQuad8, kHex8, kHex20 };
-  Family family = kQuad4;
+  std::string type;        ///< CalculiX element type (numeric/solid.hpp's families)
+  int dimension = 2;       ///< 2: plane stress, 3: solid (set with the quadrature)
   std::vector<int> nodes;  ///< FlexibleData nodes, CalculiX order
   /// Full Gauss-Legendre points: shape values, physical gradients dN/dX
   /// (nodes x dimension, row-major), undeformed position and the weight
@@ -66,7 +66,6 @@ struct SolidElementData {
     double weight = 0;
   };
   std::vector<Point> points;
-  int dimension() const { return family == kQuad4 || family == kQuad8 ? 2 : 3; }
 };
 
 /// A finite-element beam as the numeric path sees it: geometry, section and

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // The plane-stress and solid elements of a mesh body, written for the
-// numeric path over any scalar type: serendipity shape functions from the
-// nodes' natural coordinates, full Gauss-Legendre quadrature (gauss_rule of
+// numeric path over any scalar type: a table of element families by
+// CalculiX type (solid_family: serendipity shape functions from the nodes'
+// natural coordinates, full Gauss-Legendre quadrature by gauss_rule of
 // beam.hpp), the material points and the small-strain energy
 // 1/2 int eps^T D eps. Nothing is shared with generator/fem but the basis B
 // of the coordinates (FlexibleData::basis).
@@ -9,6 +10,7 @@
 
 #include <array>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "numeric/beam.hpp"
@@ -16,36 +18,29 @@
 
 namespace kanegen::numeric {
 
-/// The natural coordinates (-1, 0, 1) of the element's nodes, CalculiX order:
-/// corners counter-clockwise (the bottom face, then the top), then the
-/// mid-edge nodes of the edges 1-2, 2-3, ... (then the vertical edges).
-inline std::vector<std::array<int, 3>> natural_nodes(SolidElementData::Family family) {
+/// The natural coordinates (-1, 0, 1) of the corner nodes of a quadrilateral
+/// (D = 2) or a hexahedron (D = 3), CalculiX order: counter-clockwise (the
+/// bottom face, then the top), and with Quadratic the mid-edge nodes of the
+/// edges 1-2, 2-3, ... (then the vertical edges).
+template <int D, bool Quadratic>
+std::vector<std::array<int, 3>> box_nodes() {
   const std::vector<std::array<int, 3>> quad{{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
-  std::vector<std::array<int, 3>> hex;
-  for (int z : {-1, 1})
-    for (const auto& c : quad) hex.push_back({c[0], c[1], z});
+  std::vector<std::array<int, 3>> corners = quad;
+  if (D == 3) {
+    corners.clear();
+    for (int z : {-1, 1})
+      for (const auto& c : quad) corners.push_back({c[0], c[1], z});
+  }
+  if (!Quadratic) return corners;
   const auto middle = [](const std::array<int, 3>& a, const std::array<int, 3>& b) {
     return std::array<int, 3>{(a[0] + b[0]) / 2, (a[1] + b[1]) / 2, (a[2] + b[2]) / 2};
   };
-  switch (family) {
-    case SolidElementData::kQuad4:
-      return quad;
-    case SolidElementData::kHex8:
-      return hex;
-    case SolidElementData::kQuad8: {
-      std::vector<std::array<int, 3>> out = quad;
-      for (int i = 0; i < 4; ++i) out.push_back(middle(quad[i], quad[(i + 1) % 4]));
-      return out;
-    }
-    case SolidElementData::kHex20: {
-      std::vector<std::array<int, 3>> out = hex;
-      for (int face : {0, 4})
-        for (int i = 0; i < 4; ++i) out.push_back(middle(hex[face + i], hex[face + (i + 1) % 4]));
-      for (int i = 0; i < 4; ++i) out.push_back(middle(hex[i], hex[i + 4]));
-      return out;
-    }
-  }
-  return {};
+  std::vector<std::array<int, 3>> out = corners;
+  for (int face = 0; face < (D == 3 ? 8 : 4); face += 4)
+    for (int i = 0; i < 4; ++i) out.push_back(middle(corners[face + i], corners[face + (i + 1) % 4]));
+  if (D == 3)
+    for (int i = 0; i < 4; ++i) out.push_back(middle(corners[i], corners[i + 4]));
+  return out;
 }
 
 /// Shape function of the node at natural coordinates a, at xi, over a scalar
@@ -69,30 +64,77 @@ T shape_value(const std::array<int, 3>& a, const std::array<T, 3>& xi, int d, bo
   return product * sum;
 }
 
+/// A quadrature point in natural coordinates and its weight.
+struct NaturalPoint {
+  std::array<double, 3> xi;
+  double weight;
+};
+
+/// An element family as the numeric path writes it, independently of
+/// generator/fem: its nodes, its shape functions (over dual numbers, whose
+/// derivative part gives dN/dxi) and its quadrature.
+struct SolidFamily {
+  const char* name;  ///< CalculiX type
+  int dimension;
+  int nodes;
+  Dual<double> (*shape)(int node, const std::array<Dual<double>, 3>& xi);
+  std::vector<NaturalPoint> (*points)();
+};
+
+template <int D, bool Quadratic>
+Dual<double> box_shape(int node, const std::array<Dual<double>, 3>& xi) {
+  static const std::vector<std::array<int, 3>> natural = box_nodes<D, Quadratic>();
+  return shape_value(natural[static_cast<std::size_t>(node)], xi, D, Quadratic);
+}
+
+/// Full Gauss-Legendre integration on [-1, 1]^D, N points per direction.
+template <int D, int N>
+std::vector<NaturalPoint> box_gauss() {
+  const GaussRule rule = gauss_rule(N);  // on [0, 1]
+  int total = 1;
+  for (int k = 0; k < D; ++k) total *= N;
+  std::vector<NaturalPoint> points;
+  for (int p = 0; p < total; ++p) {
+    NaturalPoint point{{0, 0, 0}, 1};
+    for (int k = 0, rest = p; k < D; ++k, rest /= N) {
+      point.xi[k] = 2 * rule.points[rest % N] - 1;
+      point.weight *= 2 * rule.weights[rest % N];
+    }
+    points.push_back(point);
+  }
+  return points;
+}
+
+/// The family of a CalculiX element type; throws std::invalid_argument for
+/// one the numeric path does not know.
+inline const SolidFamily& solid_family(const std::string& type) {
+  static const SolidFamily families[] = {
+      {"CPS4", 2, 4, box_shape<2, false>, box_gauss<2, 2>},
+      {"CPS8", 2, 8, box_shape<2, true>, box_gauss<2, 3>},
+      {"C3D8", 3, 8, box_shape<3, false>, box_gauss<3, 2>},
+      {"C3D20", 3, 20, box_shape<3, true>, box_gauss<3, 3>},
+  };
+  for (const SolidFamily& f : families)
+    if (type == f.name) return f;
+  throw std::invalid_argument("numeric path: no element family " + type + " in numeric/solid.hpp");
+}
+
 /// The element's quadrature, from the undeformed node positions `x` (link
 /// frame); thickness for plane elements. Throws on a non-positive det J.
 inline void set_up_solid(SolidElementData& e, const std::vector<Vec<double>>& x, double thickness) {
-  const std::vector<std::array<int, 3>> natural = natural_nodes(e.family);
-  const int d = e.dimension(), n = static_cast<int>(natural.size());
-  const bool quadratic = e.family == SolidElementData::kQuad8 || e.family == SolidElementData::kHex20;
-  const GaussRule rule = gauss_rule(quadratic ? 3 : 2);  // on [0, 1]
-  const int per_axis = static_cast<int>(rule.points.size());
-  int total = 1;
-  for (int k = 0; k < d; ++k) total *= per_axis;
-  for (int p = 0; p < total; ++p) {
-    std::array<double, 3> xi{0, 0, 0};
-    double w = 1;
-    for (int k = 0, rest = p; k < d; ++k, rest /= per_axis) {
-      xi[k] = 2 * rule.points[rest % per_axis] - 1;
-      w *= 2 * rule.weights[rest % per_axis];
-    }
+  const SolidFamily& family = solid_family(e.type);
+  const int d = family.dimension, n = family.nodes;
+  e.dimension = d;
+  for (const NaturalPoint& q : family.points()) {
+    const std::array<double, 3>& xi = q.xi;
+    const double w = q.weight;
     // dN/dxi by dual numbers, one axis at a time.
     std::vector<double> N(n), dxi(n * d);
     for (int k = 0; k < d; ++k) {
       std::array<Dual<double>, 3> z{Dual<double>(xi[0]), Dual<double>(xi[1]), Dual<double>(xi[2])};
       z[k].d = 1;
       for (int i = 0; i < n; ++i) {
-        const Dual<double> v = shape_value(natural[i], z, d, quadratic);
+        const Dual<double> v = family.shape(i, z);
         N[i] = v.v;
         dxi[i * d + k] = v.d;
       }
@@ -154,7 +196,7 @@ Vec<S> solid_point(const FlexibleData& f, const SolidElementData& e, const Solid
 /// stress in the plane.
 template <class S>
 S solid_strain_energy(const FlexibleData& f, const SolidElementData& e, const std::vector<S>& dofs) {
-  const int d = e.dimension();
+  const int d = e.dimension;
   const double E = f.E, nu = f.poisson;
   S energy(0.0);
   for (const SolidElementData::Point& p : e.points) {

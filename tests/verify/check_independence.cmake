@@ -6,8 +6,8 @@
 # elastic coordinates and, for a mesh body with geometric stiffening, the
 # second-order fields that go with it (the result of fem::build_model_beam,
 # named `built`: built.reduced.basis and built.second_order); and, for a
-# mesh body, fem/model_mesh.hpp for the mesh file as read (nodes, elements,
-# node sets: a file format) and the order of the body's nodes and elements
+# mesh body, fem/model_mesh.hpp for the mesh file as read (nodes, elements
+# with their CalculiX type name, fem::ccx_type_name, node sets: a file format) and the order of the body's nodes and elements
 # that the basis's rows follow (fem::build_model_mesh_body(...)'s node_ids,
 # node_of and element_ids), never its matrices.
 # Run as cmake -DDIR=<generator> -P.
@@ -44,7 +44,7 @@ foreach(file ${files})
   file(READ ${file} text)
   string(REGEX MATCHALL "fem::[A-Za-z_]+" uses "${text}")
   string(REGEX MATCHALL "fem::build_model_beam\\([^;]*\\)" allowed "${text}")
-  string(REGEX MATCHALL "fem::(read_model_mesh|build_model_mesh_body|InpMesh|MeshBody|MeshElement|ContinuumFamily)[^A-Za-z_]"
+  string(REGEX MATCHALL "fem::(read_model_mesh|build_model_mesh_body|InpMesh|MeshBody|MeshElement|ContinuumFamily|ccx_type_name)[^A-Za-z_]"
                mesh_input "${text}")
   # The mesh body built by the layer (named `layout`) gives its order only.
   only_members(layout "(node_ids|node_of|element_ids)([.]at)?"
