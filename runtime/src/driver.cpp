@@ -266,31 +266,72 @@ IntegrationResult run_method(const Model& model, const SimulateArgs& a, const Rh
   }
 }
 
+// The start: the model's initial state with the parameters, --q0 and --u0
+// applied (nq + nu components).
+std::vector<double> start_state(Model& model, const SimulateArgs& a) {
+  const ModelInfo& info = model.info();
+  apply_parameters(model, a.sets);
+  std::vector<double> x(static_cast<size_t>(std::max(info.nq + info.nu, 1)), 0.0);
+  model.initial_state(x.data(), x.data() + info.nq);
+  apply_state(a.q0, "--q0", "coordinates", info.coordinate_names, info.nq, x.data());
+  apply_state(a.u0, "--u0", "speeds", info.speed_names, info.nu, x.data() + info.nq);
+  return x;
+}
+
+// Closed loops: the start made consistent, and the line that says how.
+void assemble_loops(const LoopSolver& loops, double* x, int nq, std::FILE* err) {
+  const Assembly assembly = loops.assemble(x, x + nq);
+  const std::string held =
+      assembly.independent.empty()
+          ? std::string("no independent coordinate (the prescribed motion drives the mechanism)")
+          : "independent coordinates " + loops.describe(assembly.independent) +
+                (assembly.picked ? " (picked by the solver; mark joints \"independent\": true to choose)"
+                                 : "");
+  print(err, "assembly: " + held + "; loops closed to |phi| = " + format_double(assembly.residual) + " in " +
+                 std::to_string(assembly.iterations) + " Newton steps\n");
+}
+
+// What a run has written, for its last messages.
+struct RunRecord {
+  long rows = 0;
+  double t_last_row = 0.0;
+  double largest_loop_residual = 0.0;
+  std::string why;  // the reason the right-hand side failed
+};
+
+// After the integration: the summary lines, the CSV closed, and the outcome
+// (exit status after a signal, else an exception for a failed run).
+int finish_run(const SimulateArgs& a, const IntegrationResult& r, const EnergyColumns& energy, bool loops,
+               CsvWriter& csv, bool to_stdout, const RunRecord& record, std::FILE* err) {
+  if (a.stats) print_stats(err, a.method, r);
+  if (a.stats) print(err, run_summary(r.stats.accepted, r.t, energy, loops, record.largest_loop_residual));
+  const bool closed = csv.close();
+  if (g_stop_signal != 0) {
+    const int signal_number = g_stop_signal;
+    print(err, std::string("error: interrupted by ") + signal_name(signal_number) + "; " +
+                   std::to_string(record.rows) + " rows written" + (to_stdout ? "" : " to " + a.output) +
+                   ", up to t=" + format_double(record.t_last_row) +
+                   " of t_end=" + format_double(a.opt.t_end) + "\n");
+    return 128 + signal_number;
+  }
+  if (r.status == Status::kInvalidArgument) throw UsageError(r.message);
+  if (!r.ok())
+    throw RunError(r.status == Status::kRhsFailed && !record.why.empty() ? record.why + "; " + r.message
+                                                                         : r.message);
+  if (r.status == Status::kStoppedByObserver || !closed) throw RunError(csv.error());
+  return 0;
+}
+
 int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err) {
   const ModelInfo& info = model.info();
   // Before anything is written: a model without Jacobians cannot run implicitly.
   const bool jacobians = resolved_spec(a.method).needs_jacobians;
   if (jacobians && !model.has_jacobians()) throw UsageError(missing_jacobians_message(info));
   const int nq = info.nq, n = info.nq + info.nu;
-  apply_parameters(model, a.sets);
-  std::vector<double> x(static_cast<size_t>(std::max(n, 1)), 0.0);
-  model.initial_state(x.data(), x.data() + nq);
-  apply_state(a.q0, "--q0", "coordinates", info.coordinate_names, nq, x.data());
-  apply_state(a.u0, "--u0", "speeds", info.speed_names, info.nu, x.data() + nq);
-
+  std::vector<double> x = start_state(model, a);
   // Closed loops: a consistent start, then every accepted step projected.
   const LoopSolver loops(model);
-  if (loops.active()) {
-    const Assembly assembly = loops.assemble(x.data(), x.data() + nq);
-    const std::string held =
-        assembly.independent.empty()
-            ? std::string("no independent coordinate (the prescribed motion drives the mechanism)")
-            : "independent coordinates " + loops.describe(assembly.independent) +
-                  (assembly.picked ? " (picked by the solver; mark joints \"independent\": true to choose)"
-                                   : "");
-    print(err, "assembly: " + held + "; loops closed to |phi| = " + format_double(assembly.residual) +
-                   " in " + std::to_string(assembly.iterations) + " Newton steps\n");
-  }
+  if (loops.active()) assemble_loops(loops, x.data(), nq, err);
   // W_nc (--energies, a model with forces not from V) rides along as state
   // component n, integrated to the method's tolerance; the implicit methods
   // own their state layout and take the trapezoid rule over the rows instead.
@@ -314,22 +355,19 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
   energy.add_header(header);
   if (!csv->write_header(header)) throw RunError(csv->error());
   Progress progress(err, a.opt.t_end);
-  double largest_loop_residual = 0.0;
+  RunRecord record;
 
   std::vector<double> tau(static_cast<size_t>(std::max(info.ntau, 1)), 0.0);
   std::vector<double> lambda(static_cast<size_t>(std::max(info.nc, 1)));
   std::vector<double> row(1 + n + std::max(info.ny, 1) + energy.count());
-  std::string why;  // the reason the right-hand side failed, for the message
   const StopOnSignal stop_on_signal;
-  double t_last_row = 0.0;
-  long rows = 0;
   const Rhs rhs = [&](double t, const double* xs, double* xdot) {
     if (g_stop_signal != 0) return false;
     progress.on_rhs(t);
     model.coordinate_rates(xs, xs + nq, xdot);
     const int pivot = loops.active() ? loops.dynamics(t, xs, xs + nq, tau.data(), xdot + nq, lambda.data())
                                      : model.forward_dynamics(t, xs, xs + nq, tau.data(), xdot + nq);
-    if (pivot != 0) why = pivot_message(info, pivot);
+    if (pivot != 0) record.why = pivot_message(info, pivot);
     if (pivot == 0 && work_in_state) xdot[n] = power(t, xs, xs + nq, tau.data(), xdot + nq, lambda.data());
     return pivot == 0;
   };
@@ -361,9 +399,10 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
     std::copy(xs, xs + n, row.begin() + 1);
     model.outputs(t, xs, xs + nq, row.data() + 1 + n);
     energy.fill(xs, xs + nq, work_at_row(t, xs), row.data() + 1 + n + info.ny);
-    if (loops.active()) largest_loop_residual = std::max(largest_loop_residual, loops.residual(xs));
-    t_last_row = t;
-    ++rows;
+    if (loops.active())
+      record.largest_loop_residual = std::max(record.largest_loop_residual, loops.residual(xs));
+    record.t_last_row = t;
+    ++record.rows;
     return csv->write_row(row.data(), 1 + n + info.ny + energy.count());
   };
   IntegrationOptions opt = a.opt;
@@ -377,22 +416,7 @@ int simulate(Model& model, const SimulateArgs& a, std::FILE* out, std::FILE* err
     opt.project = [&](double, double* xs, std::string* why) { return loops.project(xs, xs + nq, why); };
   const IntegrationResult r = run_method(model, a, rhs, x.data(), n_state, opt, observer, tau.data());
   progress.finish();
-  if (a.stats) print_stats(err, a.method, r);
-  if (a.stats) print(err, run_summary(r.stats.accepted, r.t, energy, loops.active(), largest_loop_residual));
-  const bool closed = csv->close();
-  if (g_stop_signal != 0) {
-    const int signal_number = g_stop_signal;
-    print(err, std::string("error: interrupted by ") + signal_name(signal_number) + "; " +
-                   std::to_string(rows) + " rows written" + (to_stdout ? "" : " to " + a.output) +
-                   ", up to t=" + format_double(t_last_row) + " of t_end=" + format_double(a.opt.t_end) +
-                   "\n");
-    return 128 + signal_number;
-  }
-  if (r.status == Status::kInvalidArgument) throw UsageError(r.message);
-  if (!r.ok())
-    throw RunError(r.status == Status::kRhsFailed && !why.empty() ? why + "; " + r.message : r.message);
-  if (r.status == Status::kStoppedByObserver || !closed) throw RunError(csv->error());
-  return 0;
+  return finish_run(a, r, energy, loops.active(), *csv, to_stdout, record, err);
 }
 
 int simulate_command(Model& model, const ParsedOptions& options, std::FILE* out, std::FILE* err) {

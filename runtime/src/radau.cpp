@@ -149,24 +149,8 @@ class Radau {
       }
       h_accepted = h;
       error_accepted = std::max(1e-2, err);
-      const double t_new = last ? opt.t_end : t + h;
-      dense_coefficients();
-      std::copy(x_, x_ + n_, x_old_.begin());
       const double t_old = t;
-      for (; next <= grid.intervals() && grid.time(next) < t_new; ++next) {
-        dense((grid.time(next) - t_old) / h);
-        if (!run_.emit(grid.time(next), out_.data())) return t;
-      }
-      std::copy(y_new_.begin(), y_new_.end(), x_);
-      t = t_new;
-      if (opt.on_step) opt.on_step(t, s.accepted);
-      if (run_.opt().project) ++run_.stats().projections;
-      if (!run_.project(t, x_) || !run_.eval(t, x_, f_.data())) return t;
-      if (next <= grid.intervals() && grid.time(next) == t) {
-        if (!run_.emit(t, x_)) return t;
-        ++next;
-      }
-      if (last) return t;
+      if (!advance(t, h, last, grid, next) || last) return t;
       // The next step: h kept (and the factors with it) when a slow
       // contraction does not call for a new Jacobian and the change would
       // be small; else a new h, factored anew.
@@ -188,6 +172,30 @@ class Radau {
   }
 
  private:
+  // An accepted step: the output rows inside it from the collocation
+  // polynomial, then x = the step's end, projected, and f there. False: stop
+  // (t is the time of the state in x).
+  bool advance(double& t, double h, bool last, const OutputGrid& grid, long& next) {
+    const IntegrationOptions& opt = run_.opt();
+    const double t_new = last ? opt.t_end : t + h;
+    dense_coefficients();
+    std::copy(x_, x_ + n_, x_old_.begin());
+    for (; next <= grid.intervals() && grid.time(next) < t_new; ++next) {
+      dense((grid.time(next) - t) / h);
+      if (!run_.emit(grid.time(next), out_.data())) return false;
+    }
+    std::copy(y_new_.begin(), y_new_.end(), x_);
+    t = t_new;
+    if (opt.on_step) opt.on_step(t, run_.stats().accepted);
+    if (opt.project) ++run_.stats().projections;
+    if (!run_.project(t, x_) || !run_.eval(t, x_, f_.data())) return false;
+    if (next <= grid.intervals() && grid.time(next) == t) {
+      if (!run_.emit(t, x_)) return false;
+      ++next;
+    }
+    return true;
+  }
+
   double tolerance(int i) const {
     const IntegrationOptions& opt = run_.opt();
     return opt.atol_per_component.empty() ? opt.atol : opt.atol_per_component[i];
