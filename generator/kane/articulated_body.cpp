@@ -384,6 +384,43 @@ int eliminate_block(Program& program, Articulated& passed, const kinematics::Joi
   return -1;
 }
 
+/// One joint's speed eliminated from its body's articulated inertia
+/// `passed` (working axes): U = I^A S, D = S^T U, W = U / D, and, if it has
+/// a parent, I^A - U W^T and p^A + U (Q - S^T p^A) / D passed on. False if
+/// D is the number 0.
+bool eliminate_joint(Program& program, Articulated& passed, const kinematics::JointFrame& joint,
+                     const Vec3& axis, const std::vector<ex>& joint_forces, bool has_parent, JointTerms& t,
+                     RecursiveDynamics& out) {
+  const int s = joint.speed;
+  const auto [u_moment, u_force] = joint.model.inertia_column(passed.a, passed.b, passed.c, axis);
+  t.u_moment = named(program, u_moment);
+  t.u_force = named(program, u_force);
+  const ex pivot = program.define(joint.model.force_of(axis, t.u_moment, t.u_force));
+  if (pivot.is_zero()) return false;
+  const ex inverse = program.define(1 / pivot);
+  const ex residual = joint_forces[s] - joint.model.force_of(axis, passed.bias_moment, passed.bias_force);
+  t.w_moment = named(program, inverse * t.u_moment);
+  t.w_force = named(program, inverse * t.u_force);
+  t.residual_over_pivot = program.define(inverse * residual);
+  out.pivots[s] = pivot;
+  out.pivot_order.push_back(s);
+  if (!has_parent) return true;  // nothing passed to the ground
+  // I^A - U W^T (symmetric) and p^A + U g.
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      passed.b[3 * r + c] -= t.u_moment[r] * t.w_force[c];
+      if (c < r) continue;
+      passed.a[3 * r + c] -= t.u_moment[r] * t.w_moment[c];
+      passed.c[3 * r + c] -= t.u_force[r] * t.w_force[c];
+      passed.a[3 * c + r] = passed.a[3 * r + c];
+      passed.c[3 * c + r] = passed.c[3 * r + c];
+    }
+  passed.bias_moment = passed.bias_moment + t.residual_over_pivot * t.u_moment;
+  passed.bias_force = passed.bias_force + t.residual_over_pivot * t.u_force;
+  drop_joint_direction(passed, t, axis, joint.model);
+  return true;
+}
+
 /// The local accelerations of a flexible body moving with (angular, linear):
 /// y_j = g_j - W_j . a, then x = L^-T y; by local speed.
 std::vector<ex> block_accelerations(Program& program, const BlockTerms& t, const Vec3& angular,
@@ -433,35 +470,9 @@ RecursiveDynamics articulated_body_dynamics(const kinematics::TreeKinematics& tr
           eliminate_block(program, passed, joint, bodies[i].elastic_first, joint_forces, blocks[i], out);
       if (zero >= 0) return {{}, {}, {}, zero};
     } else if (joint.speed >= 0) {
-      const int s = joint.speed;
-      const Vec3& axis = frames[i].axis;
-      JointTerms& t = terms[i];
-      const auto [u_moment, u_force] = joint.model.inertia_column(passed.a, passed.b, passed.c, axis);
-      t.u_moment = named(program, u_moment);
-      t.u_force = named(program, u_force);
-      const ex pivot = program.define(joint.model.force_of(axis, t.u_moment, t.u_force));
-      if (pivot.is_zero()) return {{}, {}, {}, s};  // 1/D does not exist
-      const ex inverse = program.define(1 / pivot);
-      const ex residual = joint_forces[s] - joint.model.force_of(axis, passed.bias_moment, passed.bias_force);
-      t.w_moment = named(program, inverse * t.u_moment);
-      t.w_force = named(program, inverse * t.u_force);
-      t.residual_over_pivot = program.define(inverse * residual);
-      out.pivots[s] = pivot;
-      out.pivot_order.push_back(s);
-      if (state.parent_state < 0) continue;  // nothing passed to the ground
-      // I^A - U W^T (symmetric) and p^A + U g.
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) {
-          passed.b[3 * r + c] -= t.u_moment[r] * t.w_force[c];
-          if (c < r) continue;
-          passed.a[3 * r + c] -= t.u_moment[r] * t.w_moment[c];
-          passed.c[3 * r + c] -= t.u_force[r] * t.w_force[c];
-          passed.a[3 * c + r] = passed.a[3 * r + c];
-          passed.c[3 * c + r] = passed.c[3 * r + c];
-        }
-      passed.bias_moment = passed.bias_moment + t.residual_over_pivot * t.u_moment;
-      passed.bias_force = passed.bias_force + t.residual_over_pivot * t.u_force;
-      drop_joint_direction(passed, t, axis, joint.model);
+      if (!eliminate_joint(program, passed, joint, frames[i].axis, joint_forces, state.parent_state >= 0,
+                           terms[i], out))
+        return {{}, {}, {}, joint.speed};  // 1/D does not exist
     }
     if (state.parent_state < 0) continue;
     Articulated moved = named(program, passed);
