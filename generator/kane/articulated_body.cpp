@@ -230,15 +230,16 @@ int coordinate_of(const Vec3& axis) {
 /// act on S (revolute: row and column k of A, row k of B; prismatic: row
 /// and column k of C, column k of B) are set to the zero they are, so the
 /// transform to the parent skips them. W's own entry S^T W = 1 likewise.
-void drop_joint_direction(Articulated& passed, JointTerms& terms, const Vec3& axis, bool prismatic) {
+void drop_joint_direction(Articulated& passed, JointTerms& terms, const Vec3& axis,
+                          const kinematics::JointModel& model) {
   const int k = coordinate_of(axis);
   if (k < 0) return;
-  Mat3& diagonal = prismatic ? passed.c : passed.a;
+  Mat3& diagonal = model.part(passed.a, passed.c);
   for (int j = 0; j < 3; ++j) {
     diagonal[3 * k + j] = diagonal[3 * j + k] = 0;
-    (prismatic ? passed.b[3 * j + k] : passed.b[3 * k + j]) = 0;
+    passed.b[model.part(3 * k + j, 3 * j + k)] = 0;  // B's row k for a turn, column k for a slide
   }
-  (prismatic ? terms.w_force : terms.w_moment)[k] = axis[k];
+  model.part(terms.w_moment, terms.w_force)[k] = axis[k];
 }
 
 /// A child's articulated inertia `moved` (about the parent's origin, parent
@@ -319,19 +320,15 @@ int eliminate_block(Program& program, Articulated& passed, const kinematics::Joi
   if (joint.speed >= 0) {
     const Vec3& axis = joint.axis;
     t.speeds.push_back(joint.speed);
-    if (joint.prismatic) {
-      top_moment[m] = named(program, mul(passed.b, axis));
-      top_force[m] = named(program, mul(passed.c, axis));
-    } else {
-      top_moment[m] = named(program, mul(passed.a, axis));
-      top_force[m] = named(program, mul_transposed(passed.b, axis));
-    }
+    const auto [u_moment, u_force] = joint.model.inertia_column(passed.a, passed.b, passed.c, axis);
+    top_moment[m] = named(program, u_moment);
+    top_force[m] = named(program, u_force);
     for (int k = 0; k < m; ++k)
       d[k * n + m] = d[m * n + k] =
-          program.define(dot(axis, joint.prismatic ? passed.elastic_force[k] : passed.elastic_moment[k]));
-    d[m * n + m] = program.define(dot(axis, joint.prismatic ? top_force[m] : top_moment[m]));
+          program.define(joint.model.force_of(axis, passed.elastic_moment[k], passed.elastic_force[k]));
+    d[m * n + m] = program.define(joint.model.force_of(axis, top_moment[m], top_force[m]));
     residual[m] =
-        joint_forces[joint.speed] - dot(axis, joint.prismatic ? passed.bias_force : passed.bias_moment);
+        joint_forces[joint.speed] - joint.model.force_of(axis, passed.bias_moment, passed.bias_force);
   }
   // LDL^T, and V = L^-1 U^T, z = L^-1 residual, column by column.
   t.lower.assign(n * n, 0);
@@ -387,6 +384,43 @@ int eliminate_block(Program& program, Articulated& passed, const kinematics::Joi
   return -1;
 }
 
+/// One joint's speed eliminated from its body's articulated inertia
+/// `passed` (working axes): U = I^A S, D = S^T U, W = U / D, and, if it has
+/// a parent, I^A - U W^T and p^A + U (Q - S^T p^A) / D passed on. False if
+/// D is the number 0.
+bool eliminate_joint(Program& program, Articulated& passed, const kinematics::JointFrame& joint,
+                     const Vec3& axis, const std::vector<ex>& joint_forces, bool has_parent, JointTerms& t,
+                     RecursiveDynamics& out) {
+  const int s = joint.speed;
+  const auto [u_moment, u_force] = joint.model.inertia_column(passed.a, passed.b, passed.c, axis);
+  t.u_moment = named(program, u_moment);
+  t.u_force = named(program, u_force);
+  const ex pivot = program.define(joint.model.force_of(axis, t.u_moment, t.u_force));
+  if (pivot.is_zero()) return false;
+  const ex inverse = program.define(1 / pivot);
+  const ex residual = joint_forces[s] - joint.model.force_of(axis, passed.bias_moment, passed.bias_force);
+  t.w_moment = named(program, inverse * t.u_moment);
+  t.w_force = named(program, inverse * t.u_force);
+  t.residual_over_pivot = program.define(inverse * residual);
+  out.pivots[s] = pivot;
+  out.pivot_order.push_back(s);
+  if (!has_parent) return true;  // nothing passed to the ground
+  // I^A - U W^T (symmetric) and p^A + U g.
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      passed.b[3 * r + c] -= t.u_moment[r] * t.w_force[c];
+      if (c < r) continue;
+      passed.a[3 * r + c] -= t.u_moment[r] * t.w_moment[c];
+      passed.c[3 * r + c] -= t.u_force[r] * t.w_force[c];
+      passed.a[3 * c + r] = passed.a[3 * r + c];
+      passed.c[3 * c + r] = passed.c[3 * r + c];
+    }
+  passed.bias_moment = passed.bias_moment + t.residual_over_pivot * t.u_moment;
+  passed.bias_force = passed.bias_force + t.residual_over_pivot * t.u_force;
+  drop_joint_direction(passed, t, axis, joint.model);
+  return true;
+}
+
 /// The local accelerations of a flexible body moving with (angular, linear):
 /// y_j = g_j - W_j . a, then x = L^-T y; by local speed.
 std::vector<ex> block_accelerations(Program& program, const BlockTerms& t, const Vec3& angular,
@@ -436,40 +470,9 @@ RecursiveDynamics articulated_body_dynamics(const kinematics::TreeKinematics& tr
           eliminate_block(program, passed, joint, bodies[i].elastic_first, joint_forces, blocks[i], out);
       if (zero >= 0) return {{}, {}, {}, zero};
     } else if (joint.speed >= 0) {
-      const int s = joint.speed;
-      const Vec3& axis = frames[i].axis;
-      JointTerms& t = terms[i];
-      if (joint.prismatic) {
-        t.u_moment = named(program, mul(passed.b, axis));
-        t.u_force = named(program, mul(passed.c, axis));
-      } else {
-        t.u_moment = named(program, mul(passed.a, axis));
-        t.u_force = named(program, mul_transposed(passed.b, axis));
-      }
-      const ex pivot = program.define(dot(axis, joint.prismatic ? t.u_force : t.u_moment));
-      if (pivot.is_zero()) return {{}, {}, {}, s};  // 1/D does not exist
-      const ex inverse = program.define(1 / pivot);
-      const ex residual =
-          joint_forces[s] - dot(axis, joint.prismatic ? passed.bias_force : passed.bias_moment);
-      t.w_moment = named(program, inverse * t.u_moment);
-      t.w_force = named(program, inverse * t.u_force);
-      t.residual_over_pivot = program.define(inverse * residual);
-      out.pivots[s] = pivot;
-      out.pivot_order.push_back(s);
-      if (state.parent_state < 0) continue;  // nothing passed to the ground
-      // I^A - U W^T (symmetric) and p^A + U g.
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) {
-          passed.b[3 * r + c] -= t.u_moment[r] * t.w_force[c];
-          if (c < r) continue;
-          passed.a[3 * r + c] -= t.u_moment[r] * t.w_moment[c];
-          passed.c[3 * r + c] -= t.u_force[r] * t.w_force[c];
-          passed.a[3 * c + r] = passed.a[3 * r + c];
-          passed.c[3 * c + r] = passed.c[3 * r + c];
-        }
-      passed.bias_moment = passed.bias_moment + t.residual_over_pivot * t.u_moment;
-      passed.bias_force = passed.bias_force + t.residual_over_pivot * t.u_force;
-      drop_joint_direction(passed, t, axis, joint.prismatic);
+      if (!eliminate_joint(program, passed, joint, frames[i].axis, joint_forces, state.parent_state >= 0,
+                           terms[i], out))
+        return {{}, {}, {}, joint.speed};  // 1/D does not exist
     }
     if (state.parent_state < 0) continue;
     Articulated moved = named(program, passed);
@@ -502,20 +505,16 @@ RecursiveDynamics articulated_body_dynamics(const kinematics::TreeKinematics& tr
       for (std::size_t j = 0; j < x.size(); ++j) out.accelerations[blocks[i].speeds[j]] = x[j];
       if (joint.speed >= 0) {
         const ex& udot = x.back();
-        if (joint.prismatic)
-          linear = named(program, linear + udot * joint.axis);
-        else
-          angular = named(program, angular + udot * joint.axis);
+        Vec3& moved = joint.model.part(angular, linear);  // a_i += S u_dot
+        moved = named(program, moved + udot * joint.axis);
       }
     } else if (joint.speed >= 0) {
       const JointTerms& t = terms[i];
       const ex udot =
           program.define(t.residual_over_pivot - dot(t.w_moment, angular) - dot(t.w_force, linear));
       out.accelerations[joint.speed] = udot;
-      if (joint.prismatic)
-        linear = named(program, linear + udot * frames[i].axis);
-      else
-        angular = named(program, angular + udot * frames[i].axis);
+      Vec3& moved = joint.model.part(angular, linear);  // a_i += S u_dot
+      moved = named(program, moved + udot * frames[i].axis);
     }
     alpha[i] = angular;
     accel[i] = linear;

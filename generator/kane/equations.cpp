@@ -134,10 +134,12 @@ std::map<int, kinematics::NodeAttachment> node_attachments(const model::Model& m
     int parent = -1;
     for (std::size_t b = 0; b < model.bodies.size(); ++b)
       if (model.bodies[b].name == j.parent) parent = static_cast<int>(b);
-    if (j.type == model::JointType::prismatic)
+    if (!model::joint_type_info(j.type).on_nodes)
       throw model::ModelError(model.source_file, j.where + "/parent_node",
-                              "only revolute, continuous and fixed joints on beam nodes are supported",
-                              "attach prismatic joint '" + j.name +
+                              "only " + model::joint_type_list(model::JointKinds::on_nodes, "and") +
+                                  " joints on beam nodes are supported",
+                              "attach " + std::string(model::joint_type_info(j.type).name) + " joint '" +
+                                  j.name +
                                   "' to the body frame (remove \"parent_node\"), or put a fixed joint "
                                   "and a body on the node and the slide on that body");
     const fem::ModelBeam& beam = flexible.at(parent);
@@ -299,9 +301,9 @@ void composite_bodies(Derivation& d, BodySums& sums) {
   }
 }
 
-/// A joint's share of a wrench: the moment about a revolute axis, the force along a prismatic one.
+/// A joint's share of a wrench, S^T w: the moment about a revolute axis, the force along a prismatic one.
 ex project(const kinematics::JointFrame& frame, const Vec3& moment, const Vec3& force) {
-  return frame.prismatic ? dot(frame.axis, force) : dot(frame.axis, moment);
+  return frame.model.force_of(frame.axis, moment, force);
 }
 
 /// Kane's equations with the sums over bodies grouped by subtree. The
@@ -330,7 +332,7 @@ class MassRows {
 
  private:
   struct WorldAxis {
-    Vec3 direction, moment;  ///< a_k and o_k x a_k in world axes
+    Vec3 angular, linear;  ///< the joint's column of S at the world origin, world axes
   };
 
   void set(int r, int s, const ex& value) {
@@ -342,12 +344,12 @@ class MassRows {
       const kinematics::JointFrame& frame = d_.tree.joints()[b.joint];
       if (frame.speed < 0) continue;
       const Vec3 a = named(d_.program, mul(b.rotation, frame.axis));
-      world_axes_[b.joint] = {a, frame.prismatic ? zero_vec() : named(d_.program, cross(b.origin, a))};
-      const WorldAxis& w = world_axes_[b.joint];
+      // The column of S at the world origin: (a, o x a) for a turn, (0, a) for a slide.
+      const Vec3 linear = frame.model.turns() ? named(d_.program, cross(b.origin, a)) : a;
+      const WorldAxis& w = world_axes_[b.joint] = {frame.model.angular_velocity(a, 1), linear};
       d_.eq.world_mass.axis.resize(n_);
-      d_.eq.world_mass.axis[frame.speed] =
-          frame.prismatic ? std::array<ex, 6>{0, 0, 0, a[0], a[1], a[2]}
-                          : std::array<ex, 6>{a[0], a[1], a[2], w.moment[0], w.moment[1], w.moment[2]};
+      d_.eq.world_mass.axis[frame.speed] = {w.angular[0], w.angular[1], w.angular[2],
+                                            w.linear[0],  w.linear[1],  w.linear[2]};
     }
   }
 
@@ -364,9 +366,7 @@ class MassRows {
       const kinematics::JointFrame& frame = d_.tree.joints()[k];
       const WorldAxis& axis = world_axes_.at(k);
       world.pairs.emplace_back(frame.speed, s);
-      set(frame.speed, s,
-          frame.prismatic ? dot(axis.direction, p_world)
-                          : dot(axis.direction, l_world) + dot(axis.moment, p_world));
+      set(frame.speed, s, dot(axis.angular, l_world) + dot(axis.linear, p_world));
     }
   }
 
@@ -407,9 +407,10 @@ void joint_rows(Derivation& d, const BodySums& sums, MassRows& rows) {
     // The momentum of the subtree with u_s = 1. Linear part named first: the
     // order GCC gave when both were arguments of one call, now fixed.
     const SpatialInertia& c = sums.inertia[i];
-    const Vec3 linear = named(d.program, joint.prismatic ? c.mass * joint.axis : cross(joint.axis, c.moment));
-    const Vec3 angular =
-        named(d.program, joint.prismatic ? cross(c.moment, joint.axis) : mul(c.second, joint.axis));
+    const auto [unit_angular, unit_linear] =
+        joint.model.unit_momentum(c.mass, c.moment, c.second, joint.axis);
+    const Vec3 linear = named(d.program, unit_linear);
+    const Vec3 angular = named(d.program, unit_angular);
     rows.spread(s, i, angular, linear);
   }
 }
@@ -451,10 +452,8 @@ RateMotion motion_of_rates(Derivation& d, const std::vector<GiNaC::symbol>& rate
     }
     if (joint.speed >= 0) {
       const ex rate = rates[joint.speed];
-      if (joint.prismatic)
-        linear = linear + rate * joint.axis;
-      else
-        angular = angular + rate * joint.axis;
+      Vec3& moved = joint.model.part(angular, linear);  // + S rate
+      moved = moved + rate * joint.axis;
     }
     out.angular[i] = named(d.program, angular);
     out.linear[i] = named(d.program, linear);

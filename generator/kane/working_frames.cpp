@@ -140,10 +140,10 @@ std::vector<FrameStep> khalil_steps(const Khalil& k, const kinematics::JointFram
   const bool moves = joint.speed >= 0;
   const double theta0 = k.theta - child.phi;
   ex delta = exact(k.delta + child.t);
-  if (moves && joint.prismatic) delta = program.define(delta + joint.coordinate);
+  if (moves && joint.model.slides()) delta = program.define(delta + joint.coordinate);
   add_shift(steps, {0, 0, delta});
   const ex c0 = exact(std::cos(theta0)), s0 = exact(std::sin(theta0));
-  if (moves && !joint.prismatic) {
+  if (moves && joint.model.turns()) {
     // cos and sin of q + theta0 at once, where the sum formulas would cost
     // six operations; with theta0 a multiple of pi/2 they cost none.
     const bool plain = c0.is_zero() || s0.is_zero();

@@ -92,9 +92,9 @@ std::vector<WorkingMotion> working_motion(const kinematics::TreeKinematics& tree
     if (joint.speed >= 0) {
       const GiNaC::ex& u = speeds[joint.speed];
       const Vec3& axis = frames[i].axis;
-      if (joint.prismatic) {
+      if (joint.model.slides()) {
         m.accel_rest = named(program, m.accel_rest + 2 * u * cross(m.omega, axis));
-      } else {
+      } else if (joint.model.turns()) {
         m.alpha_rest = named(program, m.alpha_rest + u * cross(m.omega, axis));
         m.omega = named(program, m.omega + u * axis);
       }

@@ -22,7 +22,7 @@ SpatialForce to_parent(const SpatialForce& w, const std::vector<FrameStep>& step
 }
 
 ex projected(const kinematics::JointFrame& joint, const Vec3& axis, const SpatialForce& w) {
-  return dot(axis, joint.prismatic ? w.force : w.moment);
+  return joint.model.force_of(axis, w.moment, w.force);
 }
 
 }  // namespace
@@ -55,10 +55,8 @@ NewtonEuler working_newton_euler(const kinematics::TreeKinematics& tree, const s
     }
     if (joint.speed >= 0) {
       const ex& udot = accelerations[joint.speed];
-      if (joint.prismatic)
-        linear = named(program, linear + udot * frame.axis);
-      else
-        angular = named(program, angular + udot * frame.axis);
+      Vec3& moved = joint.model.part(angular, linear);  // a_i += S u_dot
+      moved = named(program, moved + udot * frame.axis);
     }
     alpha[i] = angular;
     accel[i] = linear;

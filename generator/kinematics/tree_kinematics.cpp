@@ -189,10 +189,11 @@ void place_child(BodyState& b, const BodyState& p, const JointFrame& frame, bool
   if (moves) {
     b.path.push_back(joint);
     const ex qk = vars.q[frame.speed];
-    if (frame.prismatic)
-      b.offset = named(program, node + xyz + qk * mul(r_origin, frame.axis));
+    // A slide carries the origin along the axis (in parent axes), a turn the axes.
+    if (frame.model.slides())
+      b.offset = named(program, node + xyz + frame.model.translation(mul(r_origin, frame.axis), qk));
     else
-      joint_to_child = named(program, transpose(rotation_about(frame.axis, qk)));
+      joint_to_child = named(program, transpose(frame.model.rotation(frame.axis, qk)));
   }
   b.to_child = named(program, mul(joint_to_child, transpose(r_origin)));
   b.rotation = named(program, mul(p.rotation, transpose(b.to_child)));
@@ -204,15 +205,16 @@ void place_child(BodyState& b, const BodyState& p, const JointFrame& frame, bool
 void child_motion(BodyState& b, const BodyState& p, const JointFrame& frame, bool moves, bool on_node,
                   const symbolic::Variables& vars, Program& program, const NodeMotion& m) {
   const Vec3& r = b.offset;
-  const Vec3 relative_velocity = moves && frame.prismatic ? vars.u[frame.speed] * frame.axis : zero_vec();
+  const Vec3 relative_velocity =
+      moves ? frame.model.linear_velocity(frame.axis, vars.u[frame.speed]) : zero_vec();
   // The joint frame's angular velocity and rest acceleration (the node's turn included).
   const Vec3 frame_omega = on_node ? named(program, p.omega + m.spin) : p.omega;
   const Vec3 frame_alpha =
       on_node ? named(program, p.alpha_rest + cross(p.omega, m.spin) + m.spin_accel) : p.alpha_rest;
   const Vec3 parent_omega = named(program, mul(b.to_child, frame_omega));  // in child axes
-  if (moves && !frame.prismatic) {
+  if (moves && frame.model.turns()) {
     const ex uk = vars.u[frame.speed];
-    b.omega = named(program, parent_omega + uk * frame.axis);
+    b.omega = named(program, parent_omega + frame.model.angular_velocity(frame.axis, uk));
     b.alpha_rest = named(program, mul(b.to_child, frame_alpha) + uk * cross(parent_omega, frame.axis));
   } else {
     b.omega = parent_omega;
@@ -283,7 +285,7 @@ BodyState TreeKinematics::place(std::size_t k, int parent, const BodyState& p,
   if (frame.speed >= 0) frame.coordinate = vars.q[frame.speed];
   NodeMotion m;
   if (attachment) m = attach_to_node(*attachment, vars, program_, xyz, r_origin, b);
-  frame.prismatic = joint.type == model::JointType::prismatic;
+  frame.model = JointModel(joint.type);
   for (int i = 0; i < 3; ++i) frame.axis[i] = snap(symbolic::number(joint.axis[i]));
 
   place_child(b, p, frame, joint.moves(), static_cast<int>(k), vars, program_, m.node, xyz, r_origin);

@@ -11,6 +11,7 @@
 #include <map>
 #include <vector>
 
+#include "kinematics/joint_model.hpp"
 #include "model/model.hpp"
 #include "symbolic/program.hpp"
 #include "symbolic/variables.hpp"
@@ -21,13 +22,14 @@ namespace kanegen::kinematics {
 using symbolic::Mat3;
 using symbolic::Vec3;
 
-/// A joint: its speed index and its axis in the child body's frame. The child
-/// frame origin lies on a revolute joint's axis, so the partial angular and
-/// linear velocities of the child origin for the joint's own speed are
-/// (a_k, 0) (revolute) or (0, a_k) (prismatic), in child axes.
+/// A joint: its speed index, its type's model and its axis in the child
+/// body's frame. The child frame origin lies on a revolute joint's axis, so
+/// the partial angular and linear velocities of the child origin for the
+/// joint's own speed are its column of S, (a_k, 0) (a turn) or (0, a_k) (a
+/// slide), in child axes.
 struct JointFrame {
-  int speed = -1;  ///< index of its generalized speed; -1 for a fixed joint
-  bool prismatic = false;
+  int speed = -1;        ///< index of its generalized speed; -1 for a fixed joint
+  JointModel model;      ///< what its type does (kinematics/joint_model.hpp)
   Vec3 axis;             ///< a_k, child axes (unit)
   GiNaC::ex coordinate;  ///< q_k (a moving joint's)
   /// The joint frame in the parent's, as the model gives it (before a node's

@@ -343,10 +343,8 @@ class JsonReader {
     out.name = j["name"].get<std::string>();
     out.where = place;
     const std::string type = j["type"].get<std::string>();
-    out.type = type == "revolute"     ? JointType::revolute
-               : type == "continuous" ? JointType::continuous
-               : type == "prismatic"  ? JointType::prismatic
-                                      : JointType::fixed;
+    // The schema's enum is the table's (model/schema.cpp), so the name is known.
+    out.type = joint_type_named(type)->type;
     out.parent = j["parent"].get<std::string>();
     out.child = j["child"].get<std::string>();
     const json origin = j.value("origin", json::object());
@@ -358,7 +356,7 @@ class JsonReader {
         if (j.contains(key))
           error(place + "/" + key,
                 "fixed joint '" + out.name + "' has no coordinate, so '" + key + "' does not apply",
-                "remove it, or make the joint revolute, continuous or prismatic");
+                "remove it, or make the joint " + joint_type_list(JointKinds::moving, "or"));
       out.actuated = false;
     }
     if (j.contains("axis"))

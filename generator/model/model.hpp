@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "model/joint_types.hpp"
+
 namespace kanegen::model {
 
 /// A scalar quantity of the model. Either a plain number (folded into the
@@ -175,8 +177,6 @@ struct PrescribedPiece {
   std::string where;
 };
 
-enum class JointType { revolute, continuous, prismatic, fixed };
-
 /// A joint between a parent body (or the ground) and a child body.
 /// The child frame is the parent frame moved by origin (xyz, then rpy as
 /// URDF: R = Rz(yaw) Ry(pitch) Rx(roll)) and then by the joint motion
@@ -210,7 +210,7 @@ struct Joint {
   bool independent = false;
   std::string where;
 
-  bool moves() const { return type != JointType::fixed; }
+  bool moves() const { return joint_type_info(type).coordinates > 0; }
   bool is_prescribed() const { return !prescribed.empty(); }
 };
 

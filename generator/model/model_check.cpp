@@ -457,7 +457,7 @@ class Checker {
       if (!j->moves())
         error(at(o.where, "joint"),
               "output '" + o.name + "' names fixed joint '" + o.joint + "', which has no coordinate",
-              "name a revolute, continuous or prismatic joint");
+              "name a " + joint_type_list(JointKinds::moving, "or") + " joint");
     }
   }
 
@@ -501,7 +501,7 @@ class Checker {
     }
     if (!j->moves())
       error(at(e.where, "joint"), what + " acts on fixed joint '" + e.joint + "', which has no coordinate",
-            "name a revolute, continuous or prismatic joint");
+            "name a " + joint_type_list(JointKinds::moving, "or") + " joint");
     if (j->is_prescribed())
       error(at(e.where, "joint"), what + " acts on prescribed joint '" + e.joint + "', whose motion is given",
             "remove it, or name a joint that is not prescribed");
@@ -679,10 +679,10 @@ class Checker {
   void attach_to_node_set(Joint& j) {
     const std::string what = "joint '" + j.name + "'";
     j.parent_node = interface_of(j.parent, j.parent_node_set, j.where, "parent_node_set", what, true);
-    if (j.type == JointType::prismatic)
+    if (!joint_type_info(j.type).on_nodes)
       error(at(j.where, "parent_node_set"),
-            "only revolute, continuous and fixed joints on node sets are supported",
-            "attach prismatic joint '" + j.name +
+            "only " + joint_type_list(JointKinds::on_nodes, "and") + " joints on node sets are supported",
+            "attach " + std::string(joint_type_info(j.type).name) + " joint '" + j.name +
                 "' to the body frame, or put a fixed joint and a body on the set");
   }
 
@@ -709,11 +709,11 @@ class Checker {
           error(at(j.where, "parent_node"), "the ground has no nodes", "remove \"parent_node\"");
         const Body* parent =
             check_node(j.parent_node, j.parent, at(j.where, "parent_node"), "joint '" + j.name + "'");
-        if (parent && j.type == JointType::prismatic)
+        if (parent && !joint_type_info(j.type).on_nodes)
           error(
               at(j.where, "parent_node"),
-              "only revolute, continuous and fixed joints on beam nodes are supported",
-              "attach prismatic joint '" + j.name +
+              "only " + joint_type_list(JointKinds::on_nodes, "and") + " joints on beam nodes are supported",
+              "attach " + std::string(joint_type_info(j.type).name) + " joint '" + j.name +
                   "' to the body frame (remove \"parent_node\"), or put a fixed joint and a body on the node "
                   "and the slide on that body");
       }
@@ -782,7 +782,7 @@ class Checker {
     if (!m_.loops.empty() && std::none_of(m_.joints.begin(), m_.joints.end(),
                                           [](const Joint& j) { return j.moves() && !j.is_prescribed(); }))
       error(m_.loops.front().where, "the loops close a mechanism with no free coordinate",
-            "make a joint revolute, continuous or prismatic, and not prescribed");
+            "make a joint " + joint_type_list(JointKinds::moving, "or") + ", and not prescribed");
   }
 
   /// Craig-Bampton keeps the interfaces as coordinates: a body needs one.
@@ -802,7 +802,7 @@ class Checker {
         std::none_of(m_.bodies.begin(), m_.bodies.end(), [](const Body& b) { return b.flexible; }))
       error(root_place_,
             "the model has no moving joint and no flexible body, so there is nothing to simulate",
-            "make at least one joint revolute, continuous or prismatic");
+            "make at least one joint " + joint_type_list(JointKinds::moving, "or"));
     // A moving joint that carries only massless bodies gives a zero row in M(q).
     std::map<std::string, std::vector<std::size_t>> children;  // body name -> child bodies
     std::map<std::string, std::size_t> body;

@@ -10,6 +10,7 @@
 #include <valijson/validation_results.hpp>
 #include <valijson/validator.hpp>
 
+#include "model/joint_types.hpp"
 #include "model/model_error.hpp"
 #include "model/names.hpp"
 
@@ -22,8 +23,19 @@ namespace {
 
 using nlohmann::json;
 
+/// The embedded schema with the joint types of the joint table
+/// (model/joint_types.hpp), which is what the loader accepts: the file's
+/// list serves editors and cannot fall behind what kanegen reads.
 const json& schema_document() {
-  static const json document = json::parse(detail::kModelSchemaJson);
+  static const json document = [] {
+    json d = json::parse(detail::kModelSchemaJson);
+    json& type = d.at("definitions").at("joint").at("properties").at("type");
+    type["enum"] = joint_type_names();
+    std::string names;
+    for (const std::string& name : joint_type_names()) names += (names.empty() ? "" : ", ") + name;
+    type["description"] = "one of " + names;
+    return d;
+  }();
   return document;
 }
 
@@ -240,8 +252,8 @@ std::vector<std::string> keys_of(const json* s) {
                          "use letters, digits and '_', starting with a letter (a C++ identifier)");
       }
   }
-  if ((starts_with(what, "Expected number less than") || starts_with(what, "Expected number greater than")) && d &&
-      value && value->is_number()) {
+  if ((starts_with(what, "Expected number less than") || starts_with(what, "Expected number greater than")) &&
+      d && value && value->is_number()) {
     // A size or value out of range: name the limit.
     const bool above = starts_with(what, "Expected number less than");
     const char* key = above ? (d->contains("maximum") ? "maximum" : "exclusiveMaximum")
@@ -252,7 +264,8 @@ std::vector<std::string> keys_of(const json* s) {
       const std::string about = description(d);
       throw ModelError(file, place,
                        "value " + value->dump() + " is " + (above ? "above" : "below") + " the " +
-                           (above ? "largest" : "smallest") + " allowed, " + limit + (exclusive ? " (excluded)" : ""),
+                           (above ? "largest" : "smallest") + " allowed, " + limit +
+                           (exclusive ? " (excluded)" : ""),
                        "give a value " + std::string(above ? "<" : ">") + (exclusive ? " " : "= ") + limit +
                            (about.empty() ? std::string() : " (" + about + ")"));
     }

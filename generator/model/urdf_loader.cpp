@@ -218,17 +218,23 @@ void check_joint_elements(const UrdfIndex& index, const std::string& file) {
   for (const Element& j : index.joints) {
     const char* type_attribute = j.xml->Attribute("type");
     const std::string type = type_attribute ? type_attribute : "";
-    if (type == "floating" || type == "planar")
+    // The types are those of the joint table (model/joint_types.hpp); URDF's
+    // other ones get a hint how to build them from those.
+    const bool known = joint_type_named(type) != nullptr;
+    if (!known && (type == "floating" || type == "planar"))
       throw ModelError(
           file, j.place, "joint type '" + type + "' is not supported",
-          "kanegen handles revolute, continuous, prismatic and fixed joints: build the motion from "
-          "those (e.g. prismatic x, y and revolute z for planar)");
-    if (type != "revolute" && type != "continuous" && type != "prismatic" && type != "fixed") {
-      const std::string guess = nearest(type, {"revolute", "continuous", "prismatic", "fixed"});
-      throw ModelError(file, j.place,
-                       type.empty() ? "joint has no type" : "unknown joint type '" + type + "'",
-                       (guess.empty() ? std::string() : "did you mean '" + guess + "'? ") +
-                           "use type=\"revolute\", \"continuous\", \"prismatic\" or \"fixed\"");
+          "kanegen handles " + joint_type_list(JointKinds::all, "and") +
+              " joints: build the motion from those (e.g. prismatic x, y and revolute z for planar)");
+    if (!known) {
+      const std::string guess = nearest(type, joint_type_names());
+      const std::vector<std::string> names = joint_type_names();
+      std::string quoted;  // "a", "b" or "c"
+      for (std::size_t i = 0; i < names.size(); ++i)
+        quoted += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + ("\"" + names[i] + "\"");
+      throw ModelError(
+          file, j.place, type.empty() ? "joint has no type" : "unknown joint type '" + type + "'",
+          (guess.empty() ? std::string() : "did you mean '" + guess + "'? ") + "use type=" + quoted);
     }
     if (j.xml->FirstChildElement("mimic"))
       throw ModelError(file, j.place + "/mimic", "mimic joints are not supported",
@@ -386,20 +392,9 @@ Joint read_joint(const urdf::Joint& joint, const Element& e, const LoadOptions& 
   Joint j;
   j.name = joint.name;
   j.where = e.place;
-  switch (joint.type) {
-    case urdf::Joint::REVOLUTE:
-      j.type = JointType::revolute;
-      break;
-    case urdf::Joint::CONTINUOUS:
-      j.type = JointType::continuous;
-      break;
-    case urdf::Joint::PRISMATIC:
-      j.type = JointType::prismatic;
-      break;
-    default:  // floating, planar and unknown types are rejected by check_joint_elements
-      j.type = JointType::fixed;
-      break;
-  }
+  // By the attribute's text, through the joint table: check_joint_elements
+  // has rejected the names it does not hold.
+  j.type = joint_type_named(e.xml->Attribute("type"))->type;
   j.parent = joint.parent_link_name;
   j.child = joint.child_link_name;
   const urdf::Pose& origin = joint.parent_to_joint_origin_transform;

@@ -269,6 +269,23 @@ void add_bodies(Instantiation& in, const Instance* same_model) {
   }
 }
 
+/// The numeric path's own joint table: how each type moves its child
+/// (numeric/poses.hpp applies it). The symbolic stages have theirs
+/// (kinematics/joint_model.*); keeping two is what lets `kanegen verify`
+/// catch a mistake in either. No default: a new type is a compile error here.
+Motion motion_of(model::JointType type) {
+  switch (type) {
+    case model::JointType::revolute:
+    case model::JointType::continuous:
+      return Motion::rotation;
+    case model::JointType::prismatic:
+      return Motion::translation;
+    case model::JointType::fixed:
+      return Motion::none;
+  }
+  return Motion::none;
+}
+
 JointData joint_data(const Instantiation& in, const model::Joint& j) {
   const model::ParameterValues& p = in.p;
   JointData d;
@@ -286,7 +303,7 @@ JointData joint_data(const Instantiation& in, const model::Joint& j) {
   const double length = std::sqrt(j.axis[0] * j.axis[0] + j.axis[1] * j.axis[1] + j.axis[2] * j.axis[2]);
   d.axis = {j.axis[0] / length, j.axis[1] / length, j.axis[2] / length};
   if (!j.moves()) return d;
-  d.motion = j.type == model::JointType::prismatic ? Motion::translation : Motion::rotation;
+  d.motion = motion_of(j.type);
   d.coordinate = in.m.coordinates();
   d.stiffness = model::evaluate(j.spring_stiffness, p);
   d.rest = model::evaluate(j.spring_rest, p);

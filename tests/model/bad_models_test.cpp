@@ -7,8 +7,23 @@
 #include "model/model_check.hpp"
 #include "test_support.hpp"
 
+using kanegen::model::joint_type_list;
+using kanegen::model::joint_type_names;
+using kanegen::model::JointKinds;
 using kanegen::model::test::bad_model;
 using kanegen::model::test::expect_model_error;
+
+namespace {
+
+/// The joint table's names as the schema's message lists them: "a, b, c".
+/// Built from the table, so a new joint type needs no edit here.
+std::string all_joint_types() {
+  std::string out;
+  for (const std::string& name : joint_type_names()) out += (out.empty() ? "" : ", ") + name;
+  return out;
+}
+
+}  // namespace
 
 // ---- JSON syntax and schema ----
 
@@ -35,7 +50,7 @@ TEST_CASE("bad JSON: wrong type", "[bad][json]") {
 
 TEST_CASE("bad JSON: value not among the allowed ones", "[bad][json]") {
   expect_model_error(bad_model("bad_enum.json"), "/joints/0/type", "invalid value \"hinge\"",
-                     "use one of revolute, continuous, prismatic, fixed");
+                     "use one of " + all_joint_types());
 }
 
 TEST_CASE("bad JSON: unsupported version", "[bad][json]") {
@@ -173,7 +188,7 @@ TEST_CASE("bad model: negative damping", "[bad][json]") {
 
 TEST_CASE("bad model: fields of a coordinate on a fixed joint", "[bad][json]") {
   expect_model_error(bad_model("fixed_joint_spring.json"), "/joints/1/spring", "has no coordinate",
-                     "make the joint revolute, continuous or prismatic");
+                     "make the joint " + joint_type_list(JointKinds::moving, "or"));
 }
 
 TEST_CASE("bad model: unknown parent", "[bad][json]") {
@@ -220,7 +235,7 @@ TEST_CASE("bad model: output naming an unknown joint", "[bad][json]") {
 
 TEST_CASE("bad model: joint output on a fixed joint", "[bad][json]") {
   expect_model_error(bad_model("output_fixed_joint.json"), "/outputs/1/joint", "fixed joint 'j2'",
-                     "name a revolute, continuous or prismatic joint");
+                     "name a " + joint_type_list(JointKinds::moving, "or") + " joint");
 }
 
 TEST_CASE("bad model: point output without a point", "[bad][json]") {
@@ -266,7 +281,7 @@ TEST_CASE("bad force: a spring and a joint effort with the same name", "[bad][js
 TEST_CASE("bad joint effort: a fixed, unknown or prescribed joint, an unknown name", "[bad][json][effort]") {
   expect_model_error(bad_model("effort_fixed_joint.json"), "/forces/0/joint",
                      "joint effort 'motor' acts on fixed joint 'mount', which has no coordinate",
-                     "name a revolute, continuous or prismatic joint");
+                     "name a " + joint_type_list(JointKinds::moving, "or") + " joint");
   expect_model_error(bad_model("effort_unknown_joint.json"), "/forces/0/joint",
                      "joint effort 'motor' names unknown joint 'spn'", "did you mean 'spin'?");
   expect_model_error(bad_model("effort_prescribed_joint.json"), "/forces/0/joint",
@@ -295,7 +310,7 @@ TEST_CASE("bad URDF: malformed XML", "[bad][urdf]") {
 
 TEST_CASE("bad URDF: floating joint", "[bad][urdf]") {
   expect_model_error(bad_model("floating.urdf"), "line 10: <joint name=\"free\">",
-                     "joint type 'floating' is not supported", "revolute, continuous, prismatic and fixed");
+                     "joint type 'floating' is not supported", joint_type_list(JointKinds::all, "and"));
 }
 
 TEST_CASE("bad URDF: unknown joint type", "[bad][urdf]") {

@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // Format features the shipped models do not use: defaults, springs, fixed
 // joints, forces, axis normalisation, "$schema".
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -68,6 +71,29 @@ TEST_CASE("the schema is embedded and matches models/schema", "[json]") {
   std::stringstream text;
   text << in.rdbuf();
   CHECK(text.str() == model_schema_text());
+}
+
+TEST_CASE("every joint type of the table loads from a JSON model as that type", "[json][joint]") {
+  // One model per row of model/joint_types.hpp: a new type is tested here
+  // without a line for it.
+  for (const JointTypeInfo& row : joint_types) {
+    INFO(row.name);
+    const std::string path = (std::filesystem::temp_directory_path() /
+                              ("kanegen_joint_type_" + std::to_string(::getpid()) + "_" + row.name + ".json"))
+                                 .string();
+    std::ofstream(path) << R"({"format": "kanegen-model", "version": 1, "name": "one_joint",
+      "bodies": [{"name": "a", "mass": 1, "com": [1, 0, 0]}, {"name": "b", "mass": 1, "com": [1, 0, 0]}],
+      "joints": [{"name": "first", "type": "revolute", "parent": "ground", "child": "a"},
+                 {"name": "second", "type": ")"
+                        << row.name << R"(", "parent": "a", "child": "b"}]})";
+    const Model m = load_model(path);
+    REQUIRE(m.joints.size() == 2);
+    CHECK(m.joints[1].type == row.type);
+    CHECK(m.joints[1].moves() == (row.coordinates > 0));
+    CHECK(joint_type_named(row.name) == &row);
+    std::filesystem::remove(path);
+  }
+  CHECK(joint_type_named("hinge") == nullptr);
 }
 
 TEST_CASE("springs and joint efforts are read by type, constant forces by default",

@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "kinematics/joint_model.hpp"
+
+#include "kinematics/tree_kinematics.hpp"
+
+namespace kanegen::kinematics {
+
+using GiNaC::ex;
+using namespace symbolic;
+
+namespace {
+
+/// The joint table of the symbolic side: the column each type's speed moves.
+/// (The numeric path keeps its own, numeric/instance.cpp, so that `kanegen
+/// verify` does not share it.) No default: a new type is a compile error here.
+Column column_of(model::JointType type) {
+  switch (type) {
+    case model::JointType::revolute:
+    case model::JointType::continuous:
+      return Column::angular;
+    case model::JointType::prismatic:
+      return Column::linear;
+    case model::JointType::fixed:
+      return Column::none;
+  }
+  return Column::none;
+}
+
+}  // namespace
+
+JointModel::JointModel(model::JointType type) : column_(column_of(type)) {}
+
+ex JointModel::force_of(const Vec3& axis, const Vec3& moment, const Vec3& force) const {
+  return dot(axis, part(moment, force));
+}
+
+Vec3 JointModel::angular_velocity(const Vec3& axis, const ex& u) const {
+  return turns() ? u * axis : zero_vec();
+}
+
+Vec3 JointModel::linear_velocity(const Vec3& axis, const ex& u) const {
+  return slides() ? u * axis : zero_vec();
+}
+
+Mat3 JointModel::rotation(const Vec3& axis, const ex& q) const {
+  return turns() ? rotation_about(axis, q) : identity_mat();
+}
+
+Vec3 JointModel::translation(const Vec3& axis, const ex& q) const { return slides() ? q * axis : zero_vec(); }
+
+std::pair<Vec3, Vec3> JointModel::inertia_column(const Mat3& a, const Mat3& b, const Mat3& c,
+                                                 const Vec3& axis) const {
+  if (slides()) return {mul(b, axis), mul(c, axis)};
+  return {mul(a, axis), mul_transposed(b, axis)};
+}
+
+std::pair<Vec3, Vec3> JointModel::unit_momentum(const ex& mass, const Vec3& moment, const Mat3& second,
+                                                const Vec3& axis) const {
+  if (slides()) return {cross(moment, axis), mass * axis};
+  return {mul(second, axis), cross(axis, moment)};
+}
+
+}  // namespace kanegen::kinematics
