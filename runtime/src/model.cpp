@@ -32,7 +32,8 @@ bool bound(const ModelTable& table, Kernel kernel) {
 /// loops too; none is asked of a presence a table of this kind lacks).
 bool holds_all(const ModelTable& table, KernelPresence presence) {
   for (const KernelSpec& s : kernel_specs)
-    if (s.binding != KernelBinding::unbound && s.presence == presence && !bound(table, s.kernel)) return false;
+    if (s.binding != KernelBinding::unbound && s.presence == presence && !bound(table, s.kernel))
+      return false;
   return true;
 }
 

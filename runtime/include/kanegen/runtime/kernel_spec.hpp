@@ -69,6 +69,8 @@ struct KernelSpec {
   KernelPresence presence;
   bool counted;  ///< its operation count is listed in the generated header
   KernelBinding binding;
+  /// The rows of kanegen verify's report that compare it, ";"-separated; "" if none.
+  const char* verify;
   const char* doc;  ///< the declaration's comment, "///" lines without the final newline
 };
 
@@ -106,17 +108,19 @@ struct KernelSpec {
 #define KANEGEN_FE_7(F, a, ...) F a, KANEGEN_EXPAND(KANEGEN_FE_6(F, __VA_ARGS__))
 #define KANEGEN_FE_8(F, a, ...) F a, KANEGEN_EXPAND(KANEGEN_FE_7(F, __VA_ARGS__))
 #define KANEGEN_FE_PICK(_1, _2, _3, _4, _5, _6, _7, _8, N, ...) N
-#define KANEGEN_FOR_EACH(F, ...)                                                                              \
-  KANEGEN_EXPAND(KANEGEN_FE_PICK(__VA_ARGS__, KANEGEN_FE_8, KANEGEN_FE_7, KANEGEN_FE_6, KANEGEN_FE_5,        \
-                                 KANEGEN_FE_4, KANEGEN_FE_3, KANEGEN_FE_2, KANEGEN_FE_1, ) (F, __VA_ARGS__))
+#define KANEGEN_FOR_EACH(F, ...)                                                                      \
+  KANEGEN_EXPAND(KANEGEN_FE_PICK(__VA_ARGS__, KANEGEN_FE_8, KANEGEN_FE_7, KANEGEN_FE_6, KANEGEN_FE_5, \
+                                 KANEGEN_FE_4, KANEGEN_FE_3, KANEGEN_FE_2, KANEGEN_FE_1, )(F, __VA_ARGS__))
 /// KANEGEN_MAP(F, (a, b)): F applied to each of a parenthesized list.
 #define KANEGEN_MAP(F, arguments) KANEGEN_FOR_EACH(F, KANEGEN_UNPAREN arguments)
 #define KANEGEN_UNPAREN(...) __VA_ARGS__
 
 /// The untyped Params of a function pointer, with its comma (nothing for none).
+// clang-format off
 #define KANEGEN_POINTER_PARAMS_read const void* p,
 #define KANEGEN_POINTER_PARAMS_write void* p,
 #define KANEGEN_POINTER_PARAMS_none
+// clang-format on
 
 // ---- the specs as data
 
@@ -131,16 +135,17 @@ namespace kernel_spec_detail {
 
 /// Every kernel's spec, in Kernel order (kernel_specs[int(k)].kernel == k).
 inline constexpr KernelSpec kernel_specs[] = {
-#define KANEGEN_KERNEL(name, returns, params, arguments, presence, counted, binding, wrapper, doc)            \
-  {Kernel::name,                                                                                            \
-   #name,                                                                                                   \
-   #returns,                                                                                                \
-   ParamsAccess::params,                                                                                    \
-   kernel_spec_detail::name##_arguments,                                                                    \
-   sizeof(kernel_spec_detail::name##_arguments) / sizeof(KernelArgumentSpec),                               \
-   KernelPresence::presence,                                                                                \
-   KANEGEN_COUNTED_##counted,                                                                               \
-   KernelBinding::binding,                                                                                  \
+#define KANEGEN_KERNEL(name, returns, params, arguments, presence, counted, binding, wrapper, verify, doc) \
+  {Kernel::name,                                                                                           \
+   #name,                                                                                                  \
+   #returns,                                                                                               \
+   ParamsAccess::params,                                                                                   \
+   kernel_spec_detail::name##_arguments,                                                                   \
+   sizeof(kernel_spec_detail::name##_arguments) / sizeof(KernelArgumentSpec),                              \
+   KernelPresence::presence,                                                                               \
+   KANEGEN_COUNTED_##counted,                                                                              \
+   KernelBinding::binding,                                                                                 \
+   verify,                                                                                                 \
    doc},
 #include "kanegen/runtime/kernels.def"
 #undef KANEGEN_KERNEL
@@ -149,6 +154,8 @@ inline constexpr KernelSpec kernel_specs[] = {
 inline constexpr std::size_t kernel_count = sizeof(kernel_specs) / sizeof(KernelSpec);
 
 /// The spec of a kernel.
-constexpr const KernelSpec& kernel_spec(Kernel kernel) { return kernel_specs[static_cast<std::size_t>(kernel)]; }
+constexpr const KernelSpec& kernel_spec(Kernel kernel) {
+  return kernel_specs[static_cast<std::size_t>(kernel)];
+}
 
 }  // namespace kanegen::runtime

@@ -54,18 +54,18 @@ class Model {
 #define KANEGEN_MODEL_PARAMS_read params(),
 #define KANEGEN_MODEL_PARAMS_write parameters_.data(),
 #define KANEGEN_MODEL_PARAMS_none
-#define KANEGEN_MODEL_call(name, returns, params, arguments)                                                  \
-  returns name(KANEGEN_MAP(KANEGEN_TYPED_ARGUMENT, arguments)) KANEGEN_MODEL_CONST_##params {                 \
-    return table_.name(KANEGEN_MODEL_PARAMS_##params KANEGEN_MAP(KANEGEN_ARGUMENT_NAME, arguments));          \
+#define KANEGEN_MODEL_call(name, returns, params, arguments)                                         \
+  returns name(KANEGEN_MAP(KANEGEN_TYPED_ARGUMENT, arguments)) KANEGEN_MODEL_CONST_##params {        \
+    return table_.name(KANEGEN_MODEL_PARAMS_##params KANEGEN_MAP(KANEGEN_ARGUMENT_NAME, arguments)); \
   }
-#define KANEGEN_MODEL_call_or_zero(name, returns, params, arguments)                                          \
-  returns name(KANEGEN_MAP(KANEGEN_TYPED_ARGUMENT, arguments)) KANEGEN_MODEL_CONST_##params {                 \
-    if (!table_.name) return returns();                                                                       \
-    return table_.name(KANEGEN_MODEL_PARAMS_##params KANEGEN_MAP(KANEGEN_ARGUMENT_NAME, arguments));          \
+#define KANEGEN_MODEL_call_or_zero(name, returns, params, arguments)                                 \
+  returns name(KANEGEN_MAP(KANEGEN_TYPED_ARGUMENT, arguments)) KANEGEN_MODEL_CONST_##params {        \
+    if (!table_.name) return returns();                                                              \
+    return table_.name(KANEGEN_MODEL_PARAMS_##params KANEGEN_MAP(KANEGEN_ARGUMENT_NAME, arguments)); \
   }
 #define KANEGEN_MODEL_by_hand(name, returns, params, arguments)
 #define KANEGEN_MODEL_none(name, returns, params, arguments)
-#define KANEGEN_KERNEL(name, returns, params, arguments, presence, counted, binding, wrapper, doc) \
+#define KANEGEN_KERNEL(name, returns, params, arguments, presence, counted, binding, wrapper, ...) \
   KANEGEN_MODEL_##wrapper(name, returns, params, arguments)
 #include "kanegen/runtime/kernels.def"
 #undef KANEGEN_KERNEL
