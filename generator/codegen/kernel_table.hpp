@@ -33,10 +33,10 @@ struct KernelArgument {
 
 struct KernelSignature {
   Kernel kernel;
-  const char* name;                      ///< the C++ function name
-  const char* returns;                   ///< "void", "int", "double" or "bool"
+  const char* name;                       ///< the C++ function name
+  const char* returns;                    ///< "void", "int", "double" or "bool"
   std::vector<KernelArgument> arguments;  ///< "const Params& p" first, if it takes Params
-  const char* doc;                       ///< the declaration's comment, "///" lines without the final newline
+  const char* doc;  ///< the declaration's comment, "///" lines without the final newline
   Presence presence;
   bool counted;  ///< its operation count is listed in the header
   /// The runtime's Model calls it through kanegen/runtime/model_table.hpp,

@@ -863,7 +863,8 @@ static_assert(sizeof(kDerive) / sizeof(Derive) == runtime::kernel_count, "one de
 /// controller kernels the Jacobians (linearize calls them), no loops and no
 /// prescribed speeds (the pipeline refuses those).
 void check_options(const Derivation& d, bool jacobians, bool controller) {
-  if (jacobians && d.eq.nq != d.eq.nu) throw std::logic_error("the Jacobian kernels need q_dot = u (nq == nu)");
+  if (jacobians && d.eq.nq != d.eq.nu)
+    throw std::logic_error("the Jacobian kernels need q_dot = u (nq == nu)");
   if (controller && (!jacobians || d.loops() || !d.eq.prescribed.empty()))
     throw std::logic_error("the controller kernels need the Jacobians, no loops and no prescribed speeds");
 }
