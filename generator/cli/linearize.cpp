@@ -22,13 +22,13 @@ double finite(const json& x, const char* what) {
 /// r = f_s - M_s,o a_o and, if asked, M_ss, at one state.
 class Rows {
  public:
-  Rows(verify::RunnerProcess& runner, const OperatingPoint& point, const LinearizeOptions& options)
+  Rows(runner::RunnerProcess& runner, const OperatingPoint& point, const LinearizeOptions& options)
       : runner_(runner), point_(point), options_(options) {}
 
   Eigen::VectorXd residual(const std::vector<double>& q, const std::vector<double>& u,
                            Eigen::MatrixXd* mass = nullptr, Eigen::MatrixXd* loops = nullptr) {
     const json reply =
-        verify::batch_request(runner_, json{{"t", point_.t}, {"q", q}, {"u", u}, {"p", point_.p}});
+        runner::batch_request(runner_, json{{"t", point_.t}, {"q", q}, {"u", u}, {"p", point_.p}});
     const json& M = reply.at("mass_matrix");
     const json& f = reply.at("forcing");
     const std::vector<int>& s = options_.selected;
@@ -61,7 +61,7 @@ class Rows {
   }
 
  private:
-  verify::RunnerProcess& runner_;
+  runner::RunnerProcess& runner_;
   const OperatingPoint& point_;
   const LinearizeOptions& options_;
 };
@@ -96,7 +96,7 @@ Eigen::MatrixXd derivative(Rows& rows, const OperatingPoint& point, const Linear
 
 }  // namespace
 
-Linearization linearize(verify::RunnerProcess& runner, const OperatingPoint& point,
+Linearization linearize(runner::RunnerProcess& runner, const OperatingPoint& point,
                         const LinearizeOptions& options) {
   if (options.other_accelerations.size() != point.u.size())
     throw std::logic_error("linearize: one given acceleration per speed is needed");

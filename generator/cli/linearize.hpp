@@ -15,7 +15,7 @@
 #include <Eigen/Dense>
 #include <vector>
 
-#include "verify/verify_runner.hpp"
+#include "runner/runner_process.hpp"
 
 namespace kanegen::cli {
 
@@ -42,7 +42,7 @@ struct Linearization {
 };
 
 /// Throws std::runtime_error if the runner fails or gives a non-finite value.
-Linearization linearize(verify::RunnerProcess& runner, const OperatingPoint& point,
+Linearization linearize(runner::RunnerProcess& runner, const OperatingPoint& point,
                         const LinearizeOptions& options);
 
 }  // namespace kanegen::cli

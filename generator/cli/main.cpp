@@ -30,7 +30,7 @@
 
 namespace {
 
-using kanegen::cli::BuildOptions;
+using kanegen::runner::BuildOptions;
 
 /// Instead of CLI11's PositiveNumber and NonNegativeNumber, whose message
 /// prints the largest double in 309 digits.
@@ -196,7 +196,7 @@ int run_generate(const GenerateCommand& c) {
   const BuildOptions b = build_options(c.run);
   kanegen::cli::check_output_directory(c.out_dir);
   const kanegen::pipeline::GeneratedModel g = [&] {
-    const kanegen::cli::StopWhileGenerating stop(c.run.model, "written");
+    const kanegen::runner::StopWhileGenerating stop(c.run.model, "written");
     return kanegen::pipeline::generate(
         c.run.model, b.load,
         {c.jacobians, c.controller,
@@ -278,7 +278,7 @@ int simulate_and_plot(const SimulateCommand& c, const std::string& runner, std::
     args.insert(args.end(), {"--output", csv});
     kanegen::cli::create_output_directory(c.plot);
   }
-  int status = kanegen::cli::run_program(runner, args);
+  int status = kanegen::runner::run_program(runner, args);
   if (status == 0) {
     kanegen::cli::PlotOptions p;
     p.csv = csv;
@@ -309,17 +309,17 @@ std::string forwarded_integrator(const ForwardedOptions& f) {
 int run_simulate(const SimulateCommand& c) {
   const std::vector<std::string> args = forwarded_args("simulate", c.forwarded);
   BuildOptions b = build_options(c.run);
-  b.jacobians = kanegen::cli::integrator_needs_jacobians(forwarded_integrator(c.forwarded));
+  b.jacobians = kanegen::runner::integrator_needs_jacobians(forwarded_integrator(c.forwarded));
   check_forwarded(c.run.model, b, c.forwarded);
   if (!c.plot.empty()) {
     kanegen::cli::check_output_file(c.plot);
     kanegen::cli::gnuplot_or_throw();  // before the build and the run, not after
   }
-  const std::string runner = kanegen::cli::build_runner(c.run.model, b);
+  const std::string runner = kanegen::runner::build_runner(c.run.model, b);
   if (const auto o = c.forwarded.values.find("--output"); o != c.forwarded.values.end())
     for (const std::string& output : o->second) kanegen::cli::create_output_directory(output);
   if (!c.plot.empty()) return simulate_and_plot(c, runner, args);
-  return kanegen::cli::run_program(runner, args);
+  return kanegen::runner::run_program(runner, args);
 }
 
 struct EvalCommand {
@@ -339,8 +339,8 @@ int run_eval(const EvalCommand& c) {
   const std::vector<std::string> args = forwarded_args("eval", c.forwarded);
   const BuildOptions b = build_options(c.run);
   check_forwarded(c.run.model, b, c.forwarded);
-  const std::string runner = kanegen::cli::build_runner(c.run.model, b);
-  return kanegen::cli::run_program(runner, args);
+  const std::string runner = kanegen::runner::build_runner(c.run.model, b);
+  return kanegen::runner::run_program(runner, args);
 }
 
 struct VerifyCommand {
@@ -548,7 +548,7 @@ int main(int argc, char** argv) {
     if (*verify.command) return run_verify(verify);
     if (*modes.command) return run_modes(modes);
     if (*plot.command) return run_plot(plot);
-  } catch (const kanegen::cli::Interrupted& e) {  // as an interrupted simulation reports it
+  } catch (const kanegen::runner::Interrupted& e) {  // as an interrupted simulation reports it
     std::fprintf(stderr, "error: %s\n", e.what());
     return 128 + e.signal_number;
   } catch (const kanegen::model::ModelError& e) {

@@ -14,8 +14,8 @@
 #include "fem/modal.hpp"
 #include "model/load.hpp"
 #include "model/model_error.hpp"
+#include "runner/runner_process.hpp"
 #include "symbolic/variables.hpp"
-#include "verify/verify_runner.hpp"
 
 namespace kanegen::cli {
 namespace {
@@ -231,7 +231,7 @@ bool stiffens_by_strain(const model::Model& model) {
 /// state (or prescribed), by Newton's method on the linearisation of those
 /// rows alone (dq_e = K_ee^-1 r_e). Returns the iterations taken; throws if
 /// K_ee is singular or Newton does not converge.
-int find_elastic_equilibrium(verify::RunnerProcess& process, Problem& pb, const std::vector<bool>& elastic,
+int find_elastic_equilibrium(runner::RunnerProcess& process, Problem& pb, const std::vector<bool>& elastic,
                              const std::string& file) {
   LinearizeOptions lin = pb.linearize;
   lin.velocity = false;
@@ -301,8 +301,8 @@ int modes(const ModesOptions& options) {
         "kanegen modes does not take closed loops with a nodal beam's geometric stiffening",
         "set \"geometric_stiffening\": false on the beams in the loops, use modes, or "
         "compute the modes of the open tree (remove \"loops\")");
-  const std::string runner = build_runner(options.model, options.build);
-  const json info = verify::runner_info(runner);
+  const std::string runner = runner::build_runner(options.model, options.build);
+  const json info = runner::runner_info(runner);
   Problem pb = set_up(model, info, options);
   const int joint_count = static_cast<int>(std::count_if(model.joints.begin(), model.joints.end(),
                                                          [](const model::Joint& j) { return j.moves(); }));
@@ -312,13 +312,13 @@ int modes(const ModesOptions& options) {
   Linearization lz;
   int equilibrium_iterations = 0;
   {
-    verify::RunnerProcess process(runner, {"batch"});
+    runner::RunnerProcess process(runner, {"batch"});
     if (stiffens_by_strain(model))
       equilibrium_iterations = find_elastic_equilibrium(process, pb, elastic, model.source_file);
     if (!model.loops.empty()) {
       // The loop forces of the model's own constrained dynamics at the state, held at their value: their
       // geometric stiffness enters K (a load carried through a loop stiffens or softens it).
-      const json reply = verify::batch_request(
+      const json reply = runner::batch_request(
           process, json{{"t", pb.point.t}, {"q", pb.point.q}, {"u", pb.point.u}, {"p", pb.point.p}});
       if (!reply.at("lambda").is_array())
         throw std::runtime_error(model.source_file +

@@ -23,7 +23,7 @@ struct ModesOptions {
   int count = 0;                  ///< print the first `count` modes (0: all)
   bool matrices = false;          ///< also print M, K, C and r
   double step = 1e-6;             ///< relative finite-difference step
-  BuildOptions build;
+  runner::BuildOptions build;
 };
 
 /// Prints the modes as JSON on stdout. Returns 0, or 1 if the linearised

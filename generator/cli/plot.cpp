@@ -141,7 +141,7 @@ int plot(const PlotOptions& o) {
                              ("." + target.filename().string() + ".tmp." + std::to_string(getpid()));
   const fs::path script = temporary.string() + ".gp";
   std::ofstream(script) << gnuplot_script(o, header, columns, temporary.string());
-  const int status = run_program(gnuplot, {script.string()});
+  const int status = runner::run_program(gnuplot, {script.string()});
   std::error_code ignored;
   fs::remove(script, ignored);
   if (status != 0 || !fs::exists(temporary) || fs::file_size(temporary, ignored) == 0) {

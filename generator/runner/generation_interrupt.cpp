@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <cstring>
 
-namespace kanegen::cli {
+namespace kanegen::runner {
 namespace {
 
 constexpr int kSignals[3] = {SIGINT, SIGTERM, SIGHUP};
@@ -40,4 +40,4 @@ StopWhileGenerating::~StopWhileGenerating() {
   for (int k = 0; k < 3; ++k) std::signal(kSignals[k], previous_[k]);
 }
 
-}  // namespace kanegen::cli
+}  // namespace kanegen::runner

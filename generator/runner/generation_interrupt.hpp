@@ -7,7 +7,7 @@
 
 #include <string>
 
-namespace kanegen::cli {
+namespace kanegen::runner {
 
 /// While alive, SIGINT, SIGTERM and SIGHUP end kanegen with
 /// "error: interrupted by SIGINT while generating MODEL; nothing was WHAT"
@@ -24,4 +24,4 @@ class StopWhileGenerating {
   void (*previous_[3])(int) = {};
 };
 
-}  // namespace kanegen::cli
+}  // namespace kanegen::runner

@@ -22,7 +22,7 @@
 #include "runner/generation_interrupt.hpp"
 #include "runner/runner_cache.hpp"
 
-namespace kanegen::cli {
+namespace kanegen::runner {
 namespace fs = std::filesystem;
 namespace {
 
@@ -292,4 +292,4 @@ std::string build_runner_from_directory(const std::string& kernels_dir, const Bu
   return runner.string();
 }
 
-}  // namespace kanegen::cli
+}  // namespace kanegen::runner

@@ -11,7 +11,7 @@
 #include "codegen/model_kernels.hpp"
 #include "model/load.hpp"
 
-namespace kanegen::cli {
+namespace kanegen::runner {
 
 struct BuildOptions {
   bool verbose = true;  ///< progress lines on stderr
@@ -49,4 +49,4 @@ std::string build_runner_from_directory(const std::string& kernels_dir, const Bu
 /// Runs a program with arguments, waits, and returns its exit status.
 int run_program(const std::string& program, const std::vector<std::string>& args);
 
-}  // namespace kanegen::cli
+}  // namespace kanegen::runner

@@ -16,7 +16,7 @@
 
 #include "pipeline/pipeline.hpp"
 
-namespace kanegen::cli {
+namespace kanegen::runner {
 namespace fs = std::filesystem;
 namespace {
 
@@ -150,4 +150,4 @@ void discard_entry(const fs::path& entry) {
   fs::remove(entry / "runner", ignored);
 }
 
-}  // namespace kanegen::cli
+}  // namespace kanegen::runner

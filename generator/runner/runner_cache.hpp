@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace kanegen::cli {
+namespace kanegen::runner {
 
 /// $KANEGEN_CACHE_DIR, else $XDG_CACHE_HOME/kanegen, else ~/.cache/kanegen,
 /// else <tmp>/kanegen-cache; created (mode 0700) if missing. Throws
@@ -46,4 +46,4 @@ void seal_entry(const std::filesystem::path& entry, const std::vector<std::strin
 /// is rebuilt; the lock must be held.
 void discard_entry(const std::filesystem::path& entry);
 
-}  // namespace kanegen::cli
+}  // namespace kanegen::runner

@@ -17,13 +17,13 @@
 #include "numeric/dynamics.hpp"
 #include "numeric/instance.hpp"
 #include "numeric/loops.hpp"
+#include "runner/runner_process.hpp"
 #include "verify/verify_controller.hpp"
 #include "verify/verify_differences.hpp"
 #include "verify/verify_jacobians.hpp"
 #include "verify/verify_kernels.hpp"
 #include "verify/verify_power.hpp"
 #include "verify/verify_report.hpp"
-#include "verify/verify_runner.hpp"
 
 namespace kanegen::verify {
 namespace {
@@ -336,11 +336,11 @@ class Sampler {
 
 double scalar(const json& x) { return x.is_null() ? std::nan("") : x.get<double>(); }
 
-void evaluate_generated(RunnerProcess& runner, const Link& link, Sample& s) {
+void evaluate_generated(runner::RunnerProcess& runner, const Link& link, Sample& s) {
   json request{{"t", s.state.t},      {"q", s.state.q},  {"u", s.state.u},
                {"tau", s.runner_tau}, {"p", s.runner_p}, {"kinetic_energy_hessian", true}};
   if (link.inverse_dynamics) request["inverse_dynamics_udot"] = s.id_udot;
-  const json reply = batch_request(runner, request);
+  const json reply = runner::batch_request(runner, request);
   if (link.inverse_dynamics) {
     s.inverse_dynamics = json_numbers(reply["inverse_dynamics"]);
     s.gravity = json_numbers(reply["gravity"]);
@@ -686,7 +686,7 @@ void progress(const VerifyOptions& o, const std::string& line) {
 }
 
 /// The random states with the generated kernels' values at each.
-std::vector<Sample> draw_samples(RunnerProcess& process, const model::Model& model, const Link& link,
+std::vector<Sample> draw_samples(runner::RunnerProcess& process, const model::Model& model, const Link& link,
                                  const numeric::Instance& base, const VerifyOptions& o) {
   Sampler sampler(model, link, base, o.seed, o.spread);
   std::vector<Sample> samples;
@@ -810,7 +810,7 @@ void add_comparison_rows(const Comparison& c, const Link& link, std::vector<Row>
 
 /// The power balance along the trajectory from sample k's state, with its
 /// prescribed speeds on their motion.
-Worst trajectory_power_balance(RunnerProcess& process, const Sample& s, int k, double duration,
+Worst trajectory_power_balance(runner::RunnerProcess& process, const Sample& s, int k, double duration,
                                long* points) {
   TrajectoryStart from{&s.instance, s.state, s.runner_tau, s.runner_p};
   std::vector<int> prescribed;
@@ -837,7 +837,8 @@ Worst trajectory_power_balance(RunnerProcess& process, const Sample& s, int k, d
   return w;
 }
 
-Row power_balance_row(RunnerProcess& process, const std::vector<Sample>& samples, const VerifyOptions& o) {
+Row power_balance_row(runner::RunnerProcess& process, const std::vector<Sample>& samples,
+                      const VerifyOptions& o) {
   Row power("power balance", "integral of numeric P_nc", 100 * o.rtol);
   power.where_kind = "trajectory";
   const int trajectories = std::min(o.trajectories, o.samples);
@@ -864,7 +865,7 @@ constexpr double kJacobianTolerance = 1e-6;
 
 /// The Jacobian kernels against differences of the numeric path (verify_jacobians.hpp), if the kernels have
 /// them.
-void add_jacobian_rows(RunnerProcess& process, const json& info, const numeric::Instance& base,
+void add_jacobian_rows(runner::RunnerProcess& process, const json& info, const numeric::Instance& base,
                        const Link& link, const std::vector<Sample>& samples, const VerifyOptions& o,
                        std::vector<Row>& rows) {
   if (!info.value("jacobians", false)) {
@@ -899,7 +900,7 @@ std::string controller_refusal(const numeric::Instance& base) {
 
 /// The controller kernels against the numeric path (verify_controller.hpp),
 /// if the kernels have them.
-void add_controller_rows(RunnerProcess& process, const json& info, const numeric::Instance& base,
+void add_controller_rows(runner::RunnerProcess& process, const json& info, const numeric::Instance& base,
                          const Link& link, const std::vector<Sample>& samples, const VerifyOptions& o,
                          std::vector<Row>& rows) {
   const std::string refusal = controller_refusal(base);
@@ -965,16 +966,17 @@ int verify(const VerifyOptions& o) {
   const model::Model model = model::load_model(o.model, o.build.load);
   const numeric::Instance base = numeric::instantiate(model, model::default_parameter_values(model));
   // --controller on a model that cannot have the kernels: its rows say why.
-  cli::BuildOptions build = o.build;
+  runner::BuildOptions build = o.build;
   build.controller = build.controller && controller_refusal(base).empty();
-  const std::string runner = o.kernels_dir.empty() ? cli::build_runner(o.model, build)
-                                                   : cli::build_runner_from_directory(o.kernels_dir, build);
-  const json info = runner_info(runner);
+  const std::string runner = o.kernels_dir.empty()
+                                 ? runner::build_runner(o.model, build)
+                                 : runner::build_runner_from_directory(o.kernels_dir, build);
+  const json info = runner::runner_info(runner);
   const Link link = link_runner(model, base, info);
 
   progress(o, std::to_string(o.samples) + " random states of " + model.name +
                   " against the numeric derivation ...");
-  RunnerProcess process(runner, {"batch"});
+  runner::RunnerProcess process(runner, {"batch"});
   const std::vector<Sample> samples = draw_samples(process, model, link, base, o);
   std::vector<Row> rows;
   rows.push_back(defaults_row(model, base, link, info, o.rtol));

@@ -17,12 +17,12 @@ struct VerifyOptions {
   std::string kernels_dir;  ///< verify these generated files instead of generating afresh
   int samples = 100;
   unsigned long seed = 1;
-  double rtol = 1e-9;       ///< tolerance of the error measures (power balance: 100 rtol)
-  double spread = 0.2;      ///< parameters drawn in default * [1 - spread, 1 + spread]
-  int trajectories = 3;     ///< power-balance trajectories
-  double duration = 0.2;    ///< of each trajectory, s
-  bool json = false;        ///< report as JSON on stdout
-  cli::BuildOptions build;  ///< build.verbose: progress lines on stderr
+  double rtol = 1e-9;          ///< tolerance of the error measures (power balance: 100 rtol)
+  double spread = 0.2;         ///< parameters drawn in default * [1 - spread, 1 + spread]
+  int trajectories = 3;        ///< power-balance trajectories
+  double duration = 0.2;       ///< of each trajectory, s
+  bool json = false;           ///< report as JSON on stdout
+  runner::BuildOptions build;  ///< build.verbose: progress lines on stderr
 };
 
 /// Runs the verification and prints the report. Returns 0 if everything

@@ -297,7 +297,7 @@ std::vector<Row> empty_rows(double tolerance) {
 
 }  // namespace
 
-std::vector<Row> controller_rows(RunnerProcess& process, const std::vector<ControllerPoint>& points,
+std::vector<Row> controller_rows(runner::RunnerProcess& process, const std::vector<ControllerPoint>& points,
                                  const ControllerCheck& check) {
   const int ntau = static_cast<int>(check.input.size());
   const auto matrix_name = [](const std::vector<std::string>& rows, const std::vector<std::string>& columns) {
@@ -329,13 +329,13 @@ std::vector<Row> controller_rows(RunnerProcess& process, const std::vector<Contr
 
   std::vector<Row> rows = empty_rows(check.tolerance);
   for (const ControllerPoint& p : points) {
-    const json reply = batch_request(process, json{{"t", p.state.t},
-                                                   {"q", p.state.q},
-                                                   {"u", p.state.u},
-                                                   {"tau", p.runner_tau},
-                                                   {"p", p.runner_p},
-                                                   {"eval", "energy"},
-                                                   {"controller", true}});
+    const json reply = runner::batch_request(process, json{{"t", p.state.t},
+                                                           {"q", p.state.q},
+                                                           {"u", p.state.u},
+                                                           {"tau", p.runner_tau},
+                                                           {"p", p.runner_p},
+                                                           {"eval", "energy"},
+                                                           {"controller", true}});
     const PointCheck point(p, check);
     Compared compared[kRows];
     const std::size_t n = check.coordinates.size(), ny = check.outputs.size(), nx = 2 * n;

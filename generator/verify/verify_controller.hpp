@@ -17,8 +17,8 @@
 
 #include "numeric/dynamics.hpp"
 #include "numeric/instance.hpp"
+#include "runner/runner_process.hpp"
 #include "verify/verify_report.hpp"
-#include "verify/verify_runner.hpp"
 
 namespace kanegen::verify {
 
@@ -42,7 +42,7 @@ struct ControllerCheck {
 
 /// The rows "coriolis_matrix C u", "coriolis_matrix C + C^T", "output_jacobian",
 /// "output_jacobian_rate", "linearize A", "linearize B", comparing at each point.
-std::vector<Row> controller_rows(RunnerProcess& process, const std::vector<ControllerPoint>& points,
+std::vector<Row> controller_rows(runner::RunnerProcess& process, const std::vector<ControllerPoint>& points,
                                  const ControllerCheck& check);
 
 /// The same rows, not applicable for `reason` (a model with loops or

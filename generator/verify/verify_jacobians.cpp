@@ -80,7 +80,7 @@ struct Compared {
   Vector generated[4], reference[4], noise[4];
 };
 
-Compared evaluate_point(RunnerProcess& process, const JacobianPoint& p, const JacobianCheck& check,
+Compared evaluate_point(runner::RunnerProcess& process, const JacobianPoint& p, const JacobianCheck& check,
                         std::mt19937_64& rng) {
   const int n = static_cast<int>(p.state.q.size());
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
@@ -93,7 +93,7 @@ Compared evaluate_point(RunnerProcess& process, const JacobianPoint& p, const Ja
   json request{{"t", p.state.t},  {"q", p.state.q},   {"u", p.state.u},    {"tau", p.runner_tau},
                {"p", p.runner_p}, {"eval", "energy"}, {"jacobians", true}, {"jacobian_a", a}};
   if (loops > 0) request["jacobian_lambda"] = lambda;
-  const json reply = batch_request(process, request);
+  const json reply = runner::batch_request(process, request);
   Compared c;
   c.generated[0] = json_rows_flat(reply["forcing_jacobian_q"]);
   c.generated[1] = json_rows_flat(reply["forcing_jacobian_u"]);
@@ -134,7 +134,7 @@ Compared evaluate_point(RunnerProcess& process, const JacobianPoint& p, const Ja
 
 }  // namespace
 
-std::vector<Row> jacobian_rows(RunnerProcess& process, const std::vector<JacobianPoint>& points,
+std::vector<Row> jacobian_rows(runner::RunnerProcess& process, const std::vector<JacobianPoint>& points,
                                const JacobianCheck& check) {
   const int n = static_cast<int>(check.coordinates.size());
   const EntryName name = [&check, n](int k) {

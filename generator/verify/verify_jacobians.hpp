@@ -14,8 +14,8 @@
 
 #include "numeric/dynamics.hpp"
 #include "numeric/instance.hpp"
+#include "runner/runner_process.hpp"
 #include "verify/verify_report.hpp"
-#include "verify/verify_runner.hpp"
 
 namespace kanegen::verify {
 
@@ -40,7 +40,7 @@ struct JacobianCheck {
 /// The rows "forcing_jacobian df/dq", "forcing_jacobian df/du", "d(M a)/dq"
 /// (mass_matrix_product_jacobian) and "d(C^T lambda)/dq"
 /// (constraint_force_jacobian; not applicable to a tree), comparing at each point.
-std::vector<Row> jacobian_rows(RunnerProcess& process, const std::vector<JacobianPoint>& points,
+std::vector<Row> jacobian_rows(runner::RunnerProcess& process, const std::vector<JacobianPoint>& points,
                                const JacobianCheck& check);
 
 /// The one row that stands for them when the kernels have no Jacobians.

@@ -22,7 +22,7 @@ constexpr long kMaxSteps = 400;
 
 }  // namespace
 
-Worst power_balance(RunnerProcess& runner, const TrajectoryStart& start, double duration, int index,
+Worst power_balance(runner::RunnerProcess& runner, const TrajectoryStart& start, double duration, int index,
                     long* points) {
   const numeric::Instance& model = *start.instance;
   const int n = model.coordinates();
@@ -33,7 +33,7 @@ Worst power_balance(RunnerProcess& runner, const TrajectoryStart& start, double 
                      {"tau", start.runner_tau},
                      {"p", start.runner_p},
                      {"eval", what}};
-    return batch_request(runner, r);
+    return runner::batch_request(runner, r);
   };
 
   std::string why;

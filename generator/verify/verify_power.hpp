@@ -11,8 +11,8 @@
 
 #include "numeric/dynamics.hpp"
 #include "numeric/instance.hpp"
+#include "runner/runner_process.hpp"
 #include "verify/verify_report.hpp"
-#include "verify/verify_runner.hpp"
 
 namespace kanegen::verify {
 
@@ -25,7 +25,7 @@ struct TrajectoryStart {
 /// Worst |E(t) - E(0) - W(t)| / max(T + |V| + |W|) over the output times.
 /// A trajectory that cannot be integrated (singular M, step size) is an
 /// error of +inf with the reason as the entry.
-Worst power_balance(RunnerProcess& runner, const TrajectoryStart& start, double duration, int index,
+Worst power_balance(runner::RunnerProcess& runner, const TrajectoryStart& start, double duration, int index,
                     long* points);
 
 }  // namespace kanegen::verify

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-#include "verify/verify_runner.hpp"
+#include "runner/runner_process.hpp"
 
 #include <fcntl.h>
 #include <sys/wait.h>
@@ -8,7 +8,7 @@
 #include <csignal>
 #include <stdexcept>
 
-namespace kanegen::verify {
+namespace kanegen::runner {
 
 RunnerProcess::RunnerProcess(const std::string& runner, const std::vector<std::string>& args)
     : program_(runner) {
@@ -106,4 +106,4 @@ nlohmann::json batch_request(RunnerProcess& process, const nlohmann::json& reque
   return reply;
 }
 
-}  // namespace kanegen::verify
+}  // namespace kanegen::runner

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-// kanegen verify's line to the compiled kernels: the model's runner kept
-// open as a coprocess in `batch` mode (one JSON line in, one out), and its
-// `info`. Lockstep request/answer, so neither side can block on a full pipe.
+// A model's runner kept open as a coprocess in `batch` mode (one JSON line
+// in, one out), and its `info`: how kanegen verify and kanegen modes talk to
+// the compiled kernels. Lockstep request/answer, so neither side can block on a full pipe.
 #pragma once
 
 #include <sys/types.h>
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace kanegen::verify {
+namespace kanegen::runner {
 
 class RunnerProcess {
  public:
@@ -43,4 +43,4 @@ nlohmann::json runner_info(const std::string& runner);
 /// One `batch` request; throws std::runtime_error if the answer is an error.
 nlohmann::json batch_request(RunnerProcess& process, const nlohmann::json& request);
 
-}  // namespace kanegen::verify
+}  // namespace kanegen::runner
