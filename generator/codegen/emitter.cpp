@@ -165,17 +165,6 @@ void add_kernel_values(TemplateValues& values, const std::vector<KernelCode>& ke
           : "";
 }
 
-/// Every kernel the table promises to a model of this kind, and no other.
-void check_presence(const std::vector<KernelCode>& kernels, bool loops, bool jacobians, bool controller) {
-  for (const KernelSignature& s : kernel_table()) {
-    bool derived = false;
-    for (const KernelCode& code : kernels) derived = derived || code.kernel == s.kernel;
-    if (derived != present(s.presence, loops, jacobians, controller))
-      throw std::logic_error(std::string("kernel ") + s.name +
-                             (derived ? " derived for a model without it" : " not derived"));
-  }
-}
-
 }  // namespace
 
 std::string emitted_name(const std::string& model_name, const ScalarType& scalar) {
@@ -218,7 +207,6 @@ EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, co
   const std::vector<KernelCode> kernels =
       derive_kernels(model, eq, vars, graph, options.jacobians, options.controller, scalar, options.dynamics,
                      &dynamics, options.split_threshold);
-  check_presence(kernels, eq.loops.size() > 0, options.jacobians, options.controller);
   TemplateValues values = model_values(model, eq, model_hash, scalar);
   add_moved_bodies(values, eq);
   add_loop_values(values, eq, scalar);

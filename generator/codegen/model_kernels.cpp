@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "codegen/model_kernels.hpp"
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -31,6 +32,12 @@ struct Derivation {
   KernelCode prescribed{Kernel::forward_dynamics, "", 0, ""};
   /// Kernels of more statements are split into functions (kernel_splitter.hpp); 0: never.
   int split_threshold = 0;
+  /// forward_dynamics's method on an open tree, and what it was made with.
+  DynamicsMethod dynamics = DynamicsMethod::automatic;
+  mutable DynamicsChoice chosen{};
+  /// constrained_dynamics, derived once where it is first needed
+  /// (forward_dynamics with loops calls it and takes its count).
+  mutable std::optional<KernelCode> constrained{};
 
   int n() const { return eq.nu; }
   int ns() const { return static_cast<int>(solved.size()); }
@@ -419,7 +426,7 @@ KernelCode sparse_constrained_dynamics_kernel(const Derivation& d, const SaddleN
 /// Closed loops: M, C and the right-hand sides over the solved speeds, then
 /// the saddle-point solve, sparse (unrolled for the structure of M and C)
 /// or dense (templates/solve_saddle.hpp), whichever counts fewer operations.
-KernelCode constrained_dynamics_kernel(const Derivation& d) {
+KernelCode saddle_dynamics_kernel(const Derivation& d) {
   const int ns = d.ns(), nc = d.eq.loops.size();
   const SaddleNodes nodes = saddle_nodes(d);
   SaddleStructure structure{ns, nc, std::vector<bool>(nodes.m.size()), std::vector<bool>(nodes.c.size())};
@@ -441,12 +448,23 @@ KernelCode constrained_dynamics_kernel(const Derivation& d) {
   return code;
 }
 
+KernelCode constrained_dynamics_kernel(const Derivation& d) {
+  if (!d.constrained) d.constrained = saddle_dynamics_kernel(d);
+  return *d.constrained;
+}
+
 /// With loops, forward_dynamics is the constrained dynamics without the loop forces.
-KernelCode loop_dynamics_kernel(const Derivation& d, const KernelCode& constrained) {
+KernelCode loop_dynamics_kernel(const Derivation& d) {
+  const KernelCode& constrained = constrained_dynamics_kernel(d);
+  d.chosen.composite_operations = constrained.operations;
   return {Kernel::forward_dynamics,
           "  " + std::string(d.scalar.name()) +
               " lambda[NC];\n  return constrained_dynamics(p, t, q, u, tau, udot, lambda);\n",
           constrained.operations, constrained.count_note};
+}
+
+KernelCode forward_dynamics_kernel(const Derivation& d) {
+  return d.loops() ? loop_dynamics_kernel(d) : tree_dynamics_kernel(d, d.dynamics, d.chosen);
 }
 
 KernelCode coordinate_rates_kernel(const Derivation& d) {
@@ -461,6 +479,18 @@ KernelCode energy_kernel(Kernel kernel, const char* variable, const GiNaC::ex& e
   code.body = "  " + std::string(d.scalar.name()) + " " + std::string(variable) + ";\n" + code.body +
               "  return " + variable + ";\n";
   return code;
+}
+
+KernelCode kinetic_energy_kernel(const Derivation& d) {
+  return energy_kernel(Kernel::kinetic_energy, "T", d.eq.kinetic_energy, d);
+}
+
+KernelCode potential_energy_kernel(const Derivation& d) {
+  return energy_kernel(Kernel::potential_energy, "V", d.eq.potential_energy, d);
+}
+
+KernelCode nonconservative_power_kernel(const Derivation& d) {
+  return energy_kernel(Kernel::nonconservative_power, "P", d.eq.nonconservative_power, d);
 }
 
 /// h = M u: on a rigid tree by the recursion (Equations::generalized_momentum,
@@ -817,6 +847,28 @@ KernelCode linearize_kernel(const Derivation& d) {
   return {Kernel::linearize, text, 0, ""};
 }
 
+/// Each kernel's derivation, registered by its spec line: the function
+/// <name>_kernel, in Kernel order (a kernel of kernels.def without one is a
+/// compile error here).
+using Derive = KernelCode (*)(const Derivation&);
+const Derive kDerive[] = {
+#define KANEGEN_KERNEL(name, ...) &name##_kernel,
+#include "kanegen/runtime/kernels.def"
+#undef KANEGEN_KERNEL
+};
+static_assert(sizeof(kDerive) / sizeof(Derive) == runtime::kernel_count, "one derivation per kernel");
+
+/// What the kernels of this kind of model need: q_dot = u for the Jacobians
+/// (d/dq of a kernel is its whole Jacobian only then), and for the
+/// controller kernels the Jacobians (linearize calls them), no loops and no
+/// prescribed speeds (the pipeline refuses those).
+void check_options(const Derivation& d, bool jacobians, bool controller) {
+  if (jacobians && d.eq.nq != d.eq.nu)
+    throw std::logic_error("the Jacobian kernels need q_dot = u (nq == nu)");
+  if (controller && (!jacobians || d.loops() || !d.eq.prescribed.empty()))
+    throw std::logic_error("the controller kernels need the Jacobians, no loops and no prescribed speeds");
+}
+
 }  // namespace
 
 std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Equations& eq,
@@ -824,46 +876,16 @@ std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Eq
                                        bool jacobians, bool controller, const ScalarType& scalar,
                                        DynamicsMethod dynamics, DynamicsChoice* choice, int split_threshold) {
   Derivation d{model, eq, vars, graph, scalar, {}, {}, {}, split_threshold};
+  d.dynamics = dynamics;
+  check_options(d, jacobians, controller);
   split_speeds(d);
   print_prescribed_accelerations(d);
-  std::vector<KernelCode> kernels{set_parameter_kernel(d), get_parameter_kernel(d), initial_state_kernel(d),
-                                  mass_matrix_kernel(d), forcing_kernel(d)};
-  const KernelCode constrained = d.loops() ? constrained_dynamics_kernel(d) : KernelCode{};
-  DynamicsChoice chosen;
-  kernels.push_back(d.loops() ? loop_dynamics_kernel(d, constrained)
-                              : tree_dynamics_kernel(d, dynamics, chosen));
-  if (d.loops()) chosen.composite_operations = constrained.operations;
-  if (choice) *choice = chosen;
-  kernels.push_back(coordinate_rates_kernel(d));
-  kernels.push_back(energy_kernel(Kernel::kinetic_energy, "T", eq.kinetic_energy, d));
-  kernels.push_back(energy_kernel(Kernel::potential_energy, "V", eq.potential_energy, d));
-  kernels.push_back(energy_kernel(Kernel::nonconservative_power, "P", eq.nonconservative_power, d));
-  kernels.push_back(generalized_momentum_kernel(d));
-  kernels.push_back(outputs_kernel(d));
-  kernels.push_back(inverse_dynamics_kernel(d));
-  kernels.push_back(gravity_kernel(d));
-  if (d.loops()) {
-    kernels.push_back(constraints_kernel(d));
-    kernels.push_back(constraint_jacobian_kernel(d));
-    kernels.push_back(constraint_bias_kernel(d));
-    kernels.push_back(constrained);
-  }
-  if (jacobians) {
-    // d/dq of the kernels is the whole Jacobian only because q_dot = u.
-    if (eq.nq != eq.nu) throw std::logic_error("the Jacobian kernels need q_dot = u (nq == nu)");
-    kernels.push_back(forcing_jacobian_kernel(d));
-    kernels.push_back(mass_matrix_product_jacobian_kernel(d));
-    if (d.loops()) kernels.push_back(constraint_force_jacobian_kernel(d));
-  }
-  if (controller) {
-    // linearize calls the Jacobian kernels; loops and prescribed speeds are refused by the pipeline.
-    if (!jacobians || d.loops() || !d.eq.prescribed.empty())
-      throw std::logic_error("the controller kernels need the Jacobians, no loops and no prescribed speeds");
-    kernels.push_back(coriolis_matrix_kernel(d));
-    kernels.push_back(output_jacobian_kernel(d));
-    kernels.push_back(output_jacobian_rate_kernel(d));
-    kernels.push_back(linearize_kernel(d));
-  }
+  // Which kernels the model has is the spec's presence rule, decided here only.
+  std::vector<KernelCode> kernels;
+  for (const KernelSignature& s : kernel_table())
+    if (present(s.presence, d.loops(), jacobians, controller))
+      kernels.push_back(kDerive[static_cast<std::size_t>(s.kernel)](d));
+  if (choice) *choice = d.chosen;
   return kernels;
 }
 

@@ -21,6 +21,7 @@
 #include "verify/verify_controller.hpp"
 #include "verify/verify_differences.hpp"
 #include "verify/verify_jacobians.hpp"
+#include "verify/verify_kernels.hpp"
 #include "verify/verify_power.hpp"
 #include "verify/verify_report.hpp"
 
@@ -983,6 +984,8 @@ int verify(const VerifyOptions& o) {
   rows.push_back(power_balance_row(process, samples, o));
   add_jacobian_rows(process, info, base, link, samples, o, rows);
   add_controller_rows(process, info, base, link, samples, o, rows);
+  add_uncompared_kernel_rows(rows, !link.constraints.empty(), info.value("jacobians", false),
+                             info.value("controller", false));
   process.finish();
 
   const std::vector<std::string> failures = failures_of(rows, model, samples);

@@ -7,14 +7,44 @@
 namespace kanegen::runtime {
 namespace {
 
-/// The kernels that every model has; the loop kernels may be null.
+/// Whether `table` holds `kernel` (false for one the table cannot hold).
+bool bound(const ModelTable& table, Kernel kernel) {
+  switch (kernel) {
+#define KANEGEN_BOUND_required(name) \
+  case Kernel::name:                 \
+    return table.name != nullptr;
+#define KANEGEN_BOUND_optional KANEGEN_BOUND_required
+#define KANEGEN_BOUND_unbound(name) \
+  case Kernel::name:                \
+    return false;
+#define KANEGEN_KERNEL(name, returns, params, arguments, presence, counted, binding, ...) \
+  KANEGEN_BOUND_##binding(name)
+#include "kanegen/runtime/kernels.def"
+#undef KANEGEN_KERNEL
+#undef KANEGEN_BOUND_required
+#undef KANEGEN_BOUND_optional
+#undef KANEGEN_BOUND_unbound
+  }
+  return false;
+}
+
+/// Every bound kernel of `presence` is in the table (with loops: those of
+/// loops too; none is asked of a presence a table of this kind lacks).
+bool holds_all(const ModelTable& table, KernelPresence presence) {
+  for (const KernelSpec& s : kernel_specs)
+    if (s.binding != KernelBinding::unbound && s.presence == presence && !bound(table, s.kernel))
+      return false;
+  return true;
+}
+
+/// The kernels the spec requires of every table (and of a table with loops,
+/// the loop kernels); the ones an option brings may be null.
 void check_complete(const ModelTable& t) {
-  const bool complete = t.name && t.default_parameters && t.set_parameter && t.get_parameter &&
-                        t.initial_state && t.mass_matrix && t.forcing && t.forward_dynamics &&
-                        t.coordinate_rates && t.kinetic_energy && t.potential_energy && t.outputs;
-  const bool loops_complete =
-      t.nc == 0 || (t.constraints && t.constraint_jacobian && t.constraint_bias && t.constrained_dynamics);
-  if (!complete || !loops_complete)
+  bool complete = t.name && t.default_parameters;
+  for (const KernelSpec& s : kernel_specs)
+    if (s.binding == KernelBinding::required && kernel_present(s.presence, t.nc > 0, false, false))
+      complete = complete && bound(t, s.kernel);
+  if (!complete)
     throw std::invalid_argument(std::string("model table of ") + (t.name ? t.name : "(unnamed)") +
                                 " lacks a kernel: regenerate the model with this kanegen");
 }
@@ -48,10 +78,13 @@ Model::Model(const ModelTable& table) : table_(table) {
   table_.default_parameters(parameters_.data());
 }
 
-bool Model::set_parameter(const char* name, double value) {
-  return table_.set_parameter(parameters_.data(), name, value);
+bool Model::has(Kernel kernel) const { return bound(table_, kernel); }
+
+bool Model::has_jacobians() const {
+  return holds_all(table_, KernelPresence::with_jacobians) &&
+         (table_.nc == 0 || holds_all(table_, KernelPresence::with_loops_and_jacobians));
 }
 
-void Model::initial_state(double* q, double* u) const { table_.initial_state(params(), q, u); }
+bool Model::has_controller() const { return holds_all(table_, KernelPresence::with_controller); }
 
 }  // namespace kanegen::runtime

@@ -35,6 +35,29 @@ TEST_CASE("every table entry has a distinct name, a known return type and named 
   }
 }
 
+// The table is read from the runtime's spec (kernels.def): the printed
+// signatures are those the generated code always had, and each kernel the
+// runtime binds is bound in the spec.
+TEST_CASE("the kernel table is the runtime's spec, arguments typed by role", "[kernels]") {
+  const auto joined = [](Kernel k) {
+    std::string text;
+    for (const KernelArgument& a : arguments(signature(k)))
+      text += (text.empty() ? "" : ", ") + a.type + " " + a.name;
+    return text;
+  };
+  CHECK(joined(Kernel::set_parameter) == "Params& p, const char* name, double value");
+  CHECK(joined(Kernel::get_parameter) == "const Params& p, int i");
+  CHECK(joined(Kernel::coordinate_rates) == "const double* q, const double* u, double* qdot");
+  CHECK(
+      joined(Kernel::linearize) ==
+      "const Params& p, double t, const double* q, const double* u, const double* tau, double* A, double* B");
+  CHECK(kernel_table().size() == kanegen::runtime::kernel_count);
+  CHECK_FALSE(signature(Kernel::generalized_momentum).in_runtime_table);
+  CHECK(signature(Kernel::forcing_jacobian).presence == Presence::with_jacobians);
+  CHECK(present(Presence::with_loops_and_jacobians, true, true));
+  CHECK_FALSE(present(Presence::with_loops_and_jacobians, false, true));
+}
+
 TEST_CASE("a prototype breaks before the argument that would pass the column limit", "[kernels]") {
   const std::string text = prototype("int forward_dynamics",
                                      {"const Params& p", "double t", "const double* q", "const double* u",

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "kanegen/runtime/methods.hpp"
+#include "kanegen/runtime/model.hpp"
 #include "kanegen/runtime/text.hpp"
 
 namespace mock {
@@ -420,6 +421,46 @@ TEST_CASE("info describes the model", "[driver]") {
   CHECK(j["parameter_defaults"] == json::array({2.0, 0.5, 9.81, 1e9, 1e9}));
   CHECK(j["q0"] == json::array({0.3}));
   CHECK(j["u0"] == json::array({0.0}));
+}
+
+// The Model and its table are instantiated from kernels.def: the methods
+// forward, the ones that may be absent say so, and a table that lacks a
+// kernel the spec requires of its kind is refused.
+TEST_CASE("Model over the kernel spec: forwarding, absent kernels, completeness", "[driver][spec]") {
+  using kanegen::runtime::Kernel;
+  using kanegen::runtime::kernel_specs;
+  using kanegen::runtime::ModelTable;
+  for (std::size_t k = 0; k < kanegen::runtime::kernel_count; ++k)
+    CHECK(static_cast<std::size_t>(kernel_specs[k].kernel) == k);
+  const ModelTable table = mock::System::kernel_table<ModelTable>();
+  kanegen::runtime::Model model(table);
+  const double q[1] = {0.3}, u[1] = {2.0}, tau[1] = {0.0};
+  double M = 0, phi = 7.0;
+  model.mass_matrix(q, &M);
+  CHECK(M == Approx(2.0 * 0.25));
+  CHECK(model.kinetic_energy(q, u) == Approx(0.5 * 0.5 * 4.0));
+  CHECK(model.has(Kernel::mass_matrix));
+  CHECK_FALSE(model.has(Kernel::constraints));
+  CHECK_FALSE(model.has(Kernel::generalized_momentum));  // unbound: System only
+  model.constraints(q, &phi);                            // call_or_zero: nothing for an open tree
+  CHECK(phi == 7.0);
+  CHECK(model.nonconservative_power(0.0, q, u, tau) == 0.0);  // absent: 0
+  CHECK_FALSE(model.has_jacobians());
+  CHECK_FALSE(model.has_controller());
+
+  ModelTable with_jacobians = table;
+  with_jacobians.forcing_jacobian = [](const void*, double, const double*, const double*, const double*,
+                                       double*, double*) {};
+  CHECK_FALSE(kanegen::runtime::Model(with_jacobians).has_jacobians());
+  with_jacobians.mass_matrix_product_jacobian = [](const void*, const double*, const double*, double*) {};
+  CHECK(kanegen::runtime::Model(with_jacobians).has_jacobians());
+
+  ModelTable incomplete = table;
+  incomplete.forcing = nullptr;
+  CHECK_THROWS_WITH(kanegen::runtime::Model(incomplete), Catch::Contains("lacks a kernel"));
+  ModelTable loops = table;  // a table of a model with loops needs the loop kernels
+  loops.nc = 1;
+  CHECK_THROWS_WITH(kanegen::runtime::Model(loops), Catch::Contains("lacks a kernel"));
 }
 
 TEST_CASE("--help for the runner and each command", "[driver]") {

@@ -120,6 +120,12 @@ TEST_CASE("verify --json reports every quantity and passes", "[verify]") {
         "M positive definite", "d2T/du2", "power balance", "Jacobians", "inverse_dynamics", "gravity",
         "nonconservative_power", "controller kernels"})
     CHECK(std::find(names.begin(), names.end(), quantity) != names.end());
+  // A kernel that kernels.def names no check for has a row saying so.
+  const auto momentum =
+      std::find_if(j["quantities"].begin(), j["quantities"].end(),
+                   [](const nlohmann::json& q) { return q["quantity"] == "generalized_momentum"; });
+  REQUIRE(momentum != j["quantities"].end());
+  CHECK_FALSE((*momentum)["applicable"].get<bool>());
   CHECK(contains(r.err, "kanegen: verify:"));  // progress on stderr
 }
 

@@ -10,6 +10,8 @@
 #include <new>
 #include <type_traits>
 
+#include "kanegen/runtime/kernel_spec.hpp"
+
 namespace kanegen::runtime {
 
 struct ModelTable {
@@ -50,56 +52,21 @@ struct ModelTable {
     new (p) P();
   }
 
-  // The kernels (the generated header documents each).
-  bool (*set_parameter)(void* p, const char* name, double value) = nullptr;
-  double (*get_parameter)(const void* p, int i) = nullptr;
-  void (*initial_state)(const void* p, double* q, double* u) = nullptr;
-  void (*mass_matrix)(const void* p, const double* q, double* M) = nullptr;
-  void (*forcing)(const void* p, double t, const double* q, const double* u, const double* tau,
-                  double* f) = nullptr;
-  int (*forward_dynamics)(const void* p, double t, const double* q, const double* u, const double* tau,
-                          double* udot) = nullptr;
-  void (*coordinate_rates)(const double* q, const double* u, double* qdot) = nullptr;
-  double (*kinetic_energy)(const void* p, const double* q, const double* u) = nullptr;
-  double (*potential_energy)(const void* p, const double* q) = nullptr;
-  double (*nonconservative_power)(const void* p, double t, const double* q, const double* u,
-                                  const double* tau) = nullptr;
-  void (*outputs)(const void* p, double t, const double* q, const double* u, double* y) = nullptr;
-  // For controllers (null in tables written before they were in the table).
-  /// tau: nu, M udot - f with the inputs 0 (the generated header documents it).
-  void (*inverse_dynamics)(const void* p, double t, const double* q, const double* u, const double* udot,
-                           double* tau) = nullptr;
-  /// g: nu, the generalized gravity forces dV_gravity/dq.
-  void (*gravity)(const void* p, const double* q, double* g) = nullptr;
-  // Closed loops only (null for an open tree).
-  void (*constraints)(const void* p, const double* q, double* phi) = nullptr;
-  void (*constraint_jacobian)(const void* p, const double* q, double* C) = nullptr;
-  void (*constraint_bias)(const void* p, const double* q, const double* u, double* gamma) = nullptr;
-  int (*constrained_dynamics)(const void* p, double t, const double* q, const double* u, const double* tau,
-                              double* udot, double* lambda) = nullptr;
-  // Jacobians for implicit integration (models generated with jacobians;
-  // null otherwise). Row-major; q_dot = u in every generated model.
-  /// dfdq: nu*nq, dfdu: nu*nu, the partial derivatives of forcing.
-  void (*forcing_jacobian)(const void* p, double t, const double* q, const double* u, const double* tau,
-                           double* dfdq, double* dfdu) = nullptr;
-  /// dMa_dq: nu*nq, d(M(q) a)/dq for a fixed vector a (nu).
-  void (*mass_matrix_product_jacobian)(const void* p, const double* q, const double* a,
-                                       double* dMa_dq) = nullptr;
-  /// dCl_dq: nu*nq, d(C(q)^T lambda)/dq for fixed lambda (nc); closed loops only.
-  void (*constraint_force_jacobian)(const void* p, const double* q, const double* lambda,
-                                    double* dCl_dq) = nullptr;
-  // The quadratic controller kernels (models generated with --controller;
-  // null otherwise). Row-major.
-  /// C: nu*nu, Mdot - 2C skew-symmetric.
-  void (*coriolis_matrix)(const void* p, const double* q, const double* u, double* C) = nullptr;
-  /// J: ny*nu, d(outputs)/dq.
-  void (*output_jacobian)(const void* p, double t, const double* q, double* J) = nullptr;
-  /// Jdot_u: ny, (dJ/dt) u.
-  void (*output_jacobian_rate)(const void* p, double t, const double* q, const double* u,
-                               double* Jdot_u) = nullptr;
-  /// A: 2nu*2nu, B: 2nu*ntau; returns 0 or k > 0 for a non-positive pivot of M.
-  int (*linearize)(const void* p, double t, const double* q, const double* u, const double* tau, double* A,
-                   double* B) = nullptr;
+  // The kernels bound to the runtime, one function-pointer member each, from
+  // kernels.def (the generated header documents each). A kernel a model does
+  // not have (the loop kernels of an open tree, the Jacobians of a model
+  // generated without them, a kernel newer than the table's writer) is null.
+#define KANEGEN_MEMBER_required(name, returns, params, arguments) \
+  returns (*name)(KANEGEN_POINTER_PARAMS_##params KANEGEN_MAP(KANEGEN_TYPED_ARGUMENT, arguments)) = nullptr;
+#define KANEGEN_MEMBER_optional KANEGEN_MEMBER_required
+#define KANEGEN_MEMBER_unbound(name, returns, params, arguments)
+#define KANEGEN_KERNEL(name, returns, params, arguments, presence, counted, binding, ...) \
+  KANEGEN_MEMBER_##binding(name, returns, params, arguments)
+#include "kanegen/runtime/kernels.def"
+#undef KANEGEN_KERNEL
+#undef KANEGEN_MEMBER_required
+#undef KANEGEN_MEMBER_optional
+#undef KANEGEN_MEMBER_unbound
 };
 
 }  // namespace kanegen::runtime

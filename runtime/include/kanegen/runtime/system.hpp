@@ -48,7 +48,8 @@
 //   };
 //
 // The generator prints every kernel's declaration, definition, System member
-// and table entry from one table (generator/codegen/kernel_table.cpp).
+// and table entry from one typed spec, kernels.def, from which ModelTable and
+// Model take their kernels too.
 //
 // All generated functions are allocation-free and exception-free; arrays
 // with a size of zero are still valid pointers (sized 1 in the generated code).
