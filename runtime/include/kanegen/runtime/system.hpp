@@ -22,10 +22,12 @@
 //     static void initial_state(const Params& p, double* q, double* u);  // q0, u0, prescribed at t = 0
 //     // M: nu*nu, row-major, symmetric
 //     static void mass_matrix(const Params& p, const double* q, double* M);
-//     // f: nu; M udot = f + (inputs), f includes gravity, velocity terms, springs, dampers, point forces, tau
-//     static void forcing(const Params& p, double t, const double* q, const double* u, const double* tau, double* f);
+//     // f: nu; M udot = f + (inputs), f includes gravity, velocity terms, springs, dampers, point forces,
+//     tau static void forcing(const Params& p, double t, const double* q, const double* u, const double* tau,
+//     double* f);
 //     // udot: nu; returns 0 on success, k > 0 if the k-th pivot of M's LDL^T was not positive
-//     static int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double* tau,
+//     static int forward_dynamics(const Params& p, double t, const double* q, const double* u, const double*
+//     tau,
 //                                 double* udot);
 //     static void coordinate_rates(const double* q, const double* u, double* qdot);  // kinematic equations
 //     static double kinetic_energy(const Params& p, const double* q, const double* u);
