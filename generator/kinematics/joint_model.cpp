@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "kinematics/joint_model.hpp"
 
+#include <stdexcept>
+
 #include "kinematics/tree_kinematics.hpp"
 
 namespace kanegen::kinematics {
@@ -22,6 +24,9 @@ Column column_of(model::JointType type) {
       return Column::linear;
     case model::JointType::fixed:
       return Column::none;
+    case model::JointType::planar:  // compound: the loaders made it primitive steps
+      throw std::logic_error(
+          "a compound joint type reached the symbolic joint model (model/joint_expansion.hpp)");
   }
   return Column::none;
 }

@@ -6,6 +6,9 @@
 // is said twice on purpose: by the symbolic joint model
 // (kinematics/joint_model.*) and by the numeric path's own table
 // (numeric/instance.cpp), so that `kanegen verify` compares two derivations.
+// A compound type (planar) is a row of steps: the loaders replace it by one
+// joint of a primitive type per step (model/joint_expansion.hpp), so no
+// later stage sees it.
 #pragma once
 
 #include <array>
@@ -15,7 +18,17 @@
 
 namespace kanegen::model {
 
-enum class JointType { revolute, continuous, prismatic, fixed };
+enum class JointType { revolute, continuous, prismatic, fixed, planar };
+
+/// One step of a compound type: a joint of a primitive type along or about
+/// one axis of the compound joint's frame (0, 1: the two unit vectors across
+/// its axis, model/joint_expansion.hpp; 2: its axis), whose coordinate is
+/// named <joint>_<suffix>.
+struct JointStep {
+  JointType type;
+  int axis;
+  const char* suffix;
+};
 
 struct JointTypeInfo {
   JointType type;
@@ -23,13 +36,26 @@ struct JointTypeInfo {
   int coordinates;   ///< coordinates, and as many speeds (q_dot = u)
   /// May sit on a node of a flexible parent (a slide there is not derived).
   bool on_nodes;
+  /// A compound type's steps (step_count of them, one per coordinate); a
+  /// primitive type has none.
+  int step_count = 0;
+  std::array<JointStep, 3> steps{};
+
+  bool compound() const { return step_count > 0; }
 };
 
-inline constexpr std::array<JointTypeInfo, 4> joint_types{{
+inline constexpr std::array<JointTypeInfo, 5> joint_types{{
     {JointType::revolute, "revolute", 1, true},
     {JointType::continuous, "continuous", 1, true},
     {JointType::prismatic, "prismatic", 1, false},
     {JointType::fixed, "fixed", 0, true},
+    // URDF's planar: the child slides in the plane across the axis and turns about it.
+    {JointType::planar,
+     "planar",
+     3,
+     false,
+     3,
+     {{{JointType::prismatic, 0, "x"}, {JointType::prismatic, 1, "y"}, {JointType::revolute, 2, "theta"}}}},
 }};
 
 inline const JointTypeInfo& joint_type_info(JointType type) {

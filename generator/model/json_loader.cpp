@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "model/joint_expansion.hpp"
 #include "model/json_document.hpp"
 #include "model/model_check.hpp"
 #include "model/model_error.hpp"
@@ -335,6 +336,38 @@ class JsonReader {
                 "body (\"node_set\")");
   }
 
+  /// A joint's initial coordinate and speed: numbers, or for a compound
+  /// type (planar) one number per coordinate in an array.
+  void read_initial(const json& initial, const std::string& place, Joint& out) const {
+    const JointTypeInfo& info = joint_type_info(out.type);
+    for (const char* key : {"q", "u"}) {
+      if (!initial.contains(key)) continue;
+      const json& v = initial[key];
+      const std::string at = place + "/" + key;
+      if (!info.compound()) {
+        if (!v.is_number())
+          error(at, std::string(info.name) + " joint '" + out.name + "' has one coordinate",
+                "give one number");
+        (key[0] == 'q' ? out.q0 : out.u0) = v.get<double>();
+        continue;
+      }
+      if (!v.is_array() || v.size() != static_cast<std::size_t>(info.coordinates))
+        error(at,
+              std::string(info.name) + " joint '" + out.name + "' has " + std::to_string(info.coordinates) +
+                  " coordinates",
+              "give an array of " + std::to_string(info.coordinates) +
+                  " numbers, in the order of its steps (" + step_suffixes(info) + ")");
+      std::vector<double>& values = key[0] == 'q' ? out.step_q0 : out.step_u0;
+      for (const json& x : v) values.push_back(x.get<double>());
+    }
+  }
+
+  static std::string step_suffixes(const JointTypeInfo& info) {
+    std::string out;
+    for (int s = 0; s < info.step_count; ++s) out += (s == 0 ? "" : ", ") + std::string(info.steps[s].suffix);
+    return out;
+  }
+
   Joint joint(std::size_t i) const {
     const json& j = doc_["joints"][i];
     const std::string place = "/joints/" + std::to_string(i);
@@ -366,9 +399,7 @@ class JsonReader {
     out.spring_rest = scalar(spring, "rest", place + "/spring", 0.0);
     out.damping = scalar(j, "damping", place, 0.0);
     if (out.moves()) out.actuated = j.value("actuated", true);
-    const json initial = j.value("initial", json::object());
-    out.q0 = initial.value("q", 0.0);
-    out.u0 = initial.value("u", 0.0);
+    read_initial(j.value("initial", json::object()), place + "/initial", out);
     if (j.contains("parent_node")) out.parent_node = node(j["parent_node"]);
     if (j.contains("parent_node_set")) {
       if (j.contains("parent_node"))
@@ -597,6 +628,7 @@ Model load_json_model(const std::string& path) {
   const std::string text = read_text_file(path);
   validate_model_schema(parse_json_document(text, path), path);
   Model model = JsonReader(json::parse(text), path).read();
+  expand_compound_joints(model);
   check_model(model, "/");
   return model;
 }

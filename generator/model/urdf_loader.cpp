@@ -14,6 +14,7 @@
 #include <map>
 #include <vector>
 
+#include "model/joint_expansion.hpp"
 #include "model/json_document.hpp"
 #include "model/model_check.hpp"
 #include "model/model_error.hpp"
@@ -221,11 +222,10 @@ void check_joint_elements(const UrdfIndex& index, const std::string& file) {
     // The types are those of the joint table (model/joint_types.hpp); URDF's
     // other ones get a hint how to build them from those.
     const bool known = joint_type_named(type) != nullptr;
-    if (!known && (type == "floating" || type == "planar"))
-      throw ModelError(
-          file, j.place, "joint type '" + type + "' is not supported",
-          "kanegen handles " + joint_type_list(JointKinds::all, "and") +
-              " joints: build the motion from those (e.g. prismatic x, y and revolute z for planar)");
+    if (!known && type == "floating")
+      throw ModelError(file, j.place, "joint type '" + type + "' is not supported",
+                       "kanegen handles " + joint_type_list(JointKinds::all, "and") +
+                           " joints: build the motion from those (prismatic x, y, z and revolute joints)");
     if (!known) {
       const std::string guess = nearest(type, joint_type_names());
       const std::vector<std::string> names = joint_type_names();
@@ -448,6 +448,7 @@ Model load_urdf_model(const std::string& path, const LoadOptions& options) {
     if (!joint) throw unread(e);
     m.joints.push_back(read_joint(*joint, e, options));
   }
+  expand_compound_joints(m);
   check_model(m, index.robot_place);
   return m;
 }

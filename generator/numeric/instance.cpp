@@ -282,6 +282,8 @@ Motion motion_of(model::JointType type) {
       return Motion::translation;
     case model::JointType::fixed:
       return Motion::none;
+    case model::JointType::planar:  // compound: the loaders made it primitive steps
+      throw std::logic_error("a compound joint type reached the numeric path (model/joint_expansion.hpp)");
   }
   return Motion::none;
 }

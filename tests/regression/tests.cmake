@@ -21,3 +21,13 @@ target_compile_options(test_force_elements PRIVATE ${KANEGEN_WARNINGS})
 target_link_libraries(test_force_elements PRIVATE kanegen_test_spring_oscillator kanegen_test_spring_pendulum
                                                   kanegen_test_effort_rotor kanegen_catch_main)
 catch_discover_tests(test_force_elements TEST_PREFIX "regression: ")
+
+# Planar joints (a compound type: two slides and a turn, model/joint_expansion.hpp)
+# against the closed form of a body in a plane.
+foreach(name planar_body planar_tilted)
+  kanegen_add_model(kanegen_test_${name} ${PROJECT_SOURCE_DIR}/tests/data/models/${name}.json)
+endforeach()
+add_executable(test_planar_joint ${CMAKE_CURRENT_LIST_DIR}/test_planar_joint.cpp)
+target_compile_options(test_planar_joint PRIVATE ${KANEGEN_WARNINGS})
+target_link_libraries(test_planar_joint PRIVATE kanegen_test_planar_body kanegen_test_planar_tilted kanegen_catch_main)
+catch_discover_tests(test_planar_joint TEST_PREFIX "regression: ")

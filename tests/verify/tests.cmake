@@ -43,13 +43,15 @@ catch_discover_tests(test_verify_cli TEST_PREFIX "verify: ")
 # spherical joint; the tip-force case of tests/flexible. Its propped twin,
 # slender_propped, is left out: a stiff bar pinned at both ends, whose small
 # prop force in random states is the difference of elastic forces 1e3 times
-# larger, so that lambda agrees only to about 2e-9).
+# larger, so that lambda agrees only to about 2e-9); planar joints (a body
+# across z, one on an oblique, turned plane, a pendulum on a planar cart).
 file(GLOB KANEGEN_VERIFY_MODELS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/models/*.json ${PROJECT_SOURCE_DIR}/models/*.urdf)
 foreach(name forced_cart_pendulum flex_hub_planar flex_hub_modal flex_spatial_hub flex_prescribed_hub flex_tip_body
              force_elements flex_spring assumed_hub assumed_spatial_hub rsur_spherical rsur_revolute ring_slider
              quick_return free_strip free_strip_modal l_beam_stiffened euler_column_modal
              rsur_revolute_flexible ring_slider_flexible plate_tip_pendulum
-             plate_tip_cb plate_node_set_loops tip_bar_loops slender_tip_force solid_slider_crank_stiff)
+             plate_tip_cb plate_node_set_loops tip_bar_loops slender_tip_force solid_slider_crank_stiff
+             planar_body planar_tilted planar_pendulum)
   list(APPEND KANEGEN_VERIFY_MODELS ${PROJECT_SOURCE_DIR}/tests/data/models/${name}.json)
 endforeach()
 # Fewer samples where the numeric path's quadrature is slow: the solid rod's 28 C3D20 elements take
@@ -68,6 +70,12 @@ foreach(model ${KANEGEN_VERIFY_MODELS})
   add_test(NAME "verify: model ${stem}" COMMAND kanegen verify ${model} ${KANEGEN_VERIFY_OPTIONS_${stem}})
   set_tests_properties("verify: model ${stem}" PROPERTIES ENVIRONMENT "KANEGEN_CACHE_DIR=${KANEGEN_VERIFY_CACHE}")
 endforeach()
+
+# The planar joints' steps (a slide, a slide and a turn, with massless frames
+# between them) by the articulated-body recursion, which auto does not pick
+# for these small models.
+add_test(NAME "verify: model planar_pendulum --dynamics recursive"
+         COMMAND kanegen verify ${PROJECT_SOURCE_DIR}/tests/data/models/planar_pendulum.json --dynamics recursive)
 
 # The recursive forward_dynamics (auto keeps the composite solve on this
 # small model): a slide, hinges, springs between points, efforts, a point force.
