@@ -222,7 +222,8 @@ ordered_json modes_json(const fem::ModalBasis& basis, const std::vector<std::str
 /// its stiffening lives in the axial stretch of the loaded equilibrium.
 bool stiffens_by_strain(const model::Model& model) {
   return std::any_of(model.bodies.begin(), model.bodies.end(), [](const model::Body& b) {
-    return b.flexible && b.beam.geometric_stiffening && b.beam.modes == 0 && b.beam.assumed_modes.empty();
+    return b.flexible && b.elastic.geometric_stiffening && b.elastic.modes == 0 &&
+           b.elastic.assumed_modes.empty();
   });
 }
 

@@ -31,7 +31,7 @@ double finite(double v, double x, const std::string& file, const std::string& pl
 
 }  // namespace
 
-Eigen::MatrixXd assumed_mode_basis(const Body& body, const model::FlexibleBeam& beam, const std::string& file,
+Eigen::MatrixXd assumed_mode_basis(const Body& body, const model::ElasticPart& beam, const std::string& file,
                                    const ShapeSampler& sample) {
   const int count = static_cast<int>(beam.assumed_modes.size());
   std::map<std::string, double> parameters = beam.shape_parameters;

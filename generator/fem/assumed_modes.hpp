@@ -41,7 +41,7 @@ using ShapeSampler =
 /// spatial, w, theta_y = -w', theta_x = theta. The parameters take
 /// beam.shape_parameters. Throws model::ModelError (the component's place in
 /// `file`) if a shape cannot be read or it or its slope is not finite at a node.
-Eigen::MatrixXd assumed_mode_basis(const Body& body, const model::FlexibleBeam& beam, const std::string& file,
+Eigen::MatrixXd assumed_mode_basis(const Body& body, const model::ElasticPart& beam, const std::string& file,
                                    const ShapeSampler& sample);
 
 }  // namespace kanegen::fem

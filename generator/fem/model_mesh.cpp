@@ -32,11 +32,11 @@ auto at_model_place(const std::string& model_file, const std::string& place, F&&
 /// averages the first-order motion).
 void add_foreshortening(const model::Body& body, const Constraint& held,
                         const std::vector<std::vector<int>>& interface_nodes, const std::string& model_file,
-                        ModelBeam& out) {
+                        ElasticModel& out) {
   try {
     out.second_order = second_order_fields(out.body, held, out.reduced.basis);
   } catch (const std::invalid_argument& e) {
-    throw ModelError(model_file, body.beam.where + "/geometric_stiffening",
+    throw ModelError(model_file, body.elastic.where + "/geometric_stiffening",
                      "the geometric stiffening of body '" + body.name + "' failed: " + e.what(),
                      "set \"geometric_stiffening\": false");
   }
@@ -54,7 +54,7 @@ void add_foreshortening(const model::Body& body, const Constraint& held,
 }  // namespace
 
 InpMesh read_model_mesh(const model::Body& body, const std::string& model_file) {
-  const model::MeshSource& m = body.beam.mesh;
+  const model::MeshSource& m = body.elastic.mesh;
   if (!std::ifstream(m.path))
     throw ModelError(model_file, m.where + "/file",
                      "cannot open the mesh file '" + m.path + "' of body '" + body.name + "'",
@@ -63,7 +63,7 @@ InpMesh read_model_mesh(const model::Body& body, const std::string& model_file) 
 }
 
 MeshBody build_model_mesh_body(const model::Body& body, const InpMesh& mesh, const std::string& model_file) {
-  const model::FlexibleBeam& f = body.beam;
+  const model::ElasticPart& f = body.elastic;
   const ContinuumMaterial material{f.E, f.mesh.poisson, f.density};
   return at_model_place(model_file, f.mesh.where + "/element_set", [&] {
     return build_mesh_body(mesh, material, f.mesh.thickness, f.mesh.element_set);
@@ -152,8 +152,8 @@ InterfacePoint interface_point(const MeshBody& mb, const InpMesh& mesh, const mo
   return p;
 }
 
-ModelBeam build_model_mesh(const model::Body& body, const std::string& model_file) {
-  const model::FlexibleBeam& f = body.beam;
+ElasticModel build_model_mesh(const model::Body& body, const std::string& model_file) {
+  const model::ElasticPart& f = body.elastic;
   const InpMesh mesh = read_model_mesh(body, model_file);
   const MeshBody mb = build_model_mesh_body(body, mesh, model_file);
   const Constraint constraint = f.support == model::BeamSupport::free
@@ -165,7 +165,7 @@ ModelBeam build_model_mesh(const model::Body& body, const std::string& model_fil
                      "body '" + body.name + "' has " + std::to_string(constraint.num_free()) +
                          " free dofs, fewer than the " + std::to_string(f.modes) + " modes asked for",
                      "keep fewer modes, or refine the mesh");
-  ModelBeam out{mb.body, {}, {}, {}, {}, {}, std::nullopt, {}, true, {}};
+  ElasticModel out{mb.body, {}, {}, {}, {}, {}, std::nullopt, {}, true, {}};
   std::vector<std::vector<int>> interfaces;
   for (const model::MeshInterface& in : f.mesh.interfaces)
     interfaces.push_back(interface_nodes(mb, mesh, in, model_file));

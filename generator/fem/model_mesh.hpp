@@ -7,9 +7,9 @@
 
 #include <string>
 
+#include "fem/elastic_model.hpp"
 #include "fem/inp_mesh.hpp"
 #include "fem/mesh_body.hpp"
-#include "fem/model_beam.hpp"
 #include "model/model.hpp"
 
 namespace kanegen::fem {
@@ -23,6 +23,6 @@ MeshBody build_model_mesh_body(const model::Body& body, const InpMesh& mesh, con
 
 /// The reduced body; throws model::ModelError naming the model file and
 /// place (a node or element set the mesh lacks, with the names it has).
-ModelBeam build_model_mesh(const model::Body& body, const std::string& model_file);
+ElasticModel build_model_mesh(const model::Body& body, const std::string& model_file);
 
 }  // namespace kanegen::fem

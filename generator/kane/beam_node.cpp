@@ -6,7 +6,7 @@
 
 namespace kanegen::kane {
 
-NodePoint node_point(const fem::ModelBeam& beam, int node, const std::vector<GiNaC::ex>& eta,
+NodePoint node_point(const fem::ElasticModel& beam, int node, const std::vector<GiNaC::ex>& eta,
                      symbolic::Program* program) {
   const auto define = [&](const GiNaC::ex& e) { return program ? program->define(e) : e; };
   const auto named = [&](const symbolic::Vec3& v) { return program ? symbolic::named(*program, v) : v; };

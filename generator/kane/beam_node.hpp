@@ -11,7 +11,7 @@
 #include <array>
 #include <vector>
 
-#include "fem/model_beam.hpp"
+#include "fem/elastic_model.hpp"
 #include "symbolic/program.hpp"
 #include "symbolic/vec3.hpp"
 
@@ -30,7 +30,7 @@ struct NodePoint {
 
 /// `program`: where to name the intermediates; null writes them out in place
 /// (for expressions that are differentiated, as the loop equations are).
-NodePoint node_point(const fem::ModelBeam& beam, int node, const std::vector<GiNaC::ex>& eta,
+NodePoint node_point(const fem::ElasticModel& beam, int node, const std::vector<GiNaC::ex>& eta,
                      symbolic::Program* program);
 
 }  // namespace kanegen::kane

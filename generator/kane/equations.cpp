@@ -142,7 +142,7 @@ std::map<int, kinematics::NodeAttachment> node_attachments(const model::Model& m
                                   j.name +
                                   "' to the body frame (remove \"parent_node\"), or put a fixed joint "
                                   "and a body on the node and the slide on that body");
-    const fem::ModelBeam& beam = flexible.at(parent);
+    const fem::ElasticModel& beam = flexible.at(parent);
     kinematics::NodeAttachment a;
     a.position = beam.point_position(j.parent_node);
     a.translation = beam.point_translation(j.parent_node);
@@ -222,7 +222,7 @@ void add_flexible_body(Derivation& d, BodySums& sums, std::size_t i) {
   const int first = vars.elastic_first[b.body], count = vars.elastic_count[b.body];
   const std::vector<ex> eta(vars.q.begin() + first, vars.q.begin() + first + count);
   const std::vector<ex> eta_dot(vars.u.begin() + first, vars.u.begin() + first + count);
-  const fem::ModelBeam& beam = d.flexible.at(b.body);
+  const fem::ElasticModel& beam = d.flexible.at(b.body);
   FlexibleTerms terms = flexible_terms(beam, b, eta, eta_dot, program);
   for (const model::PointForce& pf : d.model.forces) {
     if (pf.body != body.name || pf.node < 0) continue;
@@ -674,7 +674,7 @@ double elastic_initial(const std::map<std::string, double>& given, const std::st
 /// check_model has checked the given names against model::elastic_coordinate_names;
 /// this guards its agreement with the finite-element layer's names.
 void require_known_initial_names(const model::Body& body, const std::vector<std::string>& names) {
-  for (const auto* given : {&body.beam.initial_q, &body.beam.initial_u})
+  for (const auto* given : {&body.elastic.initial_q, &body.elastic.initial_u})
     for (const auto& entry : *given)
       if (std::find(names.begin(), names.end(), entry.first) == names.end())
         throw std::logic_error("internal error: elastic coordinate '" + entry.first + "' of body '" +
@@ -689,7 +689,7 @@ void elastic_coordinates(Derivation& d) {
   Equations& eq = d.eq;
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     if (!model.bodies[b].flexible) continue;
-    const model::FlexibleBeam& beam = model.bodies[b].beam;
+    const model::ElasticPart& beam = model.bodies[b].elastic;
     const std::vector<std::string>& names = d.flexible.at(static_cast<int>(b)).reduced.names;
     require_known_initial_names(model.bodies[b], names);
     for (int k = 0; k < d.vars.elastic_count[b]; ++k) {

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "fem/model_beam.hpp"
+#include "fem/elastic_model.hpp"
 #include "kane/loop_constraints.hpp"
 #include "model/model.hpp"
 #include "symbolic/program.hpp"
@@ -105,7 +105,7 @@ struct Equations {
 enum class MassMatrixMethod { body_frames, world_projection };
 
 /// The finite-element bodies, by index in Model::bodies.
-using FlexibleBodies = std::map<int, fem::ModelBeam>;
+using FlexibleBodies = std::map<int, fem::ElasticModel>;
 
 Equations derive_equations(const model::Model& model, const symbolic::Variables& vars,
                            symbolic::Program& program,

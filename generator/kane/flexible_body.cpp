@@ -130,7 +130,7 @@ ex add_axial_strain(const std::vector<fem::AxialStrainElement>& elements, const 
 /// cleaned invariants, its coordinates and the integrals D.
 class FlexibleBuilder {
  public:
-  FlexibleBuilder(const fem::ModelBeam& beam, const kinematics::BodyState& b, const std::vector<ex>& eta,
+  FlexibleBuilder(const fem::ElasticModel& beam, const kinematics::BodyState& b, const std::vector<ex>& eta,
                   const std::vector<ex>& eta_dot, Program& program)
       : beam_(beam),
         inv_(beam.reduced.invariants),
@@ -390,7 +390,7 @@ class FlexibleBuilder {
     out_.strain_energy = strain / 2 + nonlinear_strain_;
   }
 
-  const fem::ModelBeam& beam_;
+  const fem::ElasticModel& beam_;
   const fem::InertiaInvariants& inv_;
   const kinematics::BodyState& b_;
   const std::vector<ex>& eta_;
@@ -413,7 +413,7 @@ class FlexibleBuilder {
 
 }  // namespace
 
-FlexibleTerms flexible_terms(const fem::ModelBeam& beam, const kinematics::BodyState& b,
+FlexibleTerms flexible_terms(const fem::ElasticModel& beam, const kinematics::BodyState& b,
                              const std::vector<ex>& eta, const std::vector<ex>& eta_dot, Program& program) {
   return FlexibleBuilder(beam, b, eta, eta_dot, program).build();
 }

@@ -14,7 +14,7 @@
 
 #include <vector>
 
-#include "fem/model_beam.hpp"
+#include "fem/elastic_model.hpp"
 #include "kinematics/tree_kinematics.hpp"
 #include "symbolic/program.hpp"
 #include "symbolic/vec3.hpp"
@@ -51,7 +51,7 @@ struct FlexibleTerms {
 /// `eta`, `eta_dot`: the body's elastic coordinates and speeds; `b`: its
 /// link's kinematics (accel_rest carries gravity). The foreshortening is
 /// taken when the beam has one (geometric stiffening).
-FlexibleTerms flexible_terms(const fem::ModelBeam& beam, const kinematics::BodyState& b,
+FlexibleTerms flexible_terms(const fem::ElasticModel& beam, const kinematics::BodyState& b,
                              const std::vector<GiNaC::ex>& eta, const std::vector<GiNaC::ex>& eta_dot,
                              symbolic::Program& program);
 

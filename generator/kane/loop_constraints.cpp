@@ -67,7 +67,7 @@ struct Side {
 class Builder {
  public:
   Builder(const model::Model& model, const Variables& vars, const Program& program,
-          const kinematics::TreeKinematics& tree, const std::map<int, fem::ModelBeam>& flexible)
+          const kinematics::TreeKinematics& tree, const std::map<int, fem::ElasticModel>& flexible)
       : model_(model), vars_(vars), program_(program), tree_(tree), flexible_(flexible) {}
 
   LoopConstraints build() {
@@ -97,7 +97,7 @@ class Builder {
     Mat3 rotation = b.rotation;
     if (node >= 0) {
       // The node: displaced (with the foreshortening), and turned by its small rotation, exactly.
-      const fem::ModelBeam& beam = flexible_.at(b.body);
+      const fem::ElasticModel& beam = flexible_.at(b.body);
       const int first = vars_.elastic_first[b.body];
       const std::vector<ex> eta(vars_.q.begin() + first,
                                 vars_.q.begin() + first + vars_.elastic_count[b.body]);
@@ -173,7 +173,7 @@ class Builder {
   const Variables& vars_;
   const Program& program_;
   const kinematics::TreeKinematics& tree_;
-  const std::map<int, fem::ModelBeam>& flexible_;
+  const std::map<int, fem::ElasticModel>& flexible_;
   GiNaC::exmap memo_;
   LoopConstraints out_;
 };
@@ -182,7 +182,7 @@ class Builder {
 
 LoopConstraints derive_loop_constraints(const model::Model& model, const Variables& vars,
                                         const Program& program, const kinematics::TreeKinematics& tree,
-                                        const std::map<int, fem::ModelBeam>& flexible) {
+                                        const std::map<int, fem::ElasticModel>& flexible) {
   return Builder(model, vars, program, tree, flexible).build();
 }
 

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "fem/model_beam.hpp"
+#include "fem/elastic_model.hpp"
 #include "kinematics/tree_kinematics.hpp"
 #include "model/model.hpp"
 #include "symbolic/program.hpp"
@@ -37,6 +37,6 @@ struct LoopConstraints {
 LoopConstraints derive_loop_constraints(const model::Model& model, const symbolic::Variables& vars,
                                         const symbolic::Program& program,
                                         const kinematics::TreeKinematics& tree,
-                                        const std::map<int, fem::ModelBeam>& flexible);
+                                        const std::map<int, fem::ElasticModel>& flexible);
 
 }  // namespace kanegen::kane

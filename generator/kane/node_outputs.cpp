@@ -16,7 +16,7 @@ using GiNaC::ex;
 /// Rows of section resultants at `node` as maps of eta: planar (N, M_z),
 /// spatial (N, T, M_y, M_z), from the element that starts there (or ends
 /// there, for the last node), whose index goes to `element_index`.
-Eigen::MatrixXd resultants_at(const fem::ModelBeam& beam, int node, int& element_index) {
+Eigen::MatrixXd resultants_at(const fem::ElasticModel& beam, int node, int& element_index) {
   const fem::Body& body = beam.body;
   for (int pass = 0; pass < 2; ++pass)
     for (int e = 0; e < body.num_elements(); ++e) {
@@ -39,10 +39,10 @@ ex row_times(const Eigen::MatrixXd& m, int row, const std::vector<ex>& eta) {
 
 }  // namespace
 
-NodeOutputs node_outputs(const model::Body& body, const fem::ModelBeam& beam, const model::Output& output,
+NodeOutputs node_outputs(const model::Body& body, const fem::ElasticModel& beam, const model::Output& output,
                          const std::vector<ex>& eta, symbolic::Program& program) {
   NodeOutputs out;
-  const bool spatial = body.beam.formulation == model::BeamFormulation::spatial;
+  const bool spatial = body.elastic.formulation == model::BeamFormulation::spatial;
   const std::string& name = output.name;
   if (output.kind == model::OutputKind::node_displacement) {
     const NodePoint node = node_point(beam, output.node, eta, &program);  // foreshortening included
@@ -87,7 +87,7 @@ NodeOutputs node_outputs(const model::Body& body, const fem::ModelBeam& beam, co
       }
       break;
     default: {  // bending_stress: the extreme fibre's |N/A| + |M_z| y/Iz + |M_y| z/Iy
-      const model::FlexibleBeam& f = body.beam;
+      const model::ElasticPart& f = body.elastic;
       ex stress = GiNaC::abs(axial) / symbolic::number(f.A) +
                   GiNaC::abs(moment_z) * symbolic::number(f.fibre_y / f.Iz);
       if (spatial) stress += GiNaC::abs(moment_y) * symbolic::number(f.fibre_z / f.Iy);

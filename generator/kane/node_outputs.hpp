@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "fem/model_beam.hpp"
+#include "fem/elastic_model.hpp"
 #include "model/model.hpp"
 #include "symbolic/program.hpp"
 
@@ -23,7 +23,7 @@ struct NodeOutputs {
 };
 
 /// The node's displacement includes the beam's foreshortening.
-NodeOutputs node_outputs(const model::Body& body, const fem::ModelBeam& beam, const model::Output& output,
+NodeOutputs node_outputs(const model::Body& body, const fem::ElasticModel& beam, const model::Output& output,
                          const std::vector<GiNaC::ex>& eta, symbolic::Program& program);
 
 }  // namespace kanegen::kane

@@ -31,7 +31,7 @@ struct Component {
 class ModeChecker {
  public:
   ModeChecker(const Model& model, const Body& body)
-      : file_(model.source_file), body_(body), beam_(body.beam), values_(default_parameter_values(model)) {
+      : file_(model.source_file), body_(body), beam_(body.elastic), values_(default_parameter_values(model)) {
     for (const Parameter& p : model.parameters) names_.push_back(p.name);
     names_.push_back("x");
     names_.push_back("L");
@@ -181,7 +181,7 @@ class ModeChecker {
 
   std::string file_;
   const Body& body_;
-  const FlexibleBeam& beam_;
+  const ElasticPart& beam_;
   ParameterValues values_;
   std::vector<std::string> names_;
   double length_ = 0.0;
@@ -199,7 +199,7 @@ void check_assumed_modes(const Model& model, Body& body) {
               body.name + "'",
           "rename the parameter: in shape functions x is the beam coordinate and L the beam length");
   ModeChecker(model, body).run();
-  body.beam.shape_parameters = default_parameter_values(model);
+  body.elastic.shape_parameters = default_parameter_values(model);
 }
 
 }  // namespace kanegen::model

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-// Load-time checks of a flexible beam's assumed modes (FlexibleBeam::
+// Load-time checks of a flexible beam's assumed modes (ElasticPart::
 // assumed_modes), without GiNaC: every expression reads, is finite on the
 // beam, and the shapes, sampled as the generator samples them (values and
 // slopes at the nodes of the internal mesh), are strains rather than rigid

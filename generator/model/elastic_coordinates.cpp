@@ -21,7 +21,7 @@ bool held(BeamSupport support, bool planar, int node, int last, const std::strin
 
 }  // namespace
 
-std::vector<std::string> elastic_coordinate_names(const FlexibleBeam& beam) {
+std::vector<std::string> elastic_coordinate_names(const ElasticPart& beam) {
   std::vector<std::string> names;
   const int modes = beam.assumed_modes.empty() ? beam.modes : static_cast<int>(beam.assumed_modes.size());
   if (modes > 0) {

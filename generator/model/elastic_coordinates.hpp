@@ -16,6 +16,6 @@ namespace kanegen::model {
 /// every dof the support leaves free (kinds u, v, theta_z planar; u, v, w,
 /// theta_x, theta_y, theta_z spatial), or "mode1", ... for modes and
 /// assumed modes. The beam must have passed check_model's beam checks.
-std::vector<std::string> elastic_coordinate_names(const FlexibleBeam& beam);
+std::vector<std::string> elastic_coordinate_names(const ElasticPart& beam);
 
 }  // namespace kanegen::model

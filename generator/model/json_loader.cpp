@@ -120,17 +120,17 @@ class JsonReader {
     for (int k = 0; k < 6; ++k) b.inertia[k] = scalar(inertia, keys[k], place + "/inertia", 0.0);
     if (j.contains("flexible")) {
       b.flexible = true;
-      b.beam = beam(j["flexible"], place + "/flexible");
+      b.elastic = beam(j["flexible"], place + "/flexible");
     }
     return b;
   }
 
-  FlexibleBeam beam(const json& j, const std::string& place) const {
+  ElasticPart beam(const json& j, const std::string& place) const {
     if (j.contains("mesh")) return mesh_body(j, place);
     if (!j.contains("section"))
       error(place, "missing required key 'section'",
             "add \"section\": {\"A\": ..., \"Iz\": ...} for a beam, or give a \"mesh\"");
-    FlexibleBeam f;
+    ElasticPart f;
     f.where = place;
     f.formulation =
         j.value("formulation", "planar") == "spatial" ? BeamFormulation::spatial : BeamFormulation::planar;
@@ -192,7 +192,7 @@ class JsonReader {
   }
 
   /// What beams and mesh bodies share: damping, geometric stiffening, initial values.
-  void read_damping_and_initial(const json& j, const std::string& place, FlexibleBeam& f) const {
+  void read_damping_and_initial(const json& j, const std::string& place, ElasticPart& f) const {
     if (j.contains("damping")) {
       const json& d = j["damping"];
       if (d.contains("rayleigh") == d.contains("modal_ratio"))
@@ -216,14 +216,14 @@ class JsonReader {
     }
   }
 
-  /// A body meshed with plane or solid elements (FlexibleBeam::mesh).
-  FlexibleBeam mesh_body(const json& j, const std::string& place) const {
+  /// A body meshed with plane or solid elements (ElasticPart::mesh).
+  ElasticPart mesh_body(const json& j, const std::string& place) const {
     for (const char* key :
          {"length", "elements", "segments", "section", "assumed_modes", "tip", "formulation"})
       if (j.contains(key))
         error(place + "/" + key, std::string("'") + key + "' does not apply to a body given by a mesh",
               "remove it: the mesh gives the shape, and \"mesh\" the element set and thickness");
-    FlexibleBeam f;
+    ElasticPart f;
     f.where = place;
     const json& m = j["mesh"];
     f.mesh.where = place + "/mesh";
@@ -287,7 +287,7 @@ class JsonReader {
   /// The assumed modes; they carry the boundary conditions and are the
   /// coordinates, so `support` and `modes` do not apply, and the shapes are
   /// functions of x along one straight run.
-  void read_assumed_modes(const json& j, const std::string& place, FlexibleBeam& f) const {
+  void read_assumed_modes(const json& j, const std::string& place, ElasticPart& f) const {
     for (const char* key : {"modes", "support"})
       if (j.contains(key))
         error(place + "/" + key, std::string("'") + key + "' does not apply with 'assumed_modes'",

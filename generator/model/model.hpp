@@ -88,13 +88,13 @@ struct MeshInterface {
 /// A flexible body meshed with plane or solid elements (a CalculiX/Abaqus
 /// .inp file, e.g. from Gmsh) instead of a beam. The mesh's coordinates are
 /// the body frame's. Read and reduced when code is generated
-/// (fem/model_beam.hpp); the model keeps only what the file says.
+/// (fem/elastic_model.hpp); the model keeps only what the file says.
 struct MeshSource {
   std::string file;         ///< as the model file gives it
   std::string path;         ///< resolved against the model file's directory
   std::string element_set;  ///< empty: every element of the mesh's highest dimension
   double thickness = 1.0;   ///< plane elements, m
-  double poisson = 0.0;     ///< nu; E and density are FlexibleBeam's
+  double poisson = 0.0;     ///< nu; E and density are ElasticPart's
   /// The node set held fixed in the body frame (support "clamped"): the
   /// body's joint acts on it. Empty with support "free".
   std::string clamped_set;
@@ -111,11 +111,14 @@ struct MeshSource {
   bool present() const { return !file.empty(); }
 };
 
-/// The finite-element beam of a flexible body, in its link (body) frame.
-/// Its data are numbers: the element matrices and the modal basis are
-/// computed when the code is generated. Nodes are numbered from 0 at the
-/// frame's origin along the segments.
-struct FlexibleBeam {
+/// The elastic part of a flexible body, in its link (body) frame (the
+/// model file's "flexible"): a finite-element beam (segments and a
+/// section), a beam of assumed modes, or a mesh of plane or solid elements
+/// (`mesh`), with the material, damping, stiffening and initial values they
+/// share. Its data are numbers: the element matrices and the modal basis are
+/// computed when the code is generated. A beam's nodes are numbered from 0
+/// at the frame's origin along the segments.
+struct ElasticPart {
   BeamFormulation formulation = BeamFormulation::planar;
   std::vector<BeamSegment> segments;
   double A = 0.0, Iy = 0.0, Iz = 0.0, J = 0.0;  ///< section: m^2, m^4
@@ -152,15 +155,15 @@ struct FlexibleBeam {
 
 /// A body. Frame: the body frame is the child frame of the joint that
 /// carries it. Inertia is about the centre of mass, in body-frame axes. A
-/// flexible body adds a finite-element beam to this rigid part (which may
-/// be massless).
+/// flexible body adds its elastic part (a beam or a mesh) to this rigid part
+/// (which may be massless).
 struct Body {
   std::string name;
   Scalar mass;
   Vec3 com;                       ///< centre of mass in the body frame
   std::array<Scalar, 6> inertia;  ///< ixx, iyy, izz, ixy, ixz, iyz
   bool flexible = false;
-  FlexibleBeam beam;  ///< when flexible
+  ElasticPart elastic;  ///< when flexible
   std::string where;
 };
 

@@ -509,7 +509,7 @@ class Checker {
 
   static constexpr int kMaxElements = 1000;
 
-  int free_coordinates(const FlexibleBeam& f) const {
+  int free_coordinates(const ElasticPart& f) const {
     const int per_node = f.formulation == BeamFormulation::planar ? 3 : 6;
     const int fixed = f.support == BeamSupport::clamped         ? per_node
                       : f.support == BeamSupport::pinned_pinned ? (per_node == 3 ? 3 : 6)
@@ -518,7 +518,7 @@ class Checker {
   }
 
   void check_beam(const Body& b) const {
-    const FlexibleBeam& f = b.beam;
+    const ElasticPart& f = b.elastic;
     const bool planar = f.formulation == BeamFormulation::planar;
     const std::string section = at(f.where, "section"), material = at(f.where, "material");
     if (f.Iz <= 0)
@@ -595,10 +595,10 @@ class Checker {
     if (!b->flexible)
       error(place, what + " names a node of body '" + body_name + "', which is rigid",
             "remove the node, or make '" + body_name + "' flexible");
-    if (b->beam.mesh.present())
+    if (b->elastic.mesh.present())
       error(place, what + " names a node of body '" + body_name + "', which is a mesh body",
             "name a node set of its mesh instead (\"node_set\"; a joint: \"parent_node_set\")");
-    const int last = b->beam.num_nodes() - 1;
+    const int last = b->elastic.num_nodes() - 1;
     if (node == kTipNode) node = last;
     if (node < 0 || node > last)
       error(place, "node " + std::to_string(node) + " of body '" + body_name + "' does not exist",
@@ -608,8 +608,9 @@ class Checker {
 
   /// Every elastic coordinate given an initial value exists.
   void check_elastic_initial(const Body& b) const {
-    const std::vector<std::string> names = elastic_coordinate_names(b.beam);
-    for (const auto& [key, given] : {std::pair{"q", &b.beam.initial_q}, std::pair{"u", &b.beam.initial_u}})
+    const std::vector<std::string> names = elastic_coordinate_names(b.elastic);
+    for (const auto& [key, given] :
+         {std::pair{"q", &b.elastic.initial_q}, std::pair{"u", &b.elastic.initial_u}})
       for (const auto& entry : *given) {
         const std::string& name = entry.first;
         if (std::find(names.begin(), names.end(), name) != names.end()) continue;
@@ -617,17 +618,17 @@ class Checker {
         const bool prefixed =
             name.rfind(prefix, 0) == 0 && std::find(names.begin(), names.end(), local) != names.end();
         const std::string guess = prefixed ? local : nearest(name, names);
-        error(at(b.beam.where, std::string("initial/") + key + "/" + pointer_token(name)),
+        error(at(b.elastic.where, std::string("initial/") + key + "/" + pointer_token(name)),
               "body '" + b.name + "' has no elastic coordinate '" + name + "'",
               (prefixed        ? "write it without the body prefix: '" + guess + "'. "
                : guess.empty() ? ""
                                : "did you mean '" + guess + "'? ") +
-                  "Its coordinates are " + coordinate_list(b.beam, names));
+                  "Its coordinates are " + coordinate_list(b.elastic, names));
       }
   }
 
   /// "mode1 to mode4", or the nodal ones with their pattern, for messages.
-  static std::string coordinate_list(const FlexibleBeam& f, const std::vector<std::string>& names) {
+  static std::string coordinate_list(const ElasticPart& f, const std::vector<std::string>& names) {
     if (names.empty()) return "none";
     const bool modal = f.modes > 0 || !f.assumed_modes.empty();
     if (names.size() <= 4) return join(names);
@@ -649,7 +650,7 @@ class Checker {
     if (body_name == m_.ground) error(place, "the ground has no node sets", "remove \"" + key + "\"");
     const auto b =
         std::find_if(m_.bodies.begin(), m_.bodies.end(), [&](const Body& x) { return x.name == body_name; });
-    if (b == m_.bodies.end() || !b->flexible || !b->beam.mesh.present())
+    if (b == m_.bodies.end() || !b->flexible || !b->elastic.mesh.present())
       error(place,
             what + " names node set '" + set + "' of '" + body_name + "', which is not a mesh body (it is " +
                 (b == m_.bodies.end() ? "unknown"
@@ -663,7 +664,7 @@ class Checker {
                 : "remove \"" + key +
                       "\" and give a point of the body frame; node sets belong to bodies "
                       "with \"flexible\": {\"mesh\": ...}");
-    std::vector<MeshInterface>& sets = b->beam.mesh.interfaces;
+    std::vector<MeshInterface>& sets = b->elastic.mesh.interfaces;
     auto found =
         std::find_if(sets.begin(), sets.end(), [&](const MeshInterface& x) { return x.node_set == set; });
     if (found == sets.end()) {
@@ -689,16 +690,16 @@ class Checker {
   void check_flexible() {
     for (Body& b : m_.bodies) {
       if (!b.flexible) continue;
-      if (b.beam.mesh.present()) {
-        // The mesh itself is read and checked when code is generated (fem/model_beam.hpp).
-        if (b.beam.modes < 1)
-          error(at(b.beam.where, "modes"), "body '" + b.name + "' keeps no modes",
+      if (b.elastic.mesh.present()) {
+        // The mesh itself is read and checked when code is generated (fem/elastic_model.hpp).
+        if (b.elastic.modes < 1)
+          error(at(b.elastic.where, "modes"), "body '" + b.name + "' keeps no modes",
                 "give \"modes\": 1 or more");
         check_elastic_initial(b);
         continue;
       }
       check_beam(b);
-      if (!b.beam.assumed_modes.empty()) check_assumed_modes(m_, b);
+      if (!b.elastic.assumed_modes.empty()) check_assumed_modes(m_, b);
       check_elastic_initial(b);
     }
     for (Joint& j : m_.joints)
@@ -736,7 +737,8 @@ class Checker {
       if (o.node == -1) continue;
       const Body* b = check_node(o.node, o.body, at(o.where, "node"), "output '" + o.name + "'");
       if (b && o.kind == OutputKind::bending_stress &&
-          (b->beam.fibre_y <= 0 || (b->beam.formulation == BeamFormulation::spatial && b->beam.fibre_z <= 0)))
+          (b->elastic.fibre_y <= 0 ||
+           (b->elastic.formulation == BeamFormulation::spatial && b->elastic.fibre_z <= 0)))
         error(at(o.where, "type"), "a stress output needs the extreme fibre distances of the section",
               "give \"fibre_y\" (and \"fibre_z\" for a spatial beam) under the body's flexible/section");
     }
@@ -788,9 +790,9 @@ class Checker {
   /// Craig-Bampton keeps the interfaces as coordinates: a body needs one.
   void check_interfaces() const {
     for (const Body& b : m_.bodies)
-      if (b.flexible && b.beam.mesh.craig_bampton && b.beam.mesh.interfaces.empty())
+      if (b.flexible && b.elastic.mesh.craig_bampton && b.elastic.mesh.interfaces.empty())
         error(
-            at(b.beam.mesh.where, "reduction"),
+            at(b.elastic.mesh.where, "reduction"),
             "Craig-Bampton reduction of body '" + b.name +
                 "' needs an interface, and nothing is attached to its node sets",
             "attach a joint with \"parent_node_set\" (or a loop, force or output with \"node_set\"), or use "

@@ -11,7 +11,7 @@ bool planar_beam(const Model& model, const Output& output) {
   const auto body = std::find_if(model.bodies.begin(), model.bodies.end(),
                                  [&](const Body& b) { return b.name == output.body; });
   if (body == model.bodies.end()) throw std::invalid_argument("output '" + output.name + "' names no body");
-  return body->beam.formulation == BeamFormulation::planar;
+  return body->elastic.formulation == BeamFormulation::planar;
 }
 
 const Loop& loop_of(const Model& model, const Output& output) {

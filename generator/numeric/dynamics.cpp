@@ -60,8 +60,8 @@ std::vector<MassElement> mass_elements(const Instance& m) {
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {
     const BodyData& body = m.bodies[b];
     out.push_back({static_cast<int>(b), body.mass, body.inertia});
-    if (!body.beam) continue;
-    const FlexibleData& f = *body.beam;
+    if (!body.elastic) continue;
+    const FlexibleData& f = *body.elastic;
     for (const BeamElementData& e : f.elements)
       for (double w : rule.weights) {
         const double dx = w * e.length, rho = f.density;
@@ -94,8 +94,8 @@ Touched touched_by(const Instance& m, const std::vector<Pose<D1>>& poses,
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {
     for (int i = 0; i < 9; ++i) t.pose[b] = t.pose[b] || poses[b].rotation[i].d != 0;
     for (int i = 0; i < 3; ++i) t.pose[b] = t.pose[b] || poses[b].origin[i].d != 0;
-    if (!m.bodies[b].beam) continue;
-    const FlexibleData& f = *m.bodies[b].beam;
+    if (!m.bodies[b].elastic) continue;
+    const FlexibleData& f = *m.bodies[b].elastic;
     t.node[b].assign(f.nodes.size(), 0);
     for (int d = 0; d < f.num_dofs(); ++d)
       if (dofs[b][d].d != 0) t.node[b][d / f.dofs_per_node] = 1;
@@ -132,8 +132,8 @@ void visit_masses(const Instance& m, const std::vector<Pose<S>>& poses,
     const int bi = static_cast<int>(b);
     if (!touched || touched->pose[b]) visit(index, bi, to_world(pose, cast<S>(body.com)), zero);
     ++index;
-    if (!body.beam) continue;
-    const FlexibleData& f = *body.beam;
+    if (!body.elastic) continue;
+    const FlexibleData& f = *body.elastic;
     std::vector<S> own = dofs[b];
     if (scale != 1.0)
       for (S& x : own) x = x * scale;
@@ -176,7 +176,7 @@ template <class S>
 Vec<S> force_point(const Instance& m, const ForceData& force, const std::vector<Pose<S>>& poses,
                    const std::vector<std::vector<S>>& dofs, const std::vector<SecondOrder<S>>& second) {
   if (force.node < 0) return to_world(poses[force.body], cast<S>(force.point));
-  const FlexibleData& f = *m.bodies[force.body].beam;
+  const FlexibleData& f = *m.bodies[force.body].elastic;
   return to_world(poses[force.body], displaced_node(f, dofs[force.body], second[force.body], force.node));
 }
 
@@ -267,14 +267,14 @@ double output_value(const Instance& m, const model::OutputColumn& column, const 
       return reaction[first + column.component];
     }
     case model::OutputKind::node_displacement: {
-      const FlexibleData& f = *m.bodies[o.body].beam;
+      const FlexibleData& f = *m.bodies[o.body].elastic;
       return sub(displaced_node(f, dofs[o.body], second[o.body], o.node),
                  rest_node(f, o.node))[column.component];
     }
     default:
       break;
   }
-  const FlexibleData& f = *m.bodies[o.body].beam;
+  const FlexibleData& f = *m.bodies[o.body].elastic;
   const std::array<double, 4> n4 = resultants(f, dofs[o.body], o.node);  // N, T, M_y, M_z
   if (o.kind == model::OutputKind::axial_force) return n4[0];
   if (o.kind == model::OutputKind::bending_moment) return n4[column.component + 1];  // about y (1), z (2)
@@ -518,7 +518,7 @@ void add_element(const Instance& m, const MassElement& el, const BodyMotion& k, 
   }
   if (!mass_matrix) return;
   const BodyData& body = m.bodies[el.body];
-  const int first = body.elastic_first, count = body.beam ? body.beam->count() : 0;
+  const int first = body.elastic_first, count = body.elastic ? body.elastic->count() : 0;
   std::vector<Vec<double>> iw(p.size());
   for (std::size_t a = 0; a < p.size(); ++a) iw[a] = mul(inertia, p[a].W);
   for (std::size_t a = 0; a < p.size(); ++a)
@@ -544,8 +544,8 @@ double joint_forcing(const Instance& m, const State& s, int r) {
 double beam_power(const Instance& m, const State& s) {
   double power = 0;
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {
-    if (!m.bodies[b].beam) continue;
-    const FlexibleData& f = *m.bodies[b].beam;
+    if (!m.bodies[b].elastic) continue;
+    const FlexibleData& f = *m.bodies[b].elastic;
     const int first = m.bodies[b].elastic_first;
     const std::vector<double> rate(s.u.begin() + first, s.u.begin() + first + f.count());
     if (f.modal_ratio > 0) {
@@ -576,7 +576,7 @@ struct Sample {
 /// and the kept sum is taken exactly from five values of s.
 std::vector<Sample> truncation_samples(const Instance& m) {
   bool stiffening = false;
-  for (const BodyData& b : m.bodies) stiffening = stiffening || (b.beam && b.beam->shortens());
+  for (const BodyData& b : m.bodies) stiffening = stiffening || (b.elastic && b.elastic->shortens());
   if (!stiffening) return {{1.0, 1.0}};
   static const std::vector<Sample> samples = [] {
     const double s[5] = {-1.0, -0.5, 0.0, 0.5, 1.0};
@@ -616,8 +616,8 @@ ElementSums element_sums(const Instance& m, const State& s, const std::vector<Ma
     out.mass_matrix.assign(static_cast<std::size_t>(n) * n, 0.0);
     out.own_mass.resize(nb);
     for (int b = 0; b < nb; ++b)
-      if (m.bodies[b].beam)
-        out.own_mass[b] = Eigen::MatrixXd::Zero(m.bodies[b].beam->count(), m.bodies[b].beam->count());
+      if (m.bodies[b].elastic)
+        out.own_mass[b] = Eigen::MatrixXd::Zero(m.bodies[b].elastic->count(), m.bodies[b].elastic->count());
   }
   for (const Sample& sample : truncation_samples(m)) {
     const PathMotion motion = motion_along(m, s, udot, elements.size(), sample.scale);
@@ -637,8 +637,8 @@ ElementSums element_sums(const Instance& m, const State& s, const std::vector<Ma
       const BodyMotion& k = motion.body[el.body];
       const ElementMotion& x = motion.element[i];
       add_element(m, el, k, x, partials[i], share.forcing, all ? &share.mass_matrix : nullptr,
-                  all && m.bodies[el.body].beam ? &own[el.body] : nullptr, &share.magnitude, &share.gravity,
-                  &share.gravity_magnitude);
+                  all && m.bodies[el.body].elastic ? &own[el.body] : nullptr, &share.magnitude,
+                  &share.gravity, &share.gravity_magnitude);
       if (!all) continue;
       const Mat<double> inertia = mul(k.r, mul(el.inertia, transpose(k.r)));
       const Vec<double> spin = add(k.omega, mul(k.r, x.theta_rate));
@@ -674,8 +674,8 @@ std::vector<std::vector<double>> dofs_at_q(const PathMotion& motion) {
 std::vector<int> elastic_owners(const Instance& m) {
   std::vector<int> owner(m.coordinates(), -1);
   for (std::size_t b = 0; b < m.bodies.size(); ++b)
-    if (m.bodies[b].beam)
-      for (int k = 0; k < m.bodies[b].beam->count(); ++k)
+    if (m.bodies[b].elastic)
+      for (int k = 0; k < m.bodies[b].elastic->count(); ++k)
         owner[m.bodies[b].elastic_first + k] = static_cast<int>(b);
   return owner;
 }
@@ -692,7 +692,7 @@ struct CoordinatePartials {
 /// damping -beta (K eta_dot)_r into `nonconservative`.
 void add_elastic_gradients(const Instance& m, const State& s, int r, int b, const Pass& pass, Evaluation& e,
                            std::vector<double>& nonconservative) {
-  const FlexibleData& f = *m.bodies[b].beam;
+  const FlexibleData& f = *m.bodies[b].elastic;
   const std::vector<char>* nodes = &pass.touched.node[b];
   const auto strain = element_gradient(
       f, pass.dofs[b], nodes,
@@ -773,8 +773,8 @@ std::vector<Vec<S>> solid_points(const FlexibleData& f, const std::vector<S>& et
 void add_relative_inertia(const Instance& m, const State& s, Evaluation& e) {
   const int n_all = m.coordinates();
   for (const BodyData& body : m.bodies) {
-    if (!body.beam || !body.beam->mesh || !body.beam->shortens()) continue;
-    const FlexibleData& f = *body.beam;
+    if (!body.elastic || !body.elastic->mesh || !body.elastic->shortens()) continue;
+    const FlexibleData& f = *body.elastic;
     const int n = f.count(), first = body.elastic_first;
     std::vector<double> masses;
     for (const SolidElementData& el : f.solids)
@@ -819,8 +819,8 @@ void add_beams(const Instance& m, const State& s, const std::vector<std::vector<
                const std::vector<Eigen::MatrixXd>& own_mass, Evaluation& e,
                std::vector<double>& nonconservative) {
   for (std::size_t b = 0; b < m.bodies.size(); ++b) {
-    if (!m.bodies[b].beam) continue;
-    const FlexibleData& f = *m.bodies[b].beam;
+    if (!m.bodies[b].elastic) continue;
+    const FlexibleData& f = *m.bodies[b].elastic;
     const int first = m.bodies[b].elastic_first;
     e.potential_energy += strain_energy(f, dofs[b]);
     const std::vector<double> modal = f.modal_ratio > 0 ? modal_damping(f) : std::vector<double>();

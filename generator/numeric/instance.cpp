@@ -10,7 +10,7 @@
 // coordinates (free dofs or modal shapes), a choice of coordinates. Mass,
 // stiffness, geometric stiffness and every integral are computed here
 // independently (docs/verify.md).
-#include "fem/model_beam.hpp"
+#include "fem/elastic_model.hpp"
 #include "fem/model_mesh.hpp"
 #include "numeric/shape_function.hpp"
 #include "numeric/solid.hpp"
@@ -55,13 +55,13 @@ void mesh_data(const model::Body& body, const std::string& file, FlexibleData& d
       e.nodes.push_back(layout.node_of.at(n));
       x.push_back(d.nodes[e.nodes.back()]);
     }
-    set_up_solid(e, x, body.beam.mesh.thickness);
+    set_up_solid(e, x, body.elastic.mesh.thickness);
     d.solids.push_back(std::move(e));
   }
   d.mesh = true;
   d.planar = false;
   d.dofs_per_node = d.solids.front().dimension;
-  for (const model::MeshInterface& set : body.beam.mesh.interfaces) {
+  for (const model::MeshInterface& set : body.elastic.mesh.interfaces) {
     FlexibleData::Interface in;
     for (int id : mesh.node_set(set.node_set)) in.nodes.push_back(layout.node_of.at(id));
     in.centroid = {0, 0, 0};
@@ -85,7 +85,7 @@ void mesh_data(const model::Body& body, const std::string& file, FlexibleData& d
     }
     d.interfaces.push_back(std::move(in));
   }
-  d.poisson = body.beam.mesh.poisson;
+  d.poisson = body.elastic.mesh.poisson;
 }
 
 /// A column's nonzero entries as (row, value) pairs.
@@ -114,7 +114,7 @@ void second_order_data(const Eigen::MatrixXd& basis, const Eigen::MatrixXd& fiel
 /// The beam of a flexible body: nodes along the segments, element axes
 /// (x along the run, y = z_link x x, z = x x y), numbers, and the basis.
 std::shared_ptr<const FlexibleData> beam_data(const model::Body& body, const std::string& file) {
-  const model::FlexibleBeam& f = body.beam;
+  const model::ElasticPart& f = body.elastic;
   auto d = std::make_shared<FlexibleData>();
   d->body = body.name;
   d->planar = f.formulation == model::BeamFormulation::planar;
@@ -163,7 +163,7 @@ std::shared_ptr<const FlexibleData> beam_data(const model::Body& body, const std
   }
   d->stiffening = f.geometric_stiffening;
 
-  const auto built = fem::build_model_beam(body, file, sample_shape);
+  const auto built = fem::build_elastic_model(body, file, sample_shape);
   const Eigen::MatrixXd& basis = built.reduced.basis;
   if (basis.rows() != d->num_dofs())
     throw std::invalid_argument("the basis of body '" + body.name + "' has " + std::to_string(basis.rows()) +
@@ -243,8 +243,8 @@ struct Instantiation {
   /// Whether `node` (-1: none) is a node of `body`'s beam.
   bool has_node(int body, int node) const {
     if (node < 0) return true;
-    if (body < 0 || !m.bodies[body].beam) return false;
-    const FlexibleData& f = *m.bodies[body].beam;
+    if (body < 0 || !m.bodies[body].elastic) return false;
+    const FlexibleData& f = *m.bodies[body].elastic;
     return node < static_cast<int>(f.mesh ? f.interfaces.size() : f.nodes.size());
   }
   int coordinate_of(const std::string& joint) const {
@@ -262,9 +262,9 @@ void add_bodies(Instantiation& in, const Instance* same_model) {
         b.name,  -1, model::evaluate(b.mass, in.p), vector_value(b.com, in.p), inertia_value(b.inertia, in.p),
         nullptr, -1};
     if (b.flexible)
-      d.beam = same_model && i < same_model->bodies.size() && same_model->bodies[i].beam
-                   ? same_model->bodies[i].beam
-                   : beam_data(b, in.model.source_file);
+      d.elastic = same_model && i < same_model->bodies.size() && same_model->bodies[i].elastic
+                      ? same_model->bodies[i].elastic
+                      : beam_data(b, in.model.source_file);
     in.m.bodies.push_back(d);
   }
 }
@@ -294,7 +294,7 @@ JointData joint_data(const Instantiation& in, const model::Joint& j) {
   d.name = j.name;
   d.parent = in.body_of(j.parent, "joint '" + j.name + "'");
   d.parent_node = j.parent_node;
-  if (d.parent_node >= 0 && (d.parent < 0 || !in.m.bodies[d.parent].beam))
+  if (d.parent_node >= 0 && (d.parent < 0 || !in.m.bodies[d.parent].elastic))
     throw std::invalid_argument("joint '" + j.name + "' sits on a node of a body that is not flexible");
   d.child = in.body_of(j.child, "joint '" + j.name + "'");
   if (d.child < 0) throw std::invalid_argument("joint '" + j.name + "' has the ground as its child");
@@ -346,9 +346,9 @@ void order_bodies(Instance& m) {
 /// The elastic coordinates follow the joints', body by body.
 void add_elastic_coordinates(Instance& m) {
   for (BodyData& b : m.bodies) {
-    if (!b.beam) continue;
+    if (!b.elastic) continue;
     b.elastic_first = m.coordinates();
-    for (const std::string& name : b.beam->names) m.coordinate_names.push_back(b.name + "." + name);
+    for (const std::string& name : b.elastic->names) m.coordinate_names.push_back(b.name + "." + name);
   }
 }
 

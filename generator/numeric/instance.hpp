@@ -73,7 +73,7 @@ struct SolidElementData {
 /// dofs are link-frame nodal components, node by node (planar: u_x, u_y,
 /// theta_z; spatial: u_x, u_y, u_z, theta_x, theta_y, theta_z), and
 /// dofs = B eta. B is the one thing taken from the finite-element layer
-/// (build_model_beam of generator/fem): a choice of coordinates (which dofs the support
+/// (build_elastic_model of generator/fem): a choice of coordinates (which dofs the support
 /// leaves free, the modal shapes, or the assumed modes sampled at the nodes), not a
 /// derivation (docs/verify.md).
 struct FlexibleData {
@@ -137,7 +137,7 @@ struct BodyData {
   Vec<double> com;      ///< body frame
   Mat<double> inertia;  ///< about the centre of mass, body axes
   /// A flexible body's beam (shared by every instance of the model), else null.
-  std::shared_ptr<const FlexibleData> beam;
+  std::shared_ptr<const FlexibleData> elastic;
   int elastic_first = -1;  ///< index in q and u of its first elastic coordinate
 };
 

@@ -41,7 +41,7 @@ Vec<S> loop_point(const Instance& m, const std::vector<Pose<S>>& poses,
                   int body, int node, const Vec<double>& point) {
   if (body < 0) return cast<S>(point);
   if (node < 0) return point_position(poses, body, point);
-  const FlexibleData& f = *m.bodies[body].beam;
+  const FlexibleData& f = *m.bodies[body].elastic;
   const Vec<S> local = displaced_node(f, dofs[body], second[body], node);
   return add(poses[body].origin, mul(poses[body].rotation, local));
 }
@@ -56,7 +56,7 @@ std::vector<S> loop_residuals(const Instance& m, const S* q) {
   const auto rotation = [&](int body, int node) {
     if (body < 0) return identity<S>();
     if (node < 0) return poses[body].rotation;
-    const FlexibleData& f = *m.bodies[body].beam;
+    const FlexibleData& f = *m.bodies[body].elastic;
     return mul(poses[body].rotation, node_turn(node_rotation(f, dofs[body], node)));
   };
   std::vector<S> phi;

@@ -49,7 +49,7 @@ template <class S>
 std::vector<std::vector<S>> all_beam_dofs(const Instance& m, const S* q) {
   std::vector<std::vector<S>> dofs(m.bodies.size());
   for (std::size_t b = 0; b < m.bodies.size(); ++b)
-    if (m.bodies[b].beam) dofs[b] = beam_dofs(*m.bodies[b].beam, q + m.bodies[b].elastic_first);
+    if (m.bodies[b].elastic) dofs[b] = beam_dofs(*m.bodies[b].elastic, q + m.bodies[b].elastic_first);
   return dofs;
 }
 
@@ -59,7 +59,7 @@ template <class S>
 std::vector<SecondOrder<S>> all_second_order(const Instance& m, const std::vector<std::vector<S>>& dofs) {
   std::vector<SecondOrder<S>> second(m.bodies.size());
   for (std::size_t b = 0; b < m.bodies.size(); ++b)
-    if (m.bodies[b].beam) second[b] = second_order(*m.bodies[b].beam, dofs[b]);
+    if (m.bodies[b].elastic) second[b] = second_order(*m.bodies[b].elastic, dofs[b]);
   return second;
 }
 
@@ -78,7 +78,7 @@ std::vector<Pose<S>> body_poses(const Instance& m, const S* q, const std::vector
     const JointData& j = m.joints[m.bodies[b].joint];
     Pose<S> parent = j.parent < 0 ? ground : poses[j.parent];
     if (j.parent_node >= 0) {
-      const FlexibleData& beam = *m.bodies[j.parent].beam;
+      const FlexibleData& beam = *m.bodies[j.parent].elastic;
       parent.origin =
           add(parent.origin,
               mul(parent.rotation, displaced_node(beam, dofs[j.parent], second[j.parent], j.parent_node)));

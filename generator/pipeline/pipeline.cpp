@@ -101,7 +101,8 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
   std::vector<int> elastic_counts(model.bodies.size(), 0);
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     if (!model.bodies[b].flexible) continue;
-    fem::ModelBeam beam = fem::build_model_beam(model.bodies[b], model.source_file, symbolic::sample_shape);
+    fem::ElasticModel beam =
+        fem::build_elastic_model(model.bodies[b], model.source_file, symbolic::sample_shape);
     elastic_counts[b] = static_cast<int>(beam.reduced.names.size());
     flexible.emplace(static_cast<int>(b), std::move(beam));
   }

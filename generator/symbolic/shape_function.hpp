@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // The generator's reading of assumed-mode shape functions (model
-// FlexibleBeam::assumed_modes): GiNaC parses the text and differentiates it
+// ElasticPart::assumed_modes): GiNaC parses the text and differentiates it
 // exactly. It is the fem::ShapeSampler the pipeline hands to
-// fem::build_model_beam; the finite-element layer itself has no GiNaC.
+// fem::build_elastic_model; the finite-element layer itself has no GiNaC.
 #pragma once
 
 #include <map>

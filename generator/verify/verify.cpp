@@ -134,8 +134,8 @@ Link link_runner(const model::Model& model, const numeric::Instance& instance, c
 std::vector<double> elastic_scales(const numeric::Instance& instance) {
   std::vector<double> scale(instance.coordinates(), 0.0);
   for (const numeric::BodyData& b : instance.bodies) {
-    if (!b.beam) continue;
-    const numeric::FlexibleData& f = *b.beam;
+    if (!b.elastic) continue;
+    const numeric::FlexibleData& f = *b.elastic;
     double length = 0;
     for (const numeric::BeamElementData& e : f.elements) length += e.length;
     // A mesh body: the diagonal of its box.
@@ -622,14 +622,14 @@ Row defaults_row(const model::Model& model, const numeric::Instance& defaults, c
   // model file's values by name, else 0.
   std::vector<double> elastic_q(defaults.coordinates(), 0.0), elastic_u(defaults.coordinates(), 0.0);
   for (const numeric::BodyData& body : defaults.bodies) {
-    if (!body.beam) continue;
+    if (!body.elastic) continue;
     const auto in_model = std::find_if(model.bodies.begin(), model.bodies.end(),
                                        [&](const model::Body& b) { return b.name == body.name; });
-    for (int k = 0; k < body.beam->count(); ++k) {
-      const std::string& name = body.beam->names[k];
-      const auto q = in_model->beam.initial_q.find(name), u = in_model->beam.initial_u.find(name);
-      if (q != in_model->beam.initial_q.end()) elastic_q[body.elastic_first + k] = q->second;
-      if (u != in_model->beam.initial_u.end()) elastic_u[body.elastic_first + k] = u->second;
+    for (int k = 0; k < body.elastic->count(); ++k) {
+      const std::string& name = body.elastic->names[k];
+      const auto q = in_model->elastic.initial_q.find(name), u = in_model->elastic.initial_u.find(name);
+      if (q != in_model->elastic.initial_q.end()) elastic_q[body.elastic_first + k] = q->second;
+      if (u != in_model->elastic.initial_u.end()) elastic_u[body.elastic_first + k] = u->second;
     }
   }
   for (int r = 0; r < defaults.coordinates(); ++r) {

@@ -125,7 +125,7 @@ class PointCheck {
       magnitude[i] = std::abs(y[i]);
       const numeric::OutputData& o = p_.instance->outputs[p_.instance->output_columns[i].output];
       if (o.kind != model::OutputKind::node_displacement) continue;
-      const numeric::Vec<double>& node = numeric::rest_node(*p_.instance->bodies[o.body].beam, o.node);
+      const numeric::Vec<double>& node = numeric::rest_node(*p_.instance->bodies[o.body].elastic, o.node);
       magnitude[i] += std::sqrt(node[0] * node[0] + node[1] * node[1] + node[2] * node[2]);
     }
     return magnitude;

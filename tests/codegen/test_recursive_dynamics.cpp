@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "codegen/expression_graph.hpp"
-#include "fem/model_beam.hpp"
+#include "fem/elastic_model.hpp"
 #include "kane/equations.hpp"
 #include "model/load.hpp"
 #include "symbolic/program.hpp"
@@ -170,8 +170,8 @@ Comparison compare(const std::string& path, std::mt19937& rng, double elastic_sc
   std::vector<int> elastic_counts(model.bodies.size(), 0);
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     if (!model.bodies[b].flexible) continue;
-    kanegen::fem::ModelBeam beam =
-        kanegen::fem::build_model_beam(model.bodies[b], path, kanegen::symbolic::sample_shape);
+    kanegen::fem::ElasticModel beam =
+        kanegen::fem::build_elastic_model(model.bodies[b], path, kanegen::symbolic::sample_shape);
     elastic_counts[b] = static_cast<int>(beam.reduced.names.size());
     flexible.emplace(static_cast<int>(b), std::move(beam));
   }

@@ -28,8 +28,8 @@ void parabola(const std::string& text, const std::map<std::string, double>& para
   }
 }
 
-kanegen::model::FlexibleBeam one_mode() {
-  kanegen::model::FlexibleBeam beam;
+kanegen::model::ElasticPart one_mode() {
+  kanegen::model::ElasticPart beam;
   kanegen::model::AssumedMode mode;
   mode.v = "x^2/L";
   mode.where = "/bodies/0/flexible/assumed_modes/0";

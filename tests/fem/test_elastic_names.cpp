@@ -4,7 +4,7 @@
 // the names must be the ones the reduced body gives them.
 #include <catch2/catch.hpp>
 
-#include "fem/model_beam.hpp"
+#include "fem/elastic_model.hpp"
 #include "model/elastic_coordinates.hpp"
 
 namespace {
@@ -14,7 +14,7 @@ kanegen::model::Body beam_body(kanegen::model::BeamFormulation formulation,
   kanegen::model::Body b;
   b.name = "beam";
   b.flexible = true;
-  kanegen::model::FlexibleBeam& f = b.beam;
+  kanegen::model::ElasticPart& f = b.elastic;
   f.formulation = formulation;
   f.segments.push_back({{0.8, 0.0, 0.0}, 4, ""});
   f.A = 1e-4;
@@ -42,12 +42,12 @@ TEST_CASE("elastic coordinate names: the model layer's agree with the reduced bo
         const kanegen::model::Body body = beam_body(formulation, support, modes);
         INFO("spatial " << (formulation == BeamFormulation::spatial) << ", pinned "
                         << (support == BeamSupport::pinned_pinned) << ", modes " << modes);
-        const kanegen::fem::ModelBeam built = kanegen::fem::build_model_beam(body, "", unused_sampler);
-        CHECK(kanegen::model::elastic_coordinate_names(body.beam) == built.reduced.names);
+        const kanegen::fem::ElasticModel built = kanegen::fem::build_elastic_model(body, "", unused_sampler);
+        CHECK(kanegen::model::elastic_coordinate_names(body.elastic) == built.reduced.names);
       }
   // Spot checks of the rule itself (docs/model-format.md).
   const auto planar_pinned = beam_body(BeamFormulation::planar, BeamSupport::pinned_pinned, 0);
-  const std::vector<std::string> names = kanegen::model::elastic_coordinate_names(planar_pinned.beam);
+  const std::vector<std::string> names = kanegen::model::elastic_coordinate_names(planar_pinned.elastic);
   REQUIRE(names.size() == 3 * 5 - 3);
   CHECK(names.front() == "n0.theta_z");
   CHECK(names[1] == "n1.u");

@@ -12,7 +12,7 @@
 #include <sstream>
 #include <string>
 
-#include "fem/model_beam.hpp"
+#include "fem/elastic_model.hpp"
 #include "model/load.hpp"
 #include "model_text.hpp"
 
@@ -55,14 +55,16 @@ const fem::ShapeSampler kNoShapes = [](const std::string&, const std::map<std::s
 
 TEST_CASE("a clamped CPS8 bar from a model file has the beam's first frequencies within 2 %", "[mesh_body]") {
   const model::Model mesh_model = load_with(mesh_json(R"(, "clamped_set": "ROOT")"));
-  const fem::ModelBeam mesh = fem::build_model_beam(mesh_model.bodies[0], mesh_model.source_file, kNoShapes);
+  const fem::ElasticModel mesh =
+      fem::build_elastic_model(mesh_model.bodies[0], mesh_model.source_file, kNoShapes);
 
   const double A = kThickness * kHeight, Iz = kThickness * std::pow(kHeight, 3) / 12;
   const model::Model beam_model = load_with(R"({"length": 0.4, "elements": 40, "section": {"A": )" +
                                             number(A) + R"(, "Iz": )" + number(Iz) +
                                             R"(}, "material": {"E": 2.1e11, "poisson": 0.3, "density": 7800},
                                               "modes": 3})");
-  const fem::ModelBeam beam = fem::build_model_beam(beam_model.bodies[0], beam_model.source_file, kNoShapes);
+  const fem::ElasticModel beam =
+      fem::build_elastic_model(beam_model.bodies[0], beam_model.source_file, kNoShapes);
 
   REQUIRE(mesh.reduced.omega.size() == 3);
   REQUIRE(beam.reduced.omega.size() == 3);
@@ -82,7 +84,7 @@ TEST_CASE("a clamped CPS8 bar from a model file has the beam's first frequencies
 
 TEST_CASE("a free-free mesh body keeps its elastic modes, not the rigid motions", "[mesh_body]") {
   const model::Model m = load_with(mesh_json("", R"(, "support": "free")"));
-  const fem::ModelBeam free = fem::build_model_beam(m.bodies[0], m.source_file, kNoShapes);
+  const fem::ElasticModel free = fem::build_elastic_model(m.bodies[0], m.source_file, kNoShapes);
   REQUIRE(free.reduced.omega.size() == 3);
   // Free-free bending: (4.730041 / 1.875104)^2 = 6.3627 times the clamped first frequency.
   const double A = kThickness * kHeight, Iz = kThickness * std::pow(kHeight, 3) / 12;
@@ -94,7 +96,7 @@ TEST_CASE("bad mesh references in a model give errors naming the place and the f
   SECTION("a clamped node set the mesh does not have") {
     const model::Model m = load_with(mesh_json(R"(, "clamped_set": "RUT")"));
     try {
-      fem::build_model_beam(m.bodies[0], m.source_file, kNoShapes);
+      fem::build_elastic_model(m.bodies[0], m.source_file, kNoShapes);
       FAIL("no error");
     } catch (const model::ModelError& e) {
       const std::string what = e.what();
@@ -107,14 +109,14 @@ TEST_CASE("bad mesh references in a model give errors naming the place and the f
   SECTION("a mesh file that does not exist") {
     const model::Model m = load_with(R"({"mesh": {"file": "no_such.inp", "clamped_set": "ROOT"},
       "material": {"E": 1e9, "poisson": 0.3, "density": 1000}, "modes": 2})");
-    CHECK_THROWS_WITH(fem::build_model_beam(m.bodies[0], m.source_file, kNoShapes),
+    CHECK_THROWS_WITH(fem::build_elastic_model(m.bodies[0], m.source_file, kNoShapes),
                       Catch::Contains("/bodies/0/flexible/mesh/file") && Catch::Contains("no_such.inp"));
   }
   SECTION("an element set the mesh does not have") {
     const model::Model m = load_with(mesh_json(R"(, "clamped_set": "ROOT")"));
     model::Body body = m.bodies[0];
-    body.beam.mesh.element_set = "BRA";
-    CHECK_THROWS_WITH(fem::build_model_beam(body, m.source_file, kNoShapes),
+    body.elastic.mesh.element_set = "BRA";
+    CHECK_THROWS_WITH(fem::build_elastic_model(body, m.source_file, kNoShapes),
                       Catch::Contains("/bodies/0/flexible/mesh/element_set") && Catch::Contains("BAR"));
   }
   SECTION("the model file's own rules") {
@@ -136,7 +138,8 @@ TEST_CASE("a joint on a node set moves with the set's averaged motion, as the be
   const model::Model mesh_model =
       load_with(mesh_json(R"(, "clamped_set": "ROOT")"), R"(, "parent_node_set": "TIP")");
   REQUIRE(mesh_model.joints[1].parent_node == 0);
-  const fem::ModelBeam mesh = fem::build_model_beam(mesh_model.bodies[0], mesh_model.source_file, kNoShapes);
+  const fem::ElasticModel mesh =
+      fem::build_elastic_model(mesh_model.bodies[0], mesh_model.source_file, kNoShapes);
   REQUIRE(mesh.interfaces.size() == 1);
   CHECK((mesh.point_position(0) - Eigen::Vector3d(kLength, 0, 0)).norm() < 1e-12);
 
@@ -144,10 +147,11 @@ TEST_CASE("a joint on a node set moves with the set's averaged motion, as the be
   const model::Model beam_model =
       load_with(R"({"length": 0.4, "elements": 40, "section": {"A": )" + number(A) + R"(, "Iz": )" +
                 number(Iz) + R"(}, "material": {"E": 2.1e11, "density": 7800}, "modes": 3})");
-  const fem::ModelBeam beam = fem::build_model_beam(beam_model.bodies[0], beam_model.source_file, kNoShapes);
+  const fem::ElasticModel beam =
+      fem::build_elastic_model(beam_model.bodies[0], beam_model.source_file, kNoShapes);
   const int tip = beam.body.num_nodes() - 1;
   // The first mode's tip slope over its tip deflection, L phi'(L) / phi(L) = 1.3765 for the cantilever.
-  for (const fem::ModelBeam* b : {&mesh, &beam}) {
+  for (const fem::ElasticModel* b : {&mesh, &beam}) {
     const int node = b == &mesh ? 0 : tip;
     const double ratio = kLength * b->point_rotation(node)(2, 0) / b->point_translation(node)(1, 0);
     INFO((b == &mesh ? "mesh" : "beam") << ": L theta_z / v at the tip = " << ratio);
@@ -161,7 +165,7 @@ TEST_CASE("a joint on a node set the mesh does not have: the joint's place and t
           "[mesh_body]") {
   const model::Model m = load_with(mesh_json(R"(, "clamped_set": "ROOT")"), R"(, "parent_node_set": "TOP")");
   CHECK_THROWS_WITH(
-      fem::build_model_beam(m.bodies[0], m.source_file, kNoShapes),
+      fem::build_elastic_model(m.bodies[0], m.source_file, kNoShapes),
       Catch::Contains("/joints/1/parent_node_set") && Catch::Contains("TOP") && Catch::Contains("ROOT, TIP"));
   CHECK_THROWS_WITH(load_with(R"({"length": 0.4, "elements": 4, "section": {"A": 1e-4, "Iz": 1e-9},
       "material": {"E": 2.1e11, "density": 7800}})",
@@ -174,7 +178,7 @@ TEST_CASE(
     "[mesh_body]") {
   const model::Model m = load_with(mesh_json(R"(, "clamped_set": "ROOT", "reduction": "craig-bampton")"),
                                    R"(, "parent_node_set": "TIP")");
-  const fem::ModelBeam cb = fem::build_model_beam(m.bodies[0], m.source_file, kNoShapes);
+  const fem::ElasticModel cb = fem::build_elastic_model(m.bodies[0], m.source_file, kNoShapes);
   REQUIRE(cb.reduced.names.size() == 6);  // u_x, u_y, theta_z of TIP, then 3 fixed-interface modes
   // Each constraint mode moves the interface point by one rigid motion alone, scaled so that the
   // mode has unit modal mass (as the fixed-interface modes).
@@ -196,8 +200,8 @@ TEST_CASE(
   CHECK(flexibility(0, 0) == Approx(kLength / (kE * A)).epsilon(0.02));
 
   const model::Model modal_model = load_with(mesh_json(R"(, "clamped_set": "ROOT")"));
-  const fem::ModelBeam modal =
-      fem::build_model_beam(modal_model.bodies[0], modal_model.source_file, kNoShapes);
+  const fem::ElasticModel modal =
+      fem::build_elastic_model(modal_model.bodies[0], modal_model.source_file, kNoShapes);
   const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(cb.reduced.stiffness, cb.reduced.mass);
   CHECK(std::sqrt(eig.eigenvalues()(0)) == Approx(modal.reduced.omega(0)).epsilon(1e-3));
   CHECK(std::sqrt(eig.eigenvalues()(1)) == Approx(modal.reduced.omega(1)).epsilon(1e-2));
@@ -213,13 +217,15 @@ TEST_CASE("geometric stiffening: a slender CPS8 bar's second-order field is the 
           "[mesh_body][mesh_foreshortening]") {
   const model::Model mesh_model =
       load_with(mesh_json(R"(, "clamped_set": "ROOT")"), R"(, "parent_node_set": "TIP")");
-  REQUIRE(mesh_model.bodies[0].beam.geometric_stiffening);  // the default for a clamped mesh body
-  const fem::ModelBeam mesh = fem::build_model_beam(mesh_model.bodies[0], mesh_model.source_file, kNoShapes);
+  REQUIRE(mesh_model.bodies[0].elastic.geometric_stiffening);  // the default for a clamped mesh body
+  const fem::ElasticModel mesh =
+      fem::build_elastic_model(mesh_model.bodies[0], mesh_model.source_file, kNoShapes);
   const double A = kThickness * kHeight, Iz = kThickness * std::pow(kHeight, 3) / 12;
   const model::Model beam_model =
       load_with(R"({"length": 0.4, "elements": 40, "section": {"A": )" + number(A) + R"(, "Iz": )" +
                 number(Iz) + R"(}, "material": {"E": 2.1e11, "density": 7800}, "modes": 3})");
-  const fem::ModelBeam beam = fem::build_model_beam(beam_model.bodies[0], beam_model.source_file, kNoShapes);
+  const fem::ElasticModel beam =
+      fem::build_elastic_model(beam_model.bodies[0], beam_model.source_file, kNoShapes);
   REQUIRE(mesh.foreshortening);
   REQUIRE(beam.foreshortening);
   REQUIRE(mesh.second_order.cols() == 6);
@@ -248,12 +254,12 @@ TEST_CASE("geometric stiffening: a slender CPS8 bar's second-order field is the 
 
 TEST_CASE("geometric stiffening of a free mesh body: off by default, refused when asked for", "[mesh_body]") {
   const model::Model free = load_with(mesh_json("", R"(, "support": "free")"));
-  CHECK_FALSE(free.bodies[0].beam.geometric_stiffening);
-  CHECK_FALSE(fem::build_model_beam(free.bodies[0], free.source_file, kNoShapes).foreshortening);
+  CHECK_FALSE(free.bodies[0].elastic.geometric_stiffening);
+  CHECK_FALSE(fem::build_elastic_model(free.bodies[0], free.source_file, kNoShapes).foreshortening);
   CHECK_THROWS_WITH(load_with(mesh_json("", R"(, "support": "free", "geometric_stiffening": true)")),
                     Catch::Contains("/bodies/0/flexible/geometric_stiffening") &&
                         Catch::Contains("free mesh body") && Catch::Contains("\"clamped_set\""));
   const model::Model off =
       load_with(mesh_json(R"(, "clamped_set": "ROOT")", R"(, "geometric_stiffening": false)"));
-  CHECK_FALSE(fem::build_model_beam(off.bodies[0], off.source_file, kNoShapes).foreshortening);
+  CHECK_FALSE(fem::build_elastic_model(off.bodies[0], off.source_file, kNoShapes).foreshortening);
 }

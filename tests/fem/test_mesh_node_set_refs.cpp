@@ -11,7 +11,7 @@
 #include <fstream>
 #include <string>
 
-#include "fem/model_beam.hpp"
+#include "fem/elastic_model.hpp"
 #include "model/load.hpp"
 #include "model_text.hpp"
 
@@ -65,8 +65,8 @@ model::Model load_bar(const std::string& loops, const std::string& forces, const
       "mesh_node_set_refs");
 }
 
-fem::ModelBeam bar_of(const model::Model& m) {
-  return fem::build_model_beam(m.bodies[1], m.source_file, kNoShapes);
+fem::ElasticModel bar_of(const model::Model& m) {
+  return fem::build_elastic_model(m.bodies[1], m.source_file, kNoShapes);
 }
 
 const std::string kTipLoop =
@@ -81,15 +81,15 @@ TEST_CASE("a node set named by a loop, a force and an output is one interface of
       load_bar(kTipLoop, R"([{"name": "load", "body": "bar", "node_set": "TIP", "force": [0, -1, 0]},
                              {"name": "mid", "body": "bar", "node_set": "BAR", "force": [1, 0, 0]}])",
                R"([{"name": "tip", "type": "node_displacement", "body": "bar", "node_set": "TIP"}])");
-  REQUIRE(m.bodies[1].beam.mesh.interfaces.size() == 2);
-  CHECK(m.bodies[1].beam.mesh.interfaces[0].node_set == "TIP");
-  CHECK(m.bodies[1].beam.mesh.interfaces[0].where == "/forces/0/node_set");  // forces come before loops
-  CHECK(m.bodies[1].beam.mesh.interfaces[0].rotation_where.empty());  // a planar hinge needs no rotation
+  REQUIRE(m.bodies[1].elastic.mesh.interfaces.size() == 2);
+  CHECK(m.bodies[1].elastic.mesh.interfaces[0].node_set == "TIP");
+  CHECK(m.bodies[1].elastic.mesh.interfaces[0].where == "/forces/0/node_set");  // forces come before loops
+  CHECK(m.bodies[1].elastic.mesh.interfaces[0].rotation_where.empty());  // a planar hinge needs no rotation
   CHECK(m.loops[0].node2 == 0);
   CHECK(m.forces[0].node == 0);
   CHECK(m.forces[1].node == 1);
   CHECK(m.outputs[0].node == 0);
-  const fem::ModelBeam bar = bar_of(m);
+  const fem::ElasticModel bar = bar_of(m);
   REQUIRE(bar.interfaces.size() == 2);
   CHECK((bar.point_position(0) - Eigen::Vector3d(0.4, 0, 0)).norm() < 1e-12);  // the tip edge's centroid
   CHECK((bar.point_position(1) - Eigen::Vector3d(0.2, 0, 0)).norm() < 1e-12);  // the whole bar's
@@ -102,7 +102,7 @@ TEST_CASE("Craig-Bampton keeps a node set that only a loop or a force names as a
   const model::Model by_force =
       load_bar("[]", R"([{"name": "load", "body": "bar", "node_set": "TIP", "force": [0, -1, 0]}])", "[]",
                "craig-bampton");
-  const fem::ModelBeam bar = bar_of(by_force);
+  const fem::ElasticModel bar = bar_of(by_force);
   REQUIRE(bar.reduced.names.size() == 5);
   // The constraint modes move the interface rigidly, each by one motion alone (scaled to unit modal
   // mass): statics there are exact. The second is its u_y.
@@ -116,7 +116,7 @@ TEST_CASE("a one-node set serves a force, an output and a point joint, not a rot
   const model::Model m =
       load_bar("[]", R"([{"name": "load", "body": "bar", "node_set": "CORNER", "force": [0, -1, 0]}])",
                R"([{"name": "corner", "type": "node_displacement", "body": "bar", "node_set": "CORNER"}])");
-  const fem::ModelBeam bar = bar_of(m);
+  const fem::ElasticModel bar = bar_of(m);
   CHECK((bar.point_position(0) - Eigen::Vector3d(0.4, -0.005, 0)).norm() < 1e-12);
   CHECK(bar.point_rotation(0).norm() == 0.0);  // undetermined, and used by nothing
 
@@ -200,11 +200,11 @@ TEST_CASE("a solid's node set on a line has no rotation: refused where a loop tu
   };
   const model::Model hinge = load(
       R"({"name": "h", "type": "revolute", "body": "block", "body2": "bar", "node_set2": "TIPEDGE", "axis": [0, 0, 1]})");
-  CHECK_THROWS_WITH(fem::build_model_beam(hinge.bodies[0], hinge.source_file, kNoShapes),
+  CHECK_THROWS_WITH(fem::build_elastic_model(hinge.bodies[0], hinge.source_file, kNoShapes),
                     Catch::Contains("/loops/0/node_set2") && Catch::Contains("lie on a line") &&
                         Catch::Contains("not all on one line"));
   const model::Model ball = load(
       R"({"name": "b", "type": "spherical", "body": "block", "body2": "bar", "node_set2": "TIPCORNER"})");
-  const fem::ModelBeam bar = fem::build_model_beam(ball.bodies[0], ball.source_file, kNoShapes);
+  const fem::ElasticModel bar = fem::build_elastic_model(ball.bodies[0], ball.source_file, kNoShapes);
   CHECK((bar.point_position(0) - Eigen::Vector3d(0.2, -0.01, -0.01)).norm() < 1e-12);
 }

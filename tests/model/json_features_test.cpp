@@ -58,10 +58,10 @@ TEST_CASE("JSON defaults and optional features", "[json]") {
 TEST_CASE("initial values of elastic coordinates are read by name, the others start at 0",
           "[json][flexible]") {
   const Model m = load_model(test_data("elastic_initial.json"));
-  const FlexibleBeam& rod = m.bodies[0].beam;  // nodal, pinned-pinned
+  const ElasticPart& rod = m.bodies[0].elastic;  // nodal, pinned-pinned
   CHECK(rod.initial_q == std::map<std::string, double>{{"n1.v", 0.002}, {"n2.u", -1e-5}});
   CHECK(rod.initial_u == std::map<std::string, double>{{"n0.theta_z", 0.25}});
-  const FlexibleBeam& arm = m.bodies[1].beam;  // modal
+  const ElasticPart& arm = m.bodies[1].elastic;  // modal
   CHECK(arm.initial_q.empty());
   CHECK(arm.initial_u == std::map<std::string, double>{{"mode3", -0.5}});
 }

@@ -46,7 +46,7 @@ TEST_CASE("each output kind expands into its named columns", "[output_columns]")
   planar.flexible = true;
   spatial.name = "shaft";
   spatial.flexible = true;
-  spatial.beam.formulation = BeamFormulation::spatial;
+  spatial.elastic.formulation = BeamFormulation::spatial;
   m.bodies = {planar, spatial};
   m.loops = {loop("hinge", LoopType::revolute, true)};
   m.outputs = {output("tip", OutputKind::point_position, "strip"),

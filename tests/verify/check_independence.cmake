@@ -2,9 +2,9 @@
 # The numeric derivation must share no code with the symbolic one: no GiNaC
 # and no include of the symbolic stages. One exception, a choice of
 # coordinates rather than a derivation (docs/verify.md): numeric/instance.cpp
-# may include fem/model_beam.hpp, and use from it only the basis of the
+# may include fem/elastic_model.hpp, and use from it only the basis of the
 # elastic coordinates and, for a mesh body with geometric stiffening, the
-# second-order fields that go with it (the result of fem::build_model_beam,
+# second-order fields that go with it (the result of fem::build_elastic_model,
 # named `built`: built.reduced.basis and built.second_order); and, for a
 # mesh body, fem/model_mesh.hpp for the mesh file as read (nodes, elements
 # with their CalculiX type name, fem::ccx_type_name, node sets: a file format) and the order of the body's nodes and elements
@@ -43,7 +43,7 @@ foreach(file ${files})
   # Every use of the finite-element layer is the basis and nothing else.
   file(READ ${file} text)
   string(REGEX MATCHALL "fem::[A-Za-z_]+" uses "${text}")
-  string(REGEX MATCHALL "fem::build_model_beam\\([^;]*\\)" allowed "${text}")
+  string(REGEX MATCHALL "fem::build_elastic_model\\([^;]*\\)" allowed "${text}")
   string(REGEX MATCHALL "fem::(read_model_mesh|build_model_mesh_body|InpMesh|MeshBody|MeshElement|ContinuumFamily|ccx_type_name)[^A-Za-z_]"
                mesh_input "${text}")
   # The mesh body built by the layer (named `layout`) gives its order only.
@@ -58,7 +58,7 @@ foreach(file ${files})
   math(EXPR allowed_count "${allowed_count} + ${mesh_count}")
   if(NOT used EQUAL allowed_count OR (used GREATER 0 AND NOT name STREQUAL "instance.cpp"))
     message(FATAL_ERROR "${file}: uses ${uses} of the finite-element layer; the numeric path may take only "
-                        "fem::build_model_beam(...)'s reduced.basis and second_order and a mesh body's file and node order "
+                        "fem::build_elastic_model(...)'s reduced.basis and second_order and a mesh body's file and node order "
                         "(in instance.cpp)")
   endif()
 endforeach()

@@ -10,7 +10,7 @@
 #include <cmath>
 #include <random>
 
-#include "fem/model_beam.hpp"
+#include "fem/elastic_model.hpp"
 #include "fem/rotating.hpp"
 #include "model/expression_eval.hpp"
 #include "model/load.hpp"
@@ -47,13 +47,13 @@ Model cantilever(int elements, bool spin = false, std::array<double, 3> axis = {
   b.com = {Scalar::number(0), Scalar::number(0), Scalar::number(0)};
   for (Scalar& i : b.inertia) i = Scalar::number(0);
   b.flexible = true;
-  b.beam.segments.push_back({{L, 0, 0}, elements, ""});
-  b.beam.A = A;
-  b.beam.Iz = Iz;
-  b.beam.E = E;
-  b.beam.density = rho;
-  b.beam.geometric_stiffening = stiffening;
-  b.beam.modes = modes;
+  b.elastic.segments.push_back({{L, 0, 0}, elements, ""});
+  b.elastic.A = A;
+  b.elastic.Iz = Iz;
+  b.elastic.E = E;
+  b.elastic.density = rho;
+  b.elastic.geometric_stiffening = stiffening;
+  b.elastic.modes = modes;
   m.bodies.push_back(b);
   kanegen::model::Joint j;
   j.name = "hub";
@@ -125,8 +125,8 @@ TEST_CASE(
   const int n = instance.coordinates();
   REQUIRE(n == 4);
   const double omega = 3.0;
-  const kanegen::fem::ModelBeam beam =
-      kanegen::fem::build_model_beam(model.bodies[0], "", kanegen::numeric::sample_shape);
+  const kanegen::fem::ElasticModel beam =
+      kanegen::fem::build_elastic_model(model.bodies[0], "", kanegen::numeric::sample_shape);
   const Eigen::MatrixXd kl = beam.reduced.geometric->linear;  // K_G for a = x, in the modes
   // f(eta) - f(0) at u = (Omega, 0...): -K eta - Omega^2 Kl eta + the centrifugal force on N eta.
   std::mt19937 rng(5);
@@ -158,8 +158,8 @@ TEST_CASE("nodal beam under tension: the nonlinear axial strain gives the FEM la
   const auto instance = kanegen::numeric::instantiate(model, {});
   const int n = instance.coordinates();
   REQUIRE(n == 12);
-  const kanegen::fem::ModelBeam beam =
-      kanegen::fem::build_model_beam(model.bodies[0], "", kanegen::numeric::sample_shape);
+  const kanegen::fem::ElasticModel beam =
+      kanegen::fem::build_elastic_model(model.bodies[0], "", kanegen::numeric::sample_shape);
   const Eigen::MatrixXd& B = beam.reduced.basis;
   const int tip = beam.body.num_nodes() - 1;
   const Eigen::MatrixXd k_tip =

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-// A flexible body of the model (model::FlexibleBeam) as the finite-element
-// layer's reduced body: nodes along the segments, beam elements, the tip
-// mass, the support, nodal or modal coordinates or assumed modes, and the
-// damping matrix.
-// This is the bridge from the plain model data to the generator.
+// The elastic part of a flexible body of the model (model::ElasticPart) as
+// the finite-element layer's reduced body: for a beam, nodes along the
+// segments, beam elements, the tip mass, the support, nodal or modal
+// coordinates or assumed modes; for a mesh, the body fem/model_mesh.* builds;
+// and the damping matrix. This is the bridge from the plain model data to
+// the generator (and to the numeric path's basis).
 #pragma once
 
 #include <Eigen/Dense>
@@ -30,7 +31,8 @@ struct InterfacePoint {
   Eigen::MatrixXd rotation;     ///< 3 x n: small rotation
 };
 
-struct ModelBeam {
+/// A flexible body's elastic part, built and reduced (beam or mesh).
+struct ElasticModel {
   Body body;                ///< all nodal dofs, link frame
   ReducedBody reduced;      ///< the elastic coordinates eta: u = basis eta
   Eigen::MatrixXd damping;  ///< n x n: alpha M + beta K, or 2 zeta omega_i in modal coordinates
@@ -71,11 +73,12 @@ struct ModelBeam {
 /// The damping matrix of the reduced body: 2 zeta omega_k m_kk on the
 /// diagonal with modal damping (`modal`: the body's coordinates are modes),
 /// else alpha M + beta K.
-Eigen::MatrixXd reduced_damping(const model::FlexibleBeam& f, const ReducedBody& reduced, bool modal);
+Eigen::MatrixXd reduced_damping(const model::ElasticPart& f, const ReducedBody& reduced, bool modal);
 
 /// Builds the body; throws model::ModelError (naming the body's place) when
 /// the beam cannot be built. `shapes` samples the assumed modes, if any
 /// (fem/assumed_modes.hpp: each derivation brings its own).
-ModelBeam build_model_beam(const model::Body& body, const std::string& file, const ShapeSampler& shapes);
+ElasticModel build_elastic_model(const model::Body& body, const std::string& file,
+                                 const ShapeSampler& shapes);
 
 }  // namespace kanegen::fem

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-#include "fem/model_beam.hpp"
+#include "fem/elastic_model.hpp"
 
 #include "fem/assumed_modes.hpp"
 #include "fem/beam_body.hpp"
@@ -9,7 +9,7 @@
 
 namespace kanegen::fem {
 
-Eigen::MatrixXd reduced_damping(const model::FlexibleBeam& f, const ReducedBody& reduced, bool modal) {
+Eigen::MatrixXd reduced_damping(const model::ElasticPart& f, const ReducedBody& reduced, bool modal) {
   if (!(modal && f.modal_damping > 0))
     return f.rayleigh_alpha * reduced.mass + f.rayleigh_beta * reduced.stiffness;
   const int n = static_cast<int>(reduced.names.size());
@@ -18,9 +18,10 @@ Eigen::MatrixXd reduced_damping(const model::FlexibleBeam& f, const ReducedBody&
   return damping;
 }
 
-ModelBeam build_model_beam(const model::Body& body, const std::string& file, const ShapeSampler& shapes) {
-  if (body.beam.mesh.present()) return build_model_mesh(body, file);
-  const model::FlexibleBeam& f = body.beam;
+ElasticModel build_elastic_model(const model::Body& body, const std::string& file,
+                                 const ShapeSampler& shapes) {
+  if (body.elastic.mesh.present()) return build_model_mesh(body, file);
+  const model::ElasticPart& f = body.elastic;
   const bool planar = f.formulation == model::BeamFormulation::planar;
   BeamProperties properties;
   properties.kind = planar ? BeamKind::kPlanar : BeamKind::kSpatial;
@@ -30,16 +31,16 @@ ModelBeam build_model_beam(const model::Body& body, const std::string& file, con
   properties.section.J = planar ? 0.0 : f.J;
   properties.material = {f.E, f.G, f.density};
 
-  ModelBeam out{Body(planar ? planar_layout() : spatial_layout()),
-                {},
-                {},
-                properties.section,
-                properties.material,
-                {},
-                std::nullopt,
-                {},
-                false,
-                {}};
+  ElasticModel out{Body(planar ? planar_layout() : spatial_layout()),
+                   {},
+                   {},
+                   properties.section,
+                   properties.material,
+                   {},
+                   std::nullopt,
+                   {},
+                   false,
+                   {}};
   int last = out.body.add_node(Eigen::Vector3d::Zero());
   for (const model::BeamSegment& s : f.segments)
     last = add_beam_run(out.body, last, Eigen::Vector3d(s.to[0], s.to[1], s.to[2]), s.elements, properties);
