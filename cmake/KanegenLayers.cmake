@@ -163,5 +163,8 @@ function(kanegen_enforce_layers)
   kanegen_layer(kanegen_model FORBID kanegen_fem kanegen_numeric ${above_numeric})
   kanegen_layer(kanegen_fem FORBID kanegen_numeric ${above_numeric})
   kanegen_layer(kanegen_numeric FORBID ${above_numeric})
+  if(TARGET kanegen_animate)  # the scratch projects of tests/layers have no such layer
+    kanegen_layer(kanegen_animate FORBID ${above_numeric})
+  endif()
   kanegen_check_layers()
 endfunction()

@@ -12,6 +12,7 @@ packages=(
   libclang-rt-dev llvm
   gnuplot-nox
   gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
+  python3-vtk9
 )
 # libsundials-dev: CVODE, the runtime's adaptive implicit integrator
 # (--integrator implicit); libomp-dev: clang's OpenMP, which SUNDIALS's CMake
@@ -25,7 +26,9 @@ packages=(
 # examples/embedded and its run under QEMU (test embedded_arm7_cortex_m4,
 # skipped without them; docs/embedded.md). They add about 920 MB installed
 # (the compiler 436 MB, newlib 369 MB for every ARM multilib, QEMU 51 MB),
-# 97 MB downloaded; 90 s to install here.
+# 97 MB downloaded; 90 s to install here. python3-vtk9: VTK's Python
+# bindings, with which tests/animate reads back what `kanegen animate`
+# writes (VTK's own reader, not ours); 47 MB installed, with its libraries.
 if [ "$(id -u)" -ne 0 ]; then
   echo "install-deps.sh: run as root (apt-get needs it), e.g. sudo bash scripts/install-deps.sh" >&2
   exit 1

@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "animate/animate.hpp"
 #include "cli/modes.hpp"
 #include "cli/plot.hpp"
 #include "cli/preflight.hpp"
@@ -510,6 +511,48 @@ int run_plot(PlotCommand& c) {
   return kanegen::cli::plot(c.options);
 }
 
+struct AnimateCommand {
+  CLI::App* command = nullptr;
+  kanegen::animate::AnimateOptions options;
+  bool quiet = false;
+  std::string format = "vtk";
+};
+
+void add_animate(CLI::App& app, AnimateCommand& c) {
+  c.command =
+      app.add_subcommand("animate", "draw a simulation's bodies frame by frame as a ParaView time series");
+  kanegen::animate::AnimateOptions& o = c.options;
+  c.command->add_option("RESULT", o.result, "a CSV written by kanegen simulate")
+      ->required()
+      ->check(CLI::ExistingFile);
+  c.command->add_option("MODEL", o.model, "the model of the run (.json or .urdf)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  c.command->add_option("-o,--output", o.output_dir, "the directory for MODEL.pvd and its frames")
+      ->required()
+      ->type_name("DIR");
+  c.command->add_option("--format", c.format, "vtk: a .pvd collection of .vtu files (ParaView)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"vtk"}));
+  c.command->add_option("--scale", o.scale, "magnification of the elastic displacements drawn")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e12));
+  c.command->add_option("--frames", o.frames, "at most this many frames, spread evenly over the run")
+      ->capture_default_str()
+      ->check(CLI::Range(2, 1000000));
+  c.command->add_option("--set", o.sets, "a parameter value of the run, NAME=VALUE (repeatable)")
+      ->type_name("NAME=VALUE");
+  c.command->add_flag("--quiet", c.quiet, "no progress lines on stderr");
+  c.command->allow_extras();
+}
+
+int run_animate(AnimateCommand& c) {
+  c.options.verbose = !c.quiet;
+  const std::string pvd = kanegen::animate::animate(c.options);
+  if (c.options.verbose) std::fprintf(stderr, "kanegen: wrote %s (open it in ParaView)\n", pvd.c_str());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -524,17 +567,19 @@ int main(int argc, char** argv) {
   VerifyCommand verify;
   ModesCommand modes;
   PlotCommand plot;
+  AnimateCommand animate;
   add_generate(app, generate);
   add_simulate(app, simulate);
   add_eval(app, eval);
   add_verify(app, verify);
   add_modes(app, modes);
   add_plot(app, plot);
+  add_animate(app, animate);
 
   CLI11_PARSE(app, argc, argv);
 
-  for (const CLI::App* command :
-       {generate.command, simulate.command, eval.command, verify.command, modes.command, plot.command})
+  for (const CLI::App* command : {generate.command, simulate.command, eval.command, verify.command,
+                                  modes.command, plot.command, animate.command})
     if (*command)
       if (const std::string unknown = kanegen::cli::unknown_arguments_message(*command); !unknown.empty()) {
         std::fprintf(stderr, "error: %s\n", unknown.c_str());
@@ -548,6 +593,7 @@ int main(int argc, char** argv) {
     if (*verify.command) return run_verify(verify);
     if (*modes.command) return run_modes(modes);
     if (*plot.command) return run_plot(plot);
+    if (*animate.command) return run_animate(animate);
   } catch (const kanegen::runner::Interrupted& e) {  // as an interrupted simulation reports it
     std::fprintf(stderr, "error: %s\n", e.what());
     return 128 + e.signal_number;

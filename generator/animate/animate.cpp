@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "animate/animate.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "animate/result_table.hpp"
+#include "animate/scene.hpp"
+#include "animate/vtk_writer.hpp"
+#include "kanegen/runtime/text.hpp"
+#include "model/expression_eval.hpp"
+#include "model/model_check.hpp"
+#include "model/names.hpp"
+#include "numeric/instance.hpp"
+
+namespace kanegen::animate {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Writes `text` to `path` through a temporary file in the same directory,
+/// so that `path` is the old file or the new one, never a part.
+void write_whole(const fs::path& path, const std::string& text) {
+  const fs::path part = path.string() + ".part";
+  {
+    std::ofstream out(part, std::ios::binary);
+    out << text;
+    out.flush();
+    if (!out) {
+      std::error_code ignored;
+      fs::remove(part, ignored);
+      throw std::runtime_error(path.string() + ": cannot be written; check the disk space and permissions");
+    }
+  }
+  fs::rename(part, path);
+}
+
+model::ParameterValues parameter_values(const model::Model& m, const std::vector<std::string>& sets) {
+  model::ParameterValues values = model::default_parameter_values(m);
+  for (const std::string& set : sets) {
+    const auto eq = set.find('=');
+    double value = 0;
+    if (eq == std::string::npos || !runtime::parse_number(std::string_view(set).substr(eq + 1), &value))
+      throw std::runtime_error("--set " + set + ": give NAME=VALUE with a finite number");
+    const std::string name = set.substr(0, eq);
+    if (!values.count(name)) {
+      std::vector<std::string> names;
+      for (const auto& [known, v] : values) names.push_back(known);
+      const std::string guess = model::nearest(name, names);
+      throw std::runtime_error("--set " + set + ": " + m.name + " has no parameter '" + name + "'" +
+                               (guess.empty() ? "" : "; did you mean '" + guess + "'?"));
+    }
+    values[name] = value;
+  }
+  model::check_parameter_values(m, values, "--set");
+  return values;
+}
+
+/// Per coordinate of the instance, its column in the table.
+std::vector<int> coordinate_columns(const ResultTable& table, const numeric::Instance& instance,
+                                    const std::string& model_path) {
+  std::vector<int> columns;
+  for (const std::string& name : instance.coordinate_names) {
+    const int k = table.column(name);
+    if (k < 0)
+      throw std::runtime_error(
+          table.file + ": has no column '" + name + "', a coordinate of " + model_path +
+          "; give the CSV of a run of this model (kanegen simulate writes every coordinate)");
+    columns.push_back(k);
+  }
+  return columns;
+}
+
+}  // namespace
+
+std::string animate(const AnimateOptions& o) {
+  if (!(o.scale >= 0) || !std::isfinite(o.scale))
+    throw std::runtime_error("--scale " + runtime::format_double(o.scale) + ": give a finite number >= 0");
+  const model::Model m = model::load_model(o.model, o.load);
+  const numeric::Instance instance = numeric::instantiate(m, parameter_values(m, o.sets));
+  const ResultTable table = read_result_table(o.result);
+  const std::vector<int> columns = coordinate_columns(table, instance, o.model);
+  const fs::path dir(o.output_dir);
+  std::error_code error;
+  fs::create_directories(dir, error);
+  if (!fs::is_directory(dir))
+    throw std::runtime_error(o.output_dir + ": cannot be made a directory; give another -o");
+  const SceneBuilder builder(instance, o.scale);
+  const std::vector<std::size_t> rows = chosen_rows(table.rows.size(), o.frames);
+  std::vector<std::pair<double, std::string>> frames;
+  std::vector<double> q(columns.size());
+  for (std::size_t f = 0; f < rows.size(); ++f) {
+    const std::vector<double>& row = table.rows[rows[f]];
+    for (std::size_t i = 0; i < columns.size(); ++i) q[i] = row[static_cast<std::size_t>(columns[i])];
+    char name[64];
+    std::snprintf(name, sizeof name, "_%05zu.vtu", f);
+    frames.emplace_back(row[0], m.name + name);
+    write_whole(dir / frames.back().second, vtu_text(builder.at(q)));
+    if (o.verbose && (f + 1 == rows.size() || (f + 1) % std::max<std::size_t>(rows.size() / 10, 1) == 0))
+      std::fprintf(stderr, "kanegen: animate: %zu of %zu frames\n", f + 1, rows.size());
+  }
+  const fs::path pvd = dir / (m.name + ".pvd");
+  write_whole(pvd, pvd_text(frames));
+  return pvd.string();
+}
+
+}  // namespace kanegen::animate

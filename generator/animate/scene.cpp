@@ -1,0 +1,137 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+#include "animate/scene.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+namespace kanegen::animate {
+namespace {
+
+using numeric::Pose;
+using numeric::Vec;
+
+std::array<double, 3> world_point(const Pose<double>& pose, const Vec<double>& local) {
+  return numeric::add(pose.origin, numeric::mul(pose.rotation, local));
+}
+
+/// The box of a rigid part: its mass and principal moments about its centre
+/// of mass, body frame; not drawn without mass or inertia.
+std::array<std::array<double, 3>, 8> equivalent_box(const numeric::BodyData& b, bool* drawn) {
+  std::array<std::array<double, 3>, 8> corners{};
+  Eigen::Matrix3d inertia;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) inertia(i, j) = b.inertia[3 * i + j];
+  *drawn = b.mass > 0 && inertia.trace() > 0;
+  if (!*drawn) return corners;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> principal(inertia);
+  const Eigen::Vector3d moments = principal.eigenvalues();
+  Eigen::Matrix3d axes = principal.eigenvectors();
+  if (axes.determinant() < 0) axes.col(2) *= -1;  // right-handed, so that the cell is not inside out
+  Eigen::Vector3d half;
+  const double floor = 1e-3 * std::sqrt(6 * moments.maxCoeff() / b.mass);  // a thin side stays visible
+  for (int i = 0; i < 3; ++i) {
+    const double sum = moments.sum() - 2 * moments[i];  // I_j + I_k - I_i
+    half[i] = 0.5 * std::max(std::sqrt(std::max(6 * sum / b.mass, 0.0)), floor);
+  }
+  // VTK's hexahedron: the bottom face (z -) counter-clockwise, then the top.
+  const int signs[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
+                           {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
+  for (int c = 0; c < 8; ++c) {
+    Eigen::Vector3d p(b.com[0], b.com[1], b.com[2]);
+    for (int i = 0; i < 3; ++i) p += signs[c][i] * half[i] * axes.col(i);
+    corners[c] = {p[0], p[1], p[2]};
+  }
+  return corners;
+}
+
+std::int32_t add_point(Scene& scene, const std::array<double, 3>& at, int body, PointKind kind) {
+  scene.points.push_back(at);
+  scene.displacement.push_back({0, 0, 0});
+  scene.joint_axis.push_back({0, 0, 0});
+  scene.point_body.push_back(body);
+  scene.point_kind.push_back(static_cast<std::int32_t>(kind));
+  return static_cast<std::int32_t>(scene.points.size() - 1);
+}
+
+}  // namespace
+
+bool vtk_cell_of(const std::string& calculix_type, CellType* type) {
+  // The same node order as CalculiX's (Abaqus's): corners, then mid-edge nodes.
+  static const std::pair<const char*, CellType> cells[] = {{"CPS4", CellType::quad},
+                                                           {"CPS8", CellType::quadratic_quad},
+                                                           {"C3D8", CellType::hexahedron},
+                                                           {"C3D20", CellType::quadratic_hexahedron}};
+  for (const auto& [name, cell] : cells)
+    if (calculix_type == name) {
+      *type = cell;
+      return true;
+    }
+  return false;
+}
+
+SceneBuilder::SceneBuilder(const numeric::Instance& instance, double scale)
+    : instance_(instance), scale_(scale), boxes_(instance.bodies.size()) {
+  for (std::size_t b = 0; b < instance.bodies.size(); ++b)
+    boxes_[b].corners = equivalent_box(instance.bodies[b], &boxes_[b].drawn);
+}
+
+void SceneBuilder::add_rigid(Scene& scene, int body, const Pose<double>& pose) const {
+  const std::int32_t origin = add_point(scene, pose.origin, body, PointKind::frame_origin);
+  const numeric::JointData& joint = instance_.joints[instance_.bodies[body].joint];
+  // The axis in the joint frame is the child's too: a turn about it or a slide along it leaves it.
+  if (joint.motion != numeric::Motion::none)
+    scene.joint_axis[origin] = numeric::mul(pose.rotation, joint.axis);
+  scene.cells.push_back({CellType::vertex, {origin}, body});
+  const Box& box = boxes_[body];
+  if (!box.drawn) return;
+  Scene::Cell cell{CellType::hexahedron, {}, body};
+  for (const auto& corner : box.corners)
+    cell.points.push_back(add_point(scene, world_point(pose, corner), body, PointKind::box_corner));
+  scene.cells.push_back(std::move(cell));
+}
+
+void SceneBuilder::add_elastic(Scene& scene, int body, const Pose<double>& pose,
+                               const std::vector<double>& dofs,
+                               const numeric::SecondOrder<double>& second) const {
+  const numeric::FlexibleData& f = *instance_.bodies[body].elastic;
+  const std::int32_t first = static_cast<std::int32_t>(scene.points.size());
+  for (int n = 0; n < static_cast<int>(f.nodes.size()); ++n) {
+    Vec<double> moved = numeric::node_translation(f, dofs, n);
+    if (f.mesh && !second.mesh_dofs.empty())
+      moved = numeric::add(moved, numeric::node_translation(f, second.mesh_dofs, n));
+    else if (!f.mesh)
+      moved = numeric::sub(numeric::displaced_node(f, dofs, second, n), f.nodes[n]);
+    const std::int32_t p =
+        add_point(scene, world_point(pose, numeric::add(f.nodes[n], numeric::scale(moved, scale_))), body,
+                  PointKind::elastic_node);
+    scene.displacement[p] = numeric::mul(pose.rotation, moved);
+  }
+  if (!f.mesh) {
+    Scene::Cell line{CellType::poly_line, {}, body};
+    for (int n = 0; n < static_cast<int>(f.nodes.size()); ++n) line.points.push_back(first + n);
+    scene.cells.push_back(std::move(line));
+    return;
+  }
+  for (const numeric::SolidElementData& e : f.solids) {
+    CellType type;
+    if (!vtk_cell_of(e.type, &type)) continue;
+    Scene::Cell cell{type, {}, body};
+    for (int n : e.nodes) cell.points.push_back(first + n);
+    scene.cells.push_back(std::move(cell));
+  }
+}
+
+Scene SceneBuilder::at(const std::vector<double>& q) const {
+  const std::vector<std::vector<double>> dofs = numeric::all_beam_dofs(instance_, q.data());
+  const std::vector<numeric::SecondOrder<double>> second = numeric::all_second_order(instance_, dofs);
+  const std::vector<Pose<double>> poses = numeric::body_poses(instance_, q.data(), dofs, second);
+  Scene scene;
+  for (int b = 0; b < static_cast<int>(instance_.bodies.size()); ++b) {
+    add_rigid(scene, b, poses[b]);
+    if (instance_.bodies[b].elastic) add_elastic(scene, b, poses[b], dofs[b], second[b]);
+  }
+  return scene;
+}
+
+}  // namespace kanegen::animate

@@ -1,0 +1,80 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// What one frame of an animation shows, as points and cells (VTK's
+// unstructured-grid vocabulary), from the numeric path's world poses
+// (numeric/poses.hpp) at the frame's coordinates:
+//  - each body's frame origin, a vertex carrying the world direction of the
+//    axis of the joint that moves it (a glyph in ParaView);
+//  - each rigid part with mass as the box of equal mass and principal moments
+//    (sides sqrt(6 (I_j + I_k - I_i) / m) along its principal axes, about
+//    its centre of mass);
+//  - each beam as a polyline through its displaced nodes;
+//  - each mesh body as its elements, deformed.
+// Elastic displacements are drawn magnified by `scale` and carried unscaled
+// as point data.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "numeric/instance.hpp"
+#include "numeric/poses.hpp"
+
+namespace kanegen::animate {
+
+/// VTK cell types (vtkCellType.h) used here.
+enum class CellType : std::uint8_t {
+  vertex = 1,
+  poly_line = 4,
+  quad = 9,
+  hexahedron = 12,
+  quadratic_quad = 23,
+  quadratic_hexahedron = 25,
+};
+
+/// What a point is: a body frame's origin, a corner of a rigid body's
+/// box, or a node of a beam or a mesh.
+enum class PointKind : std::int32_t { frame_origin = 0, box_corner = 1, elastic_node = 2 };
+
+struct Scene {
+  std::vector<std::array<double, 3>> points;        ///< world
+  std::vector<std::array<double, 3>> displacement;  ///< elastic displacement, world axes, unscaled
+  std::vector<std::array<double, 3>> joint_axis;    ///< at frame origins: the joint's axis, world; else 0
+  std::vector<std::int32_t> point_body;             ///< Instance::bodies index
+  std::vector<std::int32_t> point_kind;             ///< PointKind
+  struct Cell {
+    CellType type;
+    std::vector<std::int32_t> points;
+    std::int32_t body;
+  };
+  std::vector<Cell> cells;
+};
+
+/// The VTK cell of a CalculiX element type whose node order VTK shares,
+/// or false (the element is then left out of the picture).
+bool vtk_cell_of(const std::string& calculix_type, CellType* type);
+
+class SceneBuilder {
+ public:
+  /// `scale` magnifies the elastic displacements drawn.
+  SceneBuilder(const numeric::Instance& instance, double scale);
+
+  /// The scene at coordinates q (Instance::coordinates() of them).
+  Scene at(const std::vector<double>& q) const;
+
+ private:
+  struct Box {
+    bool drawn = false;
+    std::array<std::array<double, 3>, 8> corners{};  ///< body frame, VTK hexahedron order
+  };
+  void add_rigid(Scene& scene, int body, const numeric::Pose<double>& pose) const;
+  void add_elastic(Scene& scene, int body, const numeric::Pose<double>& pose, const std::vector<double>& dofs,
+                   const numeric::SecondOrder<double>& second) const;
+
+  const numeric::Instance& instance_;
+  double scale_;
+  std::vector<Box> boxes_;  ///< per body
+};
+
+}  // namespace kanegen::animate
