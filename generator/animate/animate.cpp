@@ -13,6 +13,7 @@
 #include "kanegen/runtime/text.hpp"
 #include "model/expression_eval.hpp"
 #include "model/model_check.hpp"
+#include "model/model_error.hpp"
 #include "model/names.hpp"
 #include "numeric/instance.hpp"
 
@@ -50,8 +51,10 @@ model::ParameterValues parameter_values(const model::Model& m, const std::vector
       std::vector<std::string> names;
       for (const auto& [known, v] : values) names.push_back(known);
       const std::string guess = model::nearest(name, names);
-      throw std::runtime_error("--set " + set + ": " + m.name + " has no parameter '" + name + "'" +
-                               (guess.empty() ? "" : "; did you mean '" + guess + "'?"));
+      throw std::runtime_error("--set " + set + ": " + m.name + " has no parameter '" + name + "'; " +
+                               (!guess.empty()  ? "did you mean '" + guess + "'?"
+                                : names.empty() ? std::string("it has none")
+                                                : "its parameters are " + model::join(names)));
     }
     values[name] = value;
   }
@@ -59,17 +62,23 @@ model::ParameterValues parameter_values(const model::Model& m, const std::vector
   return values;
 }
 
-/// Per coordinate of the instance, its column in the table.
+/// Per coordinate of the instance, its column in the table: simulate writes
+/// t, then the coordinates in the model's order, then speeds and outputs,
+/// so a CSV of another model is told by its first columns.
 std::vector<int> coordinate_columns(const ResultTable& table, const numeric::Instance& instance,
                                     const std::string& model_path) {
   std::vector<int> columns;
-  for (const std::string& name : instance.coordinate_names) {
-    const int k = table.column(name);
-    if (k < 0)
+  for (std::size_t i = 0; i < instance.coordinate_names.size(); ++i) {
+    const std::string& name = instance.coordinate_names[i];
+    const std::size_t k = i + 1;
+    if (k >= table.columns.size() || table.columns[k] != name)
       throw std::runtime_error(
-          table.file + ": has no column '" + name + "', a coordinate of " + model_path +
-          "; give the CSV of a run of this model (kanegen simulate writes every coordinate)");
-    columns.push_back(k);
+          table.file + ": column " + std::to_string(k + 1) + " is '" +
+          model::ModelError::printable(k < table.columns.size() ? table.columns[k] : "") +
+          "', where a run of " + model_path + " has its coordinate '" + model::ModelError::printable(name) +
+          "'; give the CSV of a run of this model (kanegen simulate writes t, then every "
+          "coordinate in order)");
+    columns.push_back(static_cast<int>(k));
   }
   return columns;
 }

@@ -152,6 +152,24 @@ def check_mesh(kanegen, model, work):
         check(np.isfinite(g["points"]).all() and np.isfinite(g["displacement"]).all(), "plate: finite points")
 
 
+def check_refusals(kanegen, source, work):
+    """A CSV of another model, and a row cut short: an error naming the file and the fix, no files."""
+    arm_csv = os.path.join(work, "arm.csv")
+    other = os.path.join(source, "models/double_pendulum.json")  # its coordinates are also the arm's first two
+    out = os.path.join(work, "refused")
+    r = subprocess.run([kanegen, "animate", arm_csv, other, "-o", out, "--quiet"], capture_output=True, text=True)
+    check(r.returncode == 1 and "column 4 is 'link1.n1.u'" in r.stderr and "give the CSV of a run of this model"
+          in r.stderr, "a CSV of another model is refused: %r" % r.stderr)
+    cut = os.path.join(work, "cut.csv")
+    with open(arm_csv) as f, open(cut, "w") as g:
+        lines = f.read().splitlines()
+        g.write("\n".join(lines[:3] + [lines[3][:40]]) + "\n")
+    model = os.path.join(source, "tests/data/models/animate_arm.json")
+    r = subprocess.run([kanegen, "animate", cut, model, "-o", out, "--quiet"], capture_output=True, text=True)
+    check(r.returncode == 1 and "cut.csv: line 4:" in r.stderr, "a row cut short is refused: %r" % r.stderr)
+    check(not os.path.exists(out) or not os.listdir(out), "nothing written for refused input")
+
+
 def main():
     p = argparse.ArgumentParser()
     p.add_argument("--kanegen", required=True)
@@ -160,6 +178,7 @@ def main():
     a = p.parse_args()
     os.makedirs(a.work, exist_ok=True)
     check_arm(a.kanegen, os.path.join(a.source, "tests/data/models/animate_arm.json"), a.work)
+    check_refusals(a.kanegen, a.source, a.work)
     check_mesh(a.kanegen, os.path.join(a.source, "models/plate_hub.json"), a.work)
     if failures:
         print("%d failure(s)" % len(failures))
