@@ -66,18 +66,22 @@ std::string shape_text(const py::array& a) {
 /// first 2-D input and checked against by the others.
 Array input_array(const KernelSpec& spec, const KernelArgumentSpec& argument, py::handle object, int n,
                   py::ssize_t* rows) {
-  Array array = Array::ensure(object);
+  // A C-contiguous float64 array as it is (the common case, and the fast
+  // one); anything else converted (a list, another dtype or layout).
+  Array array = py::array_t<double, py::array::c_style>::check_(object)
+                    ? py::reinterpret_borrow<Array>(object)
+                    : Array::ensure(object);
   if (!array) {
     PyErr_Clear();
     throw py::type_error(std::string(spec.name) + ": " + argument.name +
                          " must be an array of numbers, not " +
                          std::string(py::str(py::type::handle_of(object).attr("__name__"))));
   }
-  const std::string expected = std::string(spec.name) + ": " + argument.name + " must have shape (" +
-                               std::to_string(n) + ",) or (N, " + std::to_string(n) + ") (one state per row)";
   if (array.ndim() == 1 && array.shape(0) == n) return array;
   if (array.ndim() != 2 || array.shape(1) != n)
-    throw py::value_error(expected + "; got " + shape_text(array));
+    throw py::value_error(std::string(spec.name) + ": " + argument.name + " must have shape (" +
+                          std::to_string(n) + ",) or (N, " + std::to_string(n) +
+                          ") (one state per row); got " + shape_text(array));
   if (*rows >= 0 && array.shape(0) != *rows)
     throw py::value_error(std::string(spec.name) + ": " + argument.name + " has " +
                           std::to_string(array.shape(0)) + " rows, the arrays before it " +
@@ -137,6 +141,7 @@ py::object call_kernel(LoadedModel& model, Kernel kernel, const py::handle* argu
                        py::handle params) {
   const KernelSpec& spec = runtime::kernel_spec(kernel);
   const KernelEntry& entry = kernel_entries[static_cast<std::size_t>(kernel)];
+  const std::vector<ArgumentShape>& shapes = model.shapes[static_cast<std::size_t>(kernel)];
   if (!entry.present(model.table)) raise(errors().missing_kernel_error, missing_kernel_message(model, spec));
   std::vector<double> own;
   double* storage = call_parameters(model, params, own);
@@ -152,7 +157,7 @@ py::object call_kernel(LoadedModel& model, Kernel kernel, const py::handle* argu
       const KernelArgumentSpec& argument = spec.arguments[i];
       if (pass == 0 && argument.role == ArgumentRole::in) {
         if (next >= count) throw py::type_error(std::string(spec.name) + ": missing " + argument.name);
-        const int n = argument_length(model, argument.size);
+        const int n = shapes[i].length;
         if (next < count && arguments[next].is_none() && std::strcmp(argument.name, "tau") == 0) {
           ++next;  // no inputs: zeros for every row
           zeros.assign(static_cast<std::size_t>(n) + 1, 0.0);
@@ -172,7 +177,8 @@ py::object call_kernel(LoadedModel& model, Kernel kernel, const py::handle* argu
   if (!batch) rows = 1;
 
   // Outputs: (n,) or (rows, cols), with a leading (N,) for a batch.
-  py::list outputs;
+  std::array<py::object, kMaxSlots> outputs;
+  std::size_t output_count = 0;
   for (std::size_t i = 0; i < spec.argument_count; ++i) {
     if (spec.arguments[i].role != ArgumentRole::out) continue;
     std::pair<int, int> shape;
@@ -186,7 +192,7 @@ py::object call_kernel(LoadedModel& model, Kernel kernel, const py::handle* argu
     py::array_t<double> out(dims);
     prepared[i].data = out.mutable_data();
     prepared[i].row_stride = n;
-    outputs.append(out);
+    outputs[output_count++] = std::move(out);
   }
   const bool returns_double = std::strcmp(spec.returns, "double") == 0;
   py::object results;
@@ -209,8 +215,10 @@ py::object call_kernel(LoadedModel& model, Kernel kernel, const py::handle* argu
   }
   if (failed.first >= 0) raise_status(model, spec, failed.second, failed.first, batch);
   if (returns_double) return batch ? results : py::object(py::float_(single));
-  if (outputs.size() == 1) return outputs[0];
-  return py::tuple(outputs);
+  if (output_count == 1) return std::move(outputs[0]);
+  py::tuple all(output_count);
+  for (std::size_t i = 0; i < output_count; ++i) all[i] = std::move(outputs[i]);
+  return std::move(all);
 }
 
 }  // namespace kanegen::python

@@ -82,6 +82,15 @@ LoadedModel load_model(const std::string& path, const LoadArguments& arguments) 
   model.defaults.assign(model.table.parameters_size / sizeof(double) + 1, 0.0);
   model.table.default_parameters(model.defaults.data());
   model.parameters = model.defaults;
+  for (const runtime::KernelSpec& spec : runtime::kernel_specs) {
+    std::vector<ArgumentShape> shapes;
+    for (std::size_t i = 0; i < spec.argument_count; ++i) {
+      std::pair<int, int> shape;
+      const int length = argument_length(model, spec.arguments[i].size, &shape);
+      shapes.push_back({length, shape.first, shape.second});
+    }
+    model.shapes.push_back(std::move(shapes));
+  }
   return model;
 }
 

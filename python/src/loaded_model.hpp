@@ -25,6 +25,12 @@ struct LoadArguments {
   bool verbose = false;
 };
 
+/// The length of a kernel argument and, for a matrix, its rows and columns
+/// (columns 0 for a vector).
+struct ArgumentShape {
+  int length = 0, rows = 0, columns = 0;
+};
+
 struct LoadedModel {
   std::string model_path;  ///< as given to load
   std::string library;     ///< the cached kernels.so
@@ -32,6 +38,8 @@ struct LoadedModel {
   runtime::ModelTable table;
   std::vector<double> defaults;    ///< the Params storage with the model file's values
   std::vector<double> parameters;  ///< the Params storage the kernels are called with
+  /// Per kernel (Kernel order), the shape of each argument (computed once, at load).
+  std::vector<std::vector<ArgumentShape>> shapes;
 };
 
 /// Generates and compiles the model (through the runner cache) and loads its
