@@ -45,7 +45,8 @@ int main(int argc, char** argv) {
       const double* s = states.data() + i * row;
       table.forward_dynamics(params.data(), 0.0, s, s + nq, s + nq + nu, udot.data() + i * nu);
     }
-    const double ns = std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count();
+    const double ns =
+        std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count();
     if (ns < best) best = ns;
   }
   double checksum = 0;
