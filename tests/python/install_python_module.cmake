@@ -21,16 +21,19 @@ assert abs(m.forward_dynamics([0.5], [0.0])[0] + 9.81 * math.sin(0.5)) < 1e-14
 print(m.library)
 ]=])
 file(WRITE ${SCRATCH}/check.py "${script}")
+# A compiler that notes its arguments, to see which runtime headers the model library is built with.
+file(WRITE ${SCRATCH}/cxx "#!/bin/sh\necho \"$@\" >> ${SCRATCH}/cxx.log\nexec c++ \"$@\"\n")
+file(CHMOD ${SCRATCH}/cxx PERMISSIONS OWNER_READ OWNER_WRITE OWNER_EXECUTE)
 execute_process(COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${SCRATCH}/prefix/${PYTHON_DIR}
-                        KANEGEN_CACHE_DIR=${SCRATCH}/cache PYTHONDONTWRITEBYTECODE=1
+                        KANEGEN_CACHE_DIR=${SCRATCH}/cache KANEGEN_CXX=${SCRATCH}/cxx PYTHONDONTWRITEBYTECODE=1
                         ${PYTHON} ${SCRATCH}/check.py ${SCRATCH}/prefix ${MODEL}
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "the installed module failed (${rc}):\n${out}\n${err}")
 endif()
-# The model was generated and compiled into the scratch cache by the installed module.
-file(GLOB sources ${SCRATCH}/cache/library-*/kanegen_table.cpp)
-if(NOT sources)
-  message(FATAL_ERROR "no model library in the scratch cache: ${out}")
+# The installed module compiled the model against the installed runtime's headers.
+file(READ ${SCRATCH}/cxx.log compiled)
+if(NOT compiled MATCHES "-I${SCRATCH}/prefix/include ")
+  message(FATAL_ERROR "the installed module did not compile against ${SCRATCH}/prefix/include:\n${compiled}")
 endif()
 message(STATUS "installed Python module: imported from ${SCRATCH}/prefix/${PYTHON_DIR}, loaded ${out}")
