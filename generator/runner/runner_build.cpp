@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "runner/runner_build.hpp"
 
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -126,7 +127,8 @@ const char* signal_name(int signal_number) {
 
 }  // namespace
 
-int run_program(const std::string& program, const std::vector<std::string>& args) {
+int run_program(const std::string& program, const std::vector<std::string>& args,
+                const std::string& error_file) {
   std::vector<char*> argv;
   argv.push_back(const_cast<char*>(program.c_str()));
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
@@ -134,6 +136,10 @@ int run_program(const std::string& program, const std::vector<std::string>& args
   const pid_t pid = fork();
   if (pid < 0) throw std::runtime_error("cannot start " + program);
   if (pid == 0) {
+    if (!error_file.empty()) {
+      const int fd = open(error_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+      if (fd >= 0) dup2(fd, STDERR_FILENO);  // dup2's copy is not close-on-exec
+    }
     execvp(program.c_str(), argv.data());
     std::fprintf(stderr, "error: cannot run %s\n", program.c_str());
     _exit(127);
@@ -156,14 +162,16 @@ namespace {
 /// Runs the compiler with `args` and "-o" a temporary name next to `output`,
 /// then renames it to `output`, so that a concurrent or interrupted build
 /// never leaves a broken file in the cache. `failed_file` and `if_failed`
-/// make the message when the code does not compile.
+/// make the message when the code does not compile. With a `log`, the
+/// compiler's messages go there rather than to stderr, and end the message
+/// (for a caller whose stderr the user may not see, as in a notebook).
 void compile_to(std::vector<std::string> args, const fs::path& output, const std::string& name,
-                const fs::path& failed_file, const std::string& if_failed) {
+                const fs::path& failed_file, const std::string& if_failed, const fs::path& log = {}) {
   const fs::path temporary =
       output.parent_path() / (output.filename().string() + ".tmp." + std::to_string(getpid()));
   args.insert(args.end(), {"-o", temporary.string()});
   g_forwarded = 0;
-  const int status = run_program(compiler(), args);
+  const int status = run_program(compiler(), args, log.string());
   if (const int signal_number = g_forwarded; signal_number != 0) {
     std::error_code ignored;
     fs::remove(temporary, ignored);  // the cache keeps no half-built file; the next run compiles afresh
@@ -171,10 +179,19 @@ void compile_to(std::vector<std::string> args, const fs::path& output, const std
                           name + "; nothing was cached",
                       signal_number);
   }
+  std::string said;
+  if (!log.empty()) {
+    std::error_code ignored;
+    if (fs::exists(log, ignored)) said = pipeline::read_file(log.string());
+    fs::remove(log, ignored);
+    constexpr std::size_t kLimit = 8000;  // the first errors are the telling ones
+    if (said.size() > kLimit) said = said.substr(0, kLimit) + "\n[...]";
+  }
   if (status != 0) {
     std::error_code ignored;
     fs::remove(temporary, ignored);
-    throw std::runtime_error(failed_file.string() + ": " + if_failed);
+    throw std::runtime_error(failed_file.string() + ": " + if_failed +
+                             (said.empty() ? std::string() : "; the compiler said:\n" + said));
   }
   fs::rename(temporary, output);
 }
@@ -223,7 +240,7 @@ void compile_library(const fs::path& source_dir, const std::string& name, const 
   compile_to({"-std=c++17", "-O2", "-fPIC", "-shared", "-I" + source_dir.string(),
               "-I" + runtime.include_dir.string(), (source_dir / (name + ".cpp")).string(),
               (source_dir / kTableSource).string()},
-             library, name, source_dir / (name + ".cpp"), if_failed);
+             library, name, source_dir / (name + ".cpp"), if_failed, source_dir / "compile.log");
 }
 
 /// Whether the locked entry holds its artifact (the runner, or kernels.so)
@@ -283,9 +300,12 @@ std::string build_cached(const std::string& model_path, const BuildOptions& opti
   if (options.verbose)
     std::fprintf(stderr, "kanegen: compiling %s (%ld operations in forward_dynamics) ...\n",
                  generated.name.c_str(), generated.operations.at(codegen::Kernel::forward_dynamics));
+  // A model library's compiler messages end the message (compile_library).
   compile(dir, generated.name, runtime, output,
-          "the generated code did not compile (see the compiler's messages above); please report this "
-          "as a kanegen bug");
+          artifact == "runner"
+              ? "the generated code did not compile (see the compiler's messages above); please "
+                "report this as a kanegen bug"
+              : "the generated code did not compile; please report this as a kanegen bug");
   std::vector<std::string> sources;
   for (const auto& file : generated.files) sources.push_back(file.first);
   if (artifact != "runner") sources.push_back(kTableSource);

@@ -62,7 +62,9 @@ void set_generator_location(const std::string& generator_file);
 /// `kanegen generate`, possibly edited), cached by a digest of their content.
 std::string build_runner_from_directory(const std::string& kernels_dir, const BuildOptions& options);
 
-/// Runs a program with arguments, waits, and returns its exit status.
-int run_program(const std::string& program, const std::vector<std::string>& args);
+/// Runs a program with arguments, waits, and returns its exit status; its
+/// stderr goes to `error_file` (created 0600, truncated) if one is given.
+int run_program(const std::string& program, const std::vector<std::string>& args,
+                const std::string& error_file = "");
 
 }  // namespace kanegen::runner

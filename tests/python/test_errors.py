@@ -42,9 +42,16 @@ def test_bad_load_options(kanegen):
 
 def test_compiler_failure_is_a_build_error(kanegen, tmp_path, monkeypatch):
     monkeypatch.setenv("KANEGEN_CACHE_DIR", str(tmp_path / "cache"))
-    monkeypatch.setenv("KANEGEN_CXX", "false")  # a compiler that always fails
-    with pytest.raises(kanegen.BuildError, match="did not compile"):
+    # A compiler that fails with a message: the message ends the exception's
+    # (a notebook shows no stderr).
+    compiler = tmp_path / "cxx"
+    compiler.write_text("#!/bin/sh\necho 'fatal error: no room for kernels' >&2\nexit 1\n")
+    compiler.chmod(0o700)
+    monkeypatch.setenv("KANEGEN_CXX", str(compiler))
+    with pytest.raises(kanegen.BuildError, match="did not compile.*the compiler said:\nfatal error: no room"):
         kanegen.load(model_path("simple_pendulum.json"))
+    assert not list((tmp_path / "cache").glob("library-*/kernels.so*"))
+    assert not list((tmp_path / "cache").glob("library-*/compile.log"))
     # Nothing half-built stays: with a working compiler the same entry builds.
     monkeypatch.delenv("KANEGEN_CXX")
     monkeypatch.setenv("CXX", "c++")
