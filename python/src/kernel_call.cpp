@@ -165,7 +165,8 @@ py::object call_kernel(LoadedModel& model, Kernel kernel, const py::handle* argu
           continue;
         }
         Array array = input_array(spec, argument, arguments[next++], n, &rows);
-        prepared[i].data = array.mutable_data();
+        prepared[i].data =
+            const_cast<double*>(array.data());  // read only: an input (may be a read-only view)
         prepared[i].row_stride = array.ndim() == 2 ? n : 0;
         inputs[i] = std::move(array);
       } else if (pass == 1 && argument.role == ArgumentRole::scalar) {
@@ -181,15 +182,13 @@ py::object call_kernel(LoadedModel& model, Kernel kernel, const py::handle* argu
   std::size_t output_count = 0;
   for (std::size_t i = 0; i < spec.argument_count; ++i) {
     if (spec.arguments[i].role != ArgumentRole::out) continue;
-    std::pair<int, int> shape;
-    const int n = argument_length(model, spec.arguments[i].size, &shape);
-    std::vector<py::ssize_t> dims;
-    if (batch) dims.push_back(rows);
-    if (shape.second > 0)
-      dims.insert(dims.end(), {shape.first, shape.second});
-    else
-      dims.push_back(n);
-    py::array_t<double> out(dims);
+    const ArgumentShape& shape = shapes[i];
+    const int n = shape.length;
+    const py::ssize_t r = shape.rows, c = shape.columns;
+    py::array_t<double> out =
+        shape.columns == 0
+            ? (batch ? py::array_t<double>({rows, py::ssize_t{n}}) : py::array_t<double>(py::ssize_t{n}))
+            : (batch ? py::array_t<double>({rows, r, c}) : py::array_t<double>({r, c}));
     prepared[i].data = out.mutable_data();
     prepared[i].row_stride = n;
     outputs[output_count++] = std::move(out);

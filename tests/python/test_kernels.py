@@ -119,6 +119,11 @@ def test_inputs_are_converted_and_checked(arm7):
     expected = arm7.mass_matrix(q)
     assert np.array_equal(arm7.mass_matrix(q.tolist()), expected)
     assert np.array_equal(arm7.mass_matrix(q.astype(np.float32).astype(np.float64)), arm7.mass_matrix(q.astype(np.float32)))
+    read_only = q.copy()
+    read_only.flags.writeable = False
+    assert np.array_equal(arm7.mass_matrix(read_only), expected)
+    assert np.array_equal(arm7.mass_matrix(np.broadcast_to(q, (3, 7)))[1], expected)
+    assert np.array_equal(arm7.mass_matrix(q[::-1][::-1]), expected)
     Q = np.asfortranarray(np.tile(q, (3, 1)))
     assert np.array_equal(arm7.mass_matrix(Q)[2], expected)
     with pytest.raises(ValueError, match=r"mass_matrix: q must have shape \(7,\) or \(N, 7\).*got \(6,\)"):
