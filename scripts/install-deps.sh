@@ -11,6 +11,7 @@ packages=(
   libmujoco-dev libbenchmark-dev
   libclang-rt-dev llvm
   gnuplot-nox
+  pybind11-dev python3-dev python3-numpy python3-pytest
   gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
   python3-vtk9
 )
@@ -21,7 +22,10 @@ packages=(
 # KANEGEN_SANITIZE and KANEGEN_BUILD_FUZZERS builds that CI runs; llvm: its
 # llvm-symbolizer, which the sanitizers call to name frames (and to match the
 # leak suppressions by library). gnuplot-nox: gnuplot without X11, which
-# `kanegen plot` and `simulate --plot` run to draw PNGs. gcc-arm-none-eabi,
+# `kanegen plot` and `simulate --plot` run to draw PNGs. pybind11-dev,
+# python3-dev, python3-numpy: the Python module kanegen (python/,
+# docs/python.md; skipped with a status line without them), python3-pytest its
+# tests (python:*). gcc-arm-none-eabi,
 # libnewlib-arm-none-eabi, qemu-system-arm: the Cortex-M4F build of
 # examples/embedded and its run under QEMU (test embedded_arm7_cortex_m4,
 # skipped without them; docs/embedded.md). They add about 920 MB installed

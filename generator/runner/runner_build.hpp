@@ -41,12 +41,30 @@ struct Interrupted : std::runtime_error {
 /// it if the cache has none. Throws model::ModelError or std::runtime_error.
 std::string build_runner(const std::string& model_path, const BuildOptions& options);
 
+/// Returns the path of a shared library of `model_path`'s kernels (cached
+/// like runners, in an entry of its own), generating and compiling it if the
+/// cache has none. It exports
+///   extern "C" int kanegen_model_table(kanegen::runtime::ModelTable* out, size_t size_of_table)
+/// which fills *out with the model's kernel table and returns 0, or returns
+/// nonzero when size_of_table is not sizeof(ModelTable) (a caller built
+/// against another runtime). Throws model::ModelError or std::runtime_error.
+std::string build_model_library(const std::string& model_path, const BuildOptions& options);
+
+/// For the generator linked into a library rather than the kanegen
+/// executable (the Python module): the path of that library, whose bytes key
+/// the cache (a rebuilt generator may emit other code) and next to whose
+/// install prefix the runtime headers and library are looked for (else the
+/// build tree's). Default: the running executable (/proc/self/exe).
+void set_generator_location(const std::string& generator_file);
+
 /// Returns the path of a runner compiled from an existing directory of
 /// generated files (<name>.hpp, <name>.cpp, <name>_runner.cpp, as written by
 /// `kanegen generate`, possibly edited), cached by a digest of their content.
 std::string build_runner_from_directory(const std::string& kernels_dir, const BuildOptions& options);
 
-/// Runs a program with arguments, waits, and returns its exit status.
-int run_program(const std::string& program, const std::vector<std::string>& args);
+/// Runs a program with arguments, waits, and returns its exit status; its
+/// stderr goes to `error_file` (created 0600, truncated) if one is given.
+int run_program(const std::string& program, const std::vector<std::string>& args,
+                const std::string& error_file = "");
 
 }  // namespace kanegen::runner

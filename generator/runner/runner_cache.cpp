@@ -92,16 +92,16 @@ EntryLock::~EntryLock() {
   if (fd_ >= 0) ::close(fd_);  // and with it the lock
 }
 
-EntryState entry_state(const fs::path& entry, std::string* changed) {
+EntryState entry_state(const fs::path& entry, std::string* changed, const std::string& artifact) {
   std::error_code error;
-  if (!fs::exists(entry / "runner", error)) return EntryState::missing;
+  if (!fs::exists(entry / artifact, error)) return EntryState::missing;
   std::ifstream in(entry / kManifest);
   std::string line;
   if (!in || !std::getline(in, line) || line != kManifestHeader) {
     *changed = "it has no manifest (built by an older kanegen, or its build was stopped)";
     return EntryState::changed;
   }
-  bool runner_listed = false;
+  bool artifact_listed = false;
   while (std::getline(in, line)) {
     std::istringstream fields(line);
     std::string digest, name;
@@ -115,19 +115,19 @@ EntryState entry_state(const fs::path& entry, std::string* changed) {
       *changed = name + " changed after it was built";
       return EntryState::changed;
     }
-    runner_listed = runner_listed || name == "runner";
+    artifact_listed = artifact_listed || name == artifact;
   }
-  if (!runner_listed) {
-    *changed = "its manifest does not list the runner";
+  if (!artifact_listed) {
+    *changed = "its manifest does not list the " + (artifact == "runner" ? artifact : "file " + artifact);
     return EntryState::changed;
   }
   return EntryState::intact;
 }
 
-void seal_entry(const fs::path& entry, const std::vector<std::string>& files) {
+void seal_entry(const fs::path& entry, const std::vector<std::string>& files, const std::string& artifact) {
   std::string text = std::string(kManifestHeader) + "\n";
   std::vector<std::string> sealed = files;
-  sealed.push_back("runner");
+  sealed.push_back(artifact);
   for (const std::string& name : sealed)
     text += pipeline::digest(pipeline::read_file((entry / name).string())) + " " + name + "\n";
   const fs::path temporary = entry / (std::string(kManifest) + ".tmp." + std::to_string(::getpid()));
@@ -144,10 +144,10 @@ void seal_entry(const fs::path& entry, const std::vector<std::string>& files) {
     throw std::runtime_error((entry / kManifest).string() + ": cannot write (" + error.message() + ")");
 }
 
-void discard_entry(const fs::path& entry) {
+void discard_entry(const fs::path& entry, const std::string& artifact) {
   std::error_code ignored;
   fs::remove(entry / kManifest, ignored);
-  fs::remove(entry / "runner", ignored);
+  fs::remove(entry / artifact, ignored);
 }
 
 }  // namespace kanegen::runner

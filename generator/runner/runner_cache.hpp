@@ -32,18 +32,21 @@ class EntryLock {
   int fd_ = -1;
 };
 
-/// Whether entry/runner is there and it and every file the manifest lists
-/// have the digests written when the entry was built. `changed` says what
-/// differs (for the message) when it is not intact but a runner is there.
+/// Whether entry/<artifact> (the runner, or a model library's kernels.so) is
+/// there and it and every file the manifest lists have the digests written
+/// when the entry was built. `changed` says what differs (for the message)
+/// when it is not intact but the artifact is there.
 enum class EntryState { missing, intact, changed };
-EntryState entry_state(const std::filesystem::path& entry, std::string* changed);
+EntryState entry_state(const std::filesystem::path& entry, std::string* changed,
+                       const std::string& artifact = "runner");
 
-/// Writes entry/manifest (atomically): the digest of entry/runner and of each
-/// of `files` (names of files in the entry). Call once the runner is built.
-void seal_entry(const std::filesystem::path& entry, const std::vector<std::string>& files);
+/// Writes entry/manifest (atomically): the digest of entry/<artifact> and of
+/// each of `files` (names of files in the entry). Call once the artifact is built.
+void seal_entry(const std::filesystem::path& entry, const std::vector<std::string>& files,
+                const std::string& artifact = "runner");
 
-/// Removes the runner and the manifest of an entry that changed, so that it
+/// Removes the artifact and the manifest of an entry that changed, so that it
 /// is rebuilt; the lock must be held.
-void discard_entry(const std::filesystem::path& entry);
+void discard_entry(const std::filesystem::path& entry, const std::string& artifact = "runner");
 
 }  // namespace kanegen::runner
