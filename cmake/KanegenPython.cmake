@@ -1,4 +1,4 @@
-# SPDX-License-Identifier: GPL-2.0-or-later
+# SPDX-License-Identifier: MIT
 # The Python module (python/, docs/python.md), built when KANEGEN_BUILD_PYTHON
 # is ON and pybind11, the Python headers and NumPy are found; otherwise a
 # status line says what is missing. Sets KANEGEN_PYTHON_ENABLED.

@@ -214,7 +214,9 @@ constexpr const char* kTableSource = "kanegen_table.cpp";
 /// (which stay as `kanegen generate` writes them): the model's kernel table
 /// for a caller that loads the library at run time (kanegen's Python module).
 /// The size argument guards against a caller built with another ModelTable.
-constexpr const char* kTableExport = R"(// The entry point of a kanegen model library (written by kanegen).
+constexpr const char* kTableExport = R"(// SPDX-License-Identifier: MIT
+// This file is kanegen's output: you may use, copy, modify and distribute it under any terms you choose (docs/licensing.md).
+// The entry point of a kanegen model library: the model's kernel table.
 #include <cstddef>
 
 #include <kanegen/runtime/model_table.hpp>

@@ -60,8 +60,8 @@ std::string expected_license(const fs::path& relative) {
 }  // namespace
 
 TEST_CASE("every source file names its license in an SPDX line", "[licensing]") {
-  const std::vector<std::string> trees = {"generator", "runtime", "templates", "cmake",   "examples",
-                                          "tests",     "bench",   "fuzz",      "scripts", ".ci"};
+  const std::vector<std::string> trees = {"generator", "runtime", "templates", "cmake", "examples", "tests",
+                                          "bench",     "fuzz",    "scripts",   ".ci",   "python"};
   std::vector<fs::path> files = {kRoot / "CMakeLists.txt"};
   for (const std::string& tree : trees)
     for (const auto& entry : fs::recursive_directory_iterator(kRoot / tree)) {
