@@ -53,8 +53,17 @@ struct PlanarBody {
   }
 };
 
-template <class Model>
-void check_against(const PlanarBody& body, const typename Model::Params& p, unsigned seed) {
+/// A generated model's kernels that the closed form checks.
+template <class Params>
+struct Kernels {
+  void (*mass_matrix)(const Params&, const double*, double*);
+  void (*forcing)(const Params&, double, const double*, const double*, const double*, double*);
+  double (*kinetic_energy)(const Params&, const double*, const double*);
+  double (*potential_energy)(const Params&, const double*);
+};
+
+template <class Params>
+void check_against(const PlanarBody& body, const Params& p, const Kernels<Params>& k, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> any(-3.0, 3.0);
   for (int sample = 0; sample < 20; ++sample) {
@@ -62,50 +71,16 @@ void check_against(const PlanarBody& body, const typename Model::Params& p, unsi
     const double q[3] = {any(rng), any(rng), any(rng)}, u[3] = {any(rng), any(rng), any(rng)};
     const double tau[3] = {any(rng), any(rng), any(rng)};
     double mm[9], f[3];
-    Model::mass_matrix(p, q, mm);
-    Model::forcing(p, 0.0, q, u, tau, f);
+    k.mass_matrix(p, q, mm);
+    k.forcing(p, 0.0, q, u, tau, f);
     const std::array<double, 9> m_ref = body.mass_matrix(q);
     const std::array<double, 3> f_ref = body.forcing(q, u, tau);
-    for (int k = 0; k < 9; ++k) CHECK(mm[k] == Approx(m_ref[k]).margin(1e-13));
-    for (int k = 0; k < 3; ++k) CHECK(f[k] == Approx(f_ref[k]).margin(1e-12));
-    CHECK(Model::kinetic_energy(p, q, u) == Approx(body.kinetic(q, u)).margin(1e-12));
-    CHECK(Model::potential_energy(p, q) == Approx(body.potential(q)).margin(1e-12));
+    for (int i = 0; i < 9; ++i) CHECK(mm[i] == Approx(m_ref[i]).margin(1e-13));
+    for (int i = 0; i < 3; ++i) CHECK(f[i] == Approx(f_ref[i]).margin(1e-12));
+    CHECK(k.kinetic_energy(p, q, u) == Approx(body.kinetic(q, u)).margin(1e-12));
+    CHECK(k.potential_energy(p, q) == Approx(body.potential(q)).margin(1e-12));
   }
 }
-
-struct BodyModel {
-  using Params = kanegen_models::planar_body::Params;
-  static void mass_matrix(const Params& p, const double* q, double* m) {
-    kanegen_models::planar_body::mass_matrix(p, q, m);
-  }
-  static void forcing(const Params& p, double t, const double* q, const double* u, const double* tau,
-                      double* f) {
-    kanegen_models::planar_body::forcing(p, t, q, u, tau, f);
-  }
-  static double kinetic_energy(const Params& p, const double* q, const double* u) {
-    return kanegen_models::planar_body::kinetic_energy(p, q, u);
-  }
-  static double potential_energy(const Params& p, const double* q) {
-    return kanegen_models::planar_body::potential_energy(p, q);
-  }
-};
-
-struct TiltedModel {
-  using Params = kanegen_models::planar_tilted::Params;
-  static void mass_matrix(const Params& p, const double* q, double* m) {
-    kanegen_models::planar_tilted::mass_matrix(p, q, m);
-  }
-  static void forcing(const Params& p, double t, const double* q, const double* u, const double* tau,
-                      double* f) {
-    kanegen_models::planar_tilted::forcing(p, t, q, u, tau, f);
-  }
-  static double kinetic_energy(const Params& p, const double* q, const double* u) {
-    return kanegen_models::planar_tilted::kinetic_energy(p, q, u);
-  }
-  static double potential_energy(const Params& p, const double* q) {
-    return kanegen_models::planar_tilted::potential_energy(p, q);
-  }
-};
 
 }  // namespace
 
@@ -122,7 +97,10 @@ TEST_CASE("a body on a planar joint across z matches the closed form", "[regress
   body.cn = 0.2;
   body.inertia = p.izz;
   body.gy = -p.g;
-  check_against<BodyModel>(body, p, 11);
+  check_against(body, p,
+                Kernels<model::Params>{&model::mass_matrix, &model::forcing, &model::kinetic_energy,
+                                       &model::potential_energy},
+                11);
 
   // The model file's initial state, and the outputs at it.
   CHECK(std::vector<double>(model::q0, model::q0 + 3) == std::vector<double>{0.1, 0.2, 0.4});
@@ -164,5 +142,8 @@ TEST_CASE("a body on an oblique, turned and offset planar joint matches the clos
   body.gy = dot(g_joint, e2);
   body.gn = dot(g_joint, n);
   body.g_origin = -p.g * 0.3;  // g . (0.1, 0.2, 0.3)
-  check_against<TiltedModel>(body, p, 12);
+  check_against(body, p,
+                Kernels<model::Params>{&model::mass_matrix, &model::forcing, &model::kinetic_energy,
+                                       &model::potential_energy},
+                12);
 }
