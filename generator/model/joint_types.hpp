@@ -71,13 +71,17 @@ inline const JointTypeInfo* joint_type_named(const std::string& name) {
   return nullptr;
 }
 
-/// The names of the types with coordinates (moving) or without, or of all.
-enum class JointKinds { all, moving, on_nodes };
+/// The names of all types, of those with coordinates (moving), of those
+/// that may sit on a node, or of those of one coordinate (what an output, a
+/// joint force or a loop's independent coordinate names: a compound joint's
+/// steps are named instead of it).
+enum class JointKinds { all, moving, on_nodes, one_coordinate };
 inline std::vector<std::string> joint_type_names(JointKinds kinds = JointKinds::all) {
   std::vector<std::string> names;
   for (const JointTypeInfo& info : joint_types)
     if (kinds == JointKinds::all || (kinds == JointKinds::moving && info.coordinates > 0) ||
-        (kinds == JointKinds::on_nodes && info.on_nodes))
+        (kinds == JointKinds::on_nodes && info.on_nodes) ||
+        (kinds == JointKinds::one_coordinate && info.coordinates == 1))
       names.push_back(info.name);
   return names;
 }

@@ -457,7 +457,7 @@ class Checker {
       if (!j->moves())
         error(at(o.where, "joint"),
               "output '" + o.name + "' names fixed joint '" + o.joint + "', which has no coordinate",
-              "name a " + joint_type_list(JointKinds::moving, "or") + " joint");
+              "name a " + joint_type_list(JointKinds::one_coordinate, "or") + " joint");
     }
   }
 
@@ -501,7 +501,7 @@ class Checker {
     }
     if (!j->moves())
       error(at(e.where, "joint"), what + " acts on fixed joint '" + e.joint + "', which has no coordinate",
-            "name a " + joint_type_list(JointKinds::moving, "or") + " joint");
+            "name a " + joint_type_list(JointKinds::one_coordinate, "or") + " joint");
     if (j->is_prescribed())
       error(at(e.where, "joint"), what + " acts on prescribed joint '" + e.joint + "', whose motion is given",
             "remove it, or name a joint that is not prescribed");

@@ -235,7 +235,7 @@ TEST_CASE("bad model: output naming an unknown joint", "[bad][json]") {
 
 TEST_CASE("bad model: joint output on a fixed joint", "[bad][json]") {
   expect_model_error(bad_model("output_fixed_joint.json"), "/outputs/1/joint", "fixed joint 'j2'",
-                     "name a " + joint_type_list(JointKinds::moving, "or") + " joint");
+                     "name a " + joint_type_list(JointKinds::one_coordinate, "or") + " joint");
 }
 
 TEST_CASE("bad model: point output without a point", "[bad][json]") {
@@ -281,7 +281,7 @@ TEST_CASE("bad force: a spring and a joint effort with the same name", "[bad][js
 TEST_CASE("bad joint effort: a fixed, unknown or prescribed joint, an unknown name", "[bad][json][effort]") {
   expect_model_error(bad_model("effort_fixed_joint.json"), "/forces/0/joint",
                      "joint effort 'motor' acts on fixed joint 'mount', which has no coordinate",
-                     "name a " + joint_type_list(JointKinds::moving, "or") + " joint");
+                     "name a " + joint_type_list(JointKinds::one_coordinate, "or") + " joint");
   expect_model_error(bad_model("effort_unknown_joint.json"), "/forces/0/joint",
                      "joint effort 'motor' names unknown joint 'spn'", "did you mean 'spin'?");
   expect_model_error(bad_model("effort_prescribed_joint.json"), "/forces/0/joint",
