@@ -63,23 +63,27 @@ model::ParameterValues parameter_values(const model::Model& m, const std::vector
 }
 
 /// Per coordinate of the instance, its column in the table: simulate writes
-/// t, then the coordinates in the model's order, then speeds and outputs,
-/// so a CSV of another model is told by its first columns.
+/// t, then the coordinates in the model's order, then their speeds
+/// (<coordinate>_dot), then outputs, so a CSV of another model is told by
+/// its first 2 n + 1 columns.
 std::vector<int> coordinate_columns(const ResultTable& table, const numeric::Instance& instance,
                                     const std::string& model_path) {
-  std::vector<int> columns;
-  for (std::size_t i = 0; i < instance.coordinate_names.size(); ++i) {
-    const std::string& name = instance.coordinate_names[i];
-    const std::size_t k = i + 1;
-    if (k >= table.columns.size() || table.columns[k] != name)
+  const std::size_t n = instance.coordinate_names.size();
+  for (std::size_t k = 1; k <= 2 * n; ++k) {
+    const bool speed = k > n;
+    const std::string expected = instance.coordinate_names[(k - 1) % n] + (speed ? "_dot" : "");
+    if (k >= table.columns.size() || table.columns[k] != expected)
       throw std::runtime_error(
           table.file + ": column " + std::to_string(k + 1) + " is '" +
           model::ModelError::printable(k < table.columns.size() ? table.columns[k] : "") +
-          "', where a run of " + model_path + " has its coordinate '" + model::ModelError::printable(name) +
-          "'; give the CSV of a run of this model (kanegen simulate writes t, then every "
-          "coordinate in order)");
-    columns.push_back(static_cast<int>(k));
+          "', where a run of " + model_path + " has its " + (speed ? "speed" : "coordinate") + " '" +
+          model::ModelError::printable(expected) +
+          "'; give the CSV of a run of this model (kanegen simulate writes t, then every coordinate and "
+          "every "
+          "speed in order)");
   }
+  std::vector<int> columns;
+  for (std::size_t i = 0; i < n; ++i) columns.push_back(static_cast<int>(i + 1));
   return columns;
 }
 

@@ -13,6 +13,7 @@ import argparse
 import csv
 import math
 import os
+import shutil
 import subprocess
 import sys
 import xml.etree.ElementTree as ET
@@ -176,7 +177,8 @@ def main():
     p.add_argument("--source", required=True)
     p.add_argument("--work", required=True)
     a = p.parse_args()
-    os.makedirs(a.work, exist_ok=True)
+    shutil.rmtree(a.work, ignore_errors=True)  # a stale frame would pass for a new one
+    os.makedirs(a.work)
     check_arm(a.kanegen, os.path.join(a.source, "tests/data/models/animate_arm.json"), a.work)
     check_refusals(a.kanegen, a.source, a.work)
     check_mesh(a.kanegen, os.path.join(a.source, "models/plate_hub.json"), a.work)
