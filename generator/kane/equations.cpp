@@ -301,9 +301,10 @@ void composite_bodies(Derivation& d, BodySums& sums) {
   }
 }
 
-/// A joint's share of a wrench, S^T w: the moment about a revolute axis, the force along a prismatic one.
-ex project(const kinematics::JointFrame& frame, const Vec3& moment, const Vec3& force) {
-  return frame.model.force_of(frame.axis, moment, force);
+/// Speed `c` of a joint's share of a wrench, S^T w: the moment about a
+/// revolute axis (a spherical joint's child axis c), the force along a prismatic one.
+ex project(const kinematics::JointFrame& frame, int c, const Vec3& moment, const Vec3& force) {
+  return frame.model.force_of(frame.column(c), moment, force);
 }
 
 /// Kane's equations with the sums over bodies grouped by subtree. The
@@ -342,14 +343,15 @@ class MassRows {
   void world_axes() {
     for (const kinematics::BodyState& b : d_.tree.bodies()) {
       const kinematics::JointFrame& frame = d_.tree.joints()[b.joint];
-      if (frame.speed < 0) continue;
-      const Vec3 a = named(d_.program, mul(b.rotation, frame.axis));
-      // The column of S at the world origin: (a, o x a) for a turn, (0, a) for a slide.
-      const Vec3 linear = frame.model.turns() ? named(d_.program, cross(b.origin, a)) : a;
-      const WorldAxis& w = world_axes_[b.joint] = {frame.model.angular_velocity(a, 1), linear};
-      d_.eq.world_mass.axis.resize(n_);
-      d_.eq.world_mass.axis[frame.speed] = {w.angular[0], w.angular[1], w.angular[2],
-                                            w.linear[0],  w.linear[1],  w.linear[2]};
+      for (int c = 0; c < frame.speeds(); ++c) {
+        const Vec3 a = named(d_.program, mul(b.rotation, frame.column(c)));
+        // The column of S at the world origin: (a, o x a) for a turn, (0, a) for a slide.
+        const Vec3 linear = frame.model.turns() ? named(d_.program, cross(b.origin, a)) : a;
+        const WorldAxis& w = world_axes_[frame.speed + c] = {frame.model.angular_velocity(a, 1), linear};
+        d_.eq.world_mass.axis.resize(n_);
+        d_.eq.world_mass.axis[frame.speed + c] = {w.angular[0], w.angular[1], w.angular[2],
+                                                  w.linear[0],  w.linear[1],  w.linear[2]};
+      }
     }
   }
 
@@ -364,9 +366,13 @@ class MassRows {
     world.momentum[s] = {l_world[0], l_world[1], l_world[2], p_world[0], p_world[1], p_world[2]};
     for (int k : b.path) {
       const kinematics::JointFrame& frame = d_.tree.joints()[k];
-      const WorldAxis& axis = world_axes_.at(k);
-      world.pairs.emplace_back(frame.speed, s);
-      set(frame.speed, s, dot(axis.angular, l_world) + dot(axis.linear, p_world));
+      for (int c = 0; c < frame.speeds(); ++c) {
+        const int r = frame.speed + c;
+        if (k == b.joint && r > s) continue;  // a spherical joint's own later columns: their rows give these
+        const WorldAxis& axis = world_axes_.at(r);
+        world.pairs.emplace_back(r, s);
+        set(r, s, dot(axis.angular, l_world) + dot(axis.linear, p_world));
+      }
     }
   }
 
@@ -377,7 +383,9 @@ class MassRows {
     for (int at = static_cast<int>(i);;) {
       const kinematics::BodyState& a = states[at];
       const kinematics::JointFrame& frame = d_.tree.joints()[a.joint];
-      if (frame.speed >= 0) set(frame.speed, s, project(frame, angular, linear));
+      for (int c = 0; c < frame.speeds(); ++c)
+        if (at != static_cast<int>(i) || frame.speed + c <= s)  // own later columns: their rows
+          set(frame.speed + c, s, project(frame, c, angular, linear));
       if (a.parent_state < 0) break;
       const Wrench up = to_parent(d_.program, {angular, linear}, a.to_child, a.offset);
       angular = up.moment;
@@ -391,7 +399,7 @@ class MassRows {
 
   Derivation& d_;
   const int n_;
-  std::map<int, WorldAxis> world_axes_;
+  std::map<int, WorldAxis> world_axes_;  ///< by speed
 };
 
 /// The joint speeds' rows: the forcing from the subtree's wrench, M from the
@@ -400,18 +408,19 @@ void joint_rows(Derivation& d, const BodySums& sums, MassRows& rows) {
   const auto& states = d.tree.bodies();
   for (std::size_t i = 0; i < states.size(); ++i) {
     const kinematics::JointFrame& joint = d.tree.joints()[states[i].joint];
-    if (joint.speed < 0) continue;
-    const int s = joint.speed;
-    d.eq.forcing[s] = project(joint, sums.wrench[i].moment, sums.wrench[i].force);
+    for (int column = 0; column < joint.speeds(); ++column) {
+      const int s = joint.speed + column;
+      d.eq.forcing[s] = project(joint, column, sums.wrench[i].moment, sums.wrench[i].force);
 
-    // The momentum of the subtree with u_s = 1. Linear part named first: the
-    // order GCC gave when both were arguments of one call, now fixed.
-    const SpatialInertia& c = sums.inertia[i];
-    const auto [unit_angular, unit_linear] =
-        joint.model.unit_momentum(c.mass, c.moment, c.second, joint.axis);
-    const Vec3 linear = named(d.program, unit_linear);
-    const Vec3 angular = named(d.program, unit_angular);
-    rows.spread(s, i, angular, linear);
+      // The momentum of the subtree with u_s = 1. Linear part named first: the
+      // order GCC gave when both were arguments of one call, now fixed.
+      const SpatialInertia& c = sums.inertia[i];
+      const auto [unit_angular, unit_linear] =
+          joint.model.unit_momentum(c.mass, c.moment, c.second, joint.column(column));
+      const Vec3 linear = named(d.program, unit_linear);
+      const Vec3 angular = named(d.program, unit_angular);
+      rows.spread(s, i, angular, linear);
+    }
   }
 }
 
@@ -450,10 +459,10 @@ RateMotion motion_of_rates(Derivation& d, const std::vector<GiNaC::symbol>& rate
       angular = mul(b.to_child, parent_angular);
       linear = mul(b.to_child, out.linear[b.parent_state] + cross(parent_angular, b.offset));
     }
-    if (joint.speed >= 0) {
-      const ex rate = rates[joint.speed];
+    for (int c = 0; c < joint.speeds(); ++c) {
+      const ex rate = rates[joint.speed + c];
       Vec3& moved = joint.model.part(angular, linear);  // + S rate
-      moved = moved + rate * joint.axis;
+      moved = moved + rate * joint.column(c);
     }
     out.angular[i] = named(d.program, angular);
     out.linear[i] = named(d.program, linear);
@@ -532,8 +541,8 @@ void momentum_recursion(Derivation& d, const BodySums& own) {
   d.eq.generalized_momentum.assign(d.eq.nu, 0);
   for (std::size_t i = 0; i < count; ++i) {
     const kinematics::JointFrame& joint = d.tree.joints()[states[i].joint];
-    if (joint.speed >= 0)
-      d.eq.generalized_momentum[joint.speed] = project(joint, momentum[i].moment, momentum[i].force);
+    for (int c = 0; c < joint.speeds(); ++c)
+      d.eq.generalized_momentum[joint.speed + c] = project(joint, c, momentum[i].moment, momentum[i].force);
   }
 }
 
@@ -544,6 +553,8 @@ std::string recursive_unavailable(const Derivation& d) {
     return "it has closed loops (their constraint forces need the saddle-point solve)";
   if (!d.eq.prescribed.empty())
     return "it has prescribed motions (their accelerations are given, not solved for)";
+  if (!d.vars.quaternion_w.empty())
+    return "it has a spherical or free joint (the recursion solves joints of one speed)";
   return "";
 }
 
@@ -642,6 +653,49 @@ std::vector<std::string> elastically_moved_bodies(const model::Model& model, con
   return names;
 }
 
+/// A spherical joint's speeds: its quaternion's x, y, z (at its speeds'
+/// indices) with q_dot = 1/2 q (0, u), the inputs (moments about the child
+/// axes), names and initial state; the quaternion's w comes after every
+/// other coordinate (quaternion_scalars).
+void spherical_coordinates(Derivation& d, const model::Joint& joint, int r, int w_index) {
+  Equations& eq = d.eq;
+  const symbolic::Variables& vars = d.vars;
+  const Vec3 v{vars.q[r], vars.q[r + 1], vars.q[r + 2]}, u{vars.u[r], vars.u[r + 1], vars.u[r + 2]};
+  const Vec3 rate = GiNaC::ex(1) / 2 * (vars.q[w_index] * u + cross(v, u));
+  // A model file gives the quaternion as w, x, y, z; none means no turn.
+  const std::vector<double> q0 = joint.step_q0.empty() ? std::vector<double>{1, 0, 0, 0} : joint.step_q0;
+  for (int c = 0; c < 3; ++c) {
+    const std::string axis(1, "xyz"[c]);
+    add_joint_forces(d, joint, r + c);
+    eq.coordinate_rates.push_back(rate[c]);
+    eq.coordinate_names.push_back(joint.name + "_q" + axis);
+    eq.coordinate_joints.push_back(joint.name);
+    eq.moved_bodies.push_back(subtree_bodies(d.model, {joint.child}));
+    eq.speed_names.push_back(joint.name + "_w" + axis);
+    eq.input_names.push_back(joint.name + "_m" + axis);
+    eq.q0.push_back(q0[1 + c]);
+    eq.u0.push_back(joint.step_u0.empty() ? 0.0 : joint.step_u0[c]);
+  }
+}
+
+/// The spherical joints' quaternion w, after every coordinate that has a
+/// speed: w_dot = -1/2 (x, y, z) . u.
+void quaternion_scalars(Derivation& d) {
+  for (const auto& [k, w_index] : d.vars.quaternion_w) {
+    const model::Joint& joint = d.model.joints[k];
+    const int r = d.tree.joints()[k].speed;
+    const symbolic::Variables& vars = d.vars;
+    if (static_cast<int>(d.eq.coordinate_rates.size()) != w_index)
+      throw std::logic_error("derive_equations: a quaternion's w out of its place in q");
+    d.eq.coordinate_rates.push_back(
+        -(vars.q[r] * vars.u[r] + vars.q[r + 1] * vars.u[r + 1] + vars.q[r + 2] * vars.u[r + 2]) / 2);
+    d.eq.coordinate_names.push_back(joint.name + "_qw");
+    d.eq.coordinate_joints.push_back(joint.name);
+    d.eq.moved_bodies.push_back(subtree_bodies(d.model, {joint.child}));
+    d.eq.q0.push_back(joint.step_q0.empty() ? 1.0 : joint.step_q0[0]);
+  }
+}
+
 /// The joint coordinates: forces, rates, names and initial state.
 void joint_coordinates(Derivation& d) {
   Equations& eq = d.eq;
@@ -649,6 +703,10 @@ void joint_coordinates(Derivation& d) {
     const model::Joint& joint = d.model.joints[k];
     const int r = d.tree.joints()[k].speed;
     if (r < 0) continue;
+    if (d.tree.joints()[k].model.spherical()) {
+      spherical_coordinates(d, joint, r, d.tree.joints()[k].quaternion_w);
+      continue;
+    }
     add_joint_forces(d, joint, r);
     eq.coordinate_rates.push_back(d.vars.u[r]);
     eq.coordinate_names.push_back(joint.name);
@@ -708,9 +766,10 @@ void elastic_coordinates(Derivation& d) {
 void coordinate_roles(Derivation& d) {
   d.eq.coordinate_role.assign(d.eq.nq, 0);
   for (std::size_t k = 0; k < d.model.joints.size(); ++k) {
-    const int r = d.tree.joints()[k].speed;
+    const kinematics::JointFrame& frame = d.tree.joints()[k];
     const model::Joint& joint = d.model.joints[k];
-    if (r >= 0) d.eq.coordinate_role[r] = joint.is_prescribed() ? 2 : joint.independent ? 1 : 0;
+    for (int c = 0; c < frame.speeds(); ++c)
+      d.eq.coordinate_role[frame.speed + c] = joint.is_prescribed() ? 2 : joint.independent ? 1 : 0;
   }
 }
 
@@ -772,7 +831,8 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
   // The ground accelerates at -g: every rest acceleration then carries gravity.
   const kinematics::TreeKinematics tree(model, vars, program, zero_vec() - gravity, attachments);
   Equations eq;
-  eq.nq = eq.nu = static_cast<int>(vars.q.size());
+  eq.nq = static_cast<int>(vars.q.size());
+  eq.nu = static_cast<int>(vars.u.size());
   eq.mass_matrix.assign(eq.nu * eq.nu, 0);
   eq.forcing.assign(eq.nu, 0);
   eq.kinetic_energy = eq.potential_energy = eq.gravity_potential = eq.nonconservative_power = 0;
@@ -797,6 +857,7 @@ Equations derive_equations(const model::Model& model, const symbolic::Variables&
   const std::vector<ex> body_forcing = eq.forcing;
   joint_coordinates(d);
   elastic_coordinates(d);
+  quaternion_scalars(d);
   if (flexible.empty()) {
     newton_euler(d, own);
     momentum_recursion(d, own);

@@ -184,13 +184,14 @@ std::vector<WorkingFrame> working_frames(const kinematics::TreeKinematics& tree,
   std::vector<Vector3d> origin_xyz(count, Vector3d::Zero());
   for (std::size_t i = 0; i < count; ++i) {
     const kinematics::JointFrame& joint = tree.joints()[states[i].joint];
-    choice[i].free = !flexible[i];
+    const bool spherical = joint.model.spherical();
+    choice[i].free = !flexible[i] && !spherical;
     if (choice[i].free && joint.speed >= 0) {
       Vector3d axis;
       for (int k = 0; k < 3; ++k) value_of(joint.axis[k], axis[k]);
       choice[i].pi = axis_to_z(axis);
     }
-    khalil_ready[i] = states[i].parent_state >= 0 && !flexible[i] && !joint.on_node &&
+    khalil_ready[i] = states[i].parent_state >= 0 && !flexible[i] && !spherical && !joint.on_node &&
                       constant_origin(joint, origin_rotation[i], origin_xyz[i]);
   }
   // Each rigid body turns and slides its frame for its first such child.

@@ -31,15 +31,22 @@ struct FrameStep {
 struct WorkingFrame {
   /// From the body frame: x_working = turn x_body + shift (constant).
   FrameStep from_body;
-  symbolic::Vec3 axis;  ///< the joint axis, working axes (e_z unless flexible)
+  symbolic::Vec3 axis;  ///< the joint axis, working axes (e_z unless flexible or spherical)
   /// To the parent's working frame, the parent's side first (empty for a
   /// body on the ground: nothing passes to the ground and it does not move).
   std::vector<FrameStep> to_parent;
+
+  /// Column c of the joint's S in working axes: the axis, or a spherical
+  /// joint's child axis c (its working frame is its body frame).
+  symbolic::Vec3 column(const kinematics::JointFrame& joint, int c) const {
+    return joint.model.spherical() ? joint.column(c) : axis;
+  }
 };
 
 /// Per body (TreeKinematics::bodies order). `flexible[i]`: body i has elastic
 /// coordinates; its working frame is its body frame (its elastic terms and
-/// its children's node partials are in those axes). A body whose joint is on
+/// its children's node partials are in those axes), as is a spherical
+/// joint's child's (three axes of S, none to turn to e_z). A body whose joint is on
 /// a node, or whose joint origin depends on parameters, gets one general step.
 std::vector<WorkingFrame> working_frames(const kinematics::TreeKinematics& tree,
                                          const std::vector<bool>& flexible, symbolic::Program& program);

@@ -89,13 +89,15 @@ std::vector<WorkingMotion> working_motion(const kinematics::TreeKinematics& tree
     }
     // The joint's own motion: a turn about the working axis, or a slide
     // along it (the slide's Coriolis term 2 omega x u a).
-    if (joint.speed >= 0) {
-      const GiNaC::ex& u = speeds[joint.speed];
-      const Vec3& axis = frames[i].axis;
+    // A spherical joint's three turns all meet the omega carried in.
+    const Vec3 carried = m.omega;
+    for (int c = 0; c < joint.speeds(); ++c) {
+      const GiNaC::ex& u = speeds[joint.speed + c];
+      const Vec3 axis = frames[i].column(joint, c);
       if (joint.model.slides()) {
         m.accel_rest = named(program, m.accel_rest + 2 * u * cross(m.omega, axis));
       } else if (joint.model.turns()) {
-        m.alpha_rest = named(program, m.alpha_rest + u * cross(m.omega, axis));
+        m.alpha_rest = named(program, m.alpha_rest + u * cross(carried, axis));
         m.omega = named(program, m.omega + u * axis);
       }
     }

@@ -53,10 +53,10 @@ NewtonEuler working_newton_euler(const kinematics::TreeKinematics& tree, const s
       for (const FrameStep& step : frame.to_parent)
         if (step.turns()) g = named(program, mul_transposed(step.turn, g));
     }
-    if (joint.speed >= 0) {
-      const ex& udot = accelerations[joint.speed];
+    for (int c = 0; c < joint.speeds(); ++c) {
+      const ex& udot = accelerations[joint.speed + c];
       Vec3& moved = joint.model.part(angular, linear);  // a_i += S u_dot
-      moved = named(program, moved + udot * frame.axis);
+      moved = named(program, moved + udot * frame.column(joint, c));
     }
     alpha[i] = angular;
     accel[i] = linear;
@@ -83,9 +83,9 @@ NewtonEuler working_newton_euler(const kinematics::TreeKinematics& tree, const s
     inertial[i] = {named(program, inertial[i].moment), named(program, inertial[i].force)};
     weight[i] = {named(program, weight[i].moment), named(program, weight[i].force)};
     const kinematics::JointFrame& joint = tree.joints()[states[i].joint];
-    if (joint.speed >= 0) {
-      out.inertial[joint.speed] = projected(joint, frames[i].axis, inertial[i]);
-      out.gravity[joint.speed] = -projected(joint, frames[i].axis, weight[i]);
+    for (int c = 0; c < joint.speeds(); ++c) {
+      out.inertial[joint.speed + c] = projected(joint, frames[i].column(joint, c), inertial[i]);
+      out.gravity[joint.speed + c] = -projected(joint, frames[i].column(joint, c), weight[i]);
     }
     const int parent = states[i].parent_state;
     if (parent < 0) continue;

@@ -19,12 +19,14 @@ Column column_of(model::JointType type) {
   switch (type) {
     case model::JointType::revolute:
     case model::JointType::continuous:
+    case model::JointType::spherical:
       return Column::angular;
     case model::JointType::prismatic:
       return Column::linear;
     case model::JointType::fixed:
       return Column::none;
     case model::JointType::planar:  // compound: the loaders made it primitive steps
+    case model::JointType::free:
       throw std::logic_error(
           "a compound joint type reached the symbolic joint model (model/joint_expansion.hpp)");
   }
@@ -33,7 +35,21 @@ Column column_of(model::JointType type) {
 
 }  // namespace
 
-JointModel::JointModel(model::JointType type) : column_(column_of(type)) {}
+JointModel::JointModel(model::JointType type)
+    : column_(column_of(type)), speeds_(model::joint_type_info(type).speeds) {}
+
+Vec3 JointModel::column_axis(const Vec3& axis, int c) const {
+  if (!spherical()) return axis;
+  Vec3 unit = zero_vec();
+  unit[c] = 1;
+  return unit;
+}
+
+Mat3 JointModel::quaternion_rotation(const ex& x, const ex& y, const ex& z, const ex& w, const ex& s) {
+  return {1 - s * (y * y + z * z), s * (x * y - w * z),     s * (x * z + w * y),
+          s * (x * y + w * z),     1 - s * (x * x + z * z), s * (y * z - w * x),
+          s * (x * z - w * y),     s * (y * z + w * x),     1 - s * (x * x + y * y)};
+}
 
 ex JointModel::force_of(const Vec3& axis, const Vec3& moment, const Vec3& force) const {
   return dot(axis, part(moment, force));

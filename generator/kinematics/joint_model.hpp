@@ -18,15 +18,20 @@ namespace kanegen::kinematics {
 using symbolic::Mat3;
 using symbolic::Vec3;
 
-/// The part of a spatial motion that a joint's column of S lies in.
+/// The part of a spatial motion that a joint's columns of S lie in.
 enum class Column { none, angular, linear };
 
 class JointModel {
  public:
   explicit JointModel(model::JointType type = model::JointType::fixed);
 
-  /// Coordinates, and as many speeds: q_dot = u, no kinematic equation.
-  int speeds() const { return column_ == Column::none ? 0 : 1; }
+  /// Speeds: 0 (fixed), 1 (q_dot = u), or 3 for a spherical joint (u the
+  /// child's angular velocity relative to the joint frame, child axes).
+  int speeds() const { return speeds_; }
+  bool spherical() const { return speeds_ == 3; }
+  /// Column c of S (c < speeds()) lies along axis (one speed) or along
+  /// child axis c (spherical).
+  Vec3 column_axis(const Vec3& axis, int c) const;
   Column column() const { return column_; }
   bool turns() const { return column_ == Column::angular; }
   bool slides() const { return column_ == Column::linear; }
@@ -50,6 +55,12 @@ class JointModel {
   /// (child axes -> joint axes) and the translation of the child origin.
   Mat3 rotation(const Vec3& axis, const GiNaC::ex& q) const;
   Vec3 translation(const Vec3& axis, const GiNaC::ex& q) const;
+  /// A spherical joint's rotation (child axes -> joint axes) by the
+  /// quaternion w + x i + y j + z k, with s = 2 / (w^2 + x^2 + y^2 + z^2):
+  /// divided by its squared length, it stays a rotation when integration
+  /// lets the length drift.
+  static Mat3 quaternion_rotation(const GiNaC::ex& x, const GiNaC::ex& y, const GiNaC::ex& z,
+                                  const GiNaC::ex& w, const GiNaC::ex& s);
 
   /// S u split: the child's angular and linear velocity relative to the
   /// joint frame, child axes (zero for a part the column is not in).
@@ -68,6 +79,7 @@ class JointModel {
 
  private:
   Column column_ = Column::none;
+  int speeds_ = 0;
 };
 
 }  // namespace kanegen::kinematics

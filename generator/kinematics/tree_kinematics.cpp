@@ -190,7 +190,12 @@ void place_child(BodyState& b, const BodyState& p, const JointFrame& frame, bool
     b.path.push_back(joint);
     const ex qk = vars.q[frame.speed];
     // A slide carries the origin along the axis (in parent axes), a turn the axes.
-    if (frame.model.slides())
+    if (frame.model.spherical()) {
+      const ex &x = vars.q[frame.speed], &y = vars.q[frame.speed + 1], &z = vars.q[frame.speed + 2];
+      const ex& w = vars.q[frame.quaternion_w];
+      const ex s = program.define(2 / (w * w + x * x + y * y + z * z));
+      joint_to_child = named(program, transpose(JointModel::quaternion_rotation(x, y, z, w, s)));
+    } else if (frame.model.slides())
       b.offset = named(program, node + xyz + frame.model.translation(mul(r_origin, frame.axis), qk));
     else
       joint_to_child = named(program, transpose(frame.model.rotation(frame.axis, qk)));
@@ -213,9 +218,16 @@ void child_motion(BodyState& b, const BodyState& p, const JointFrame& frame, boo
       on_node ? named(program, p.alpha_rest + cross(p.omega, m.spin) + m.spin_accel) : p.alpha_rest;
   const Vec3 parent_omega = named(program, mul(b.to_child, frame_omega));  // in child axes
   if (moves && frame.model.turns()) {
-    const ex uk = vars.u[frame.speed];
-    b.omega = named(program, parent_omega + frame.model.angular_velocity(frame.axis, uk));
-    b.alpha_rest = named(program, mul(b.to_child, frame_alpha) + uk * cross(parent_omega, frame.axis));
+    // w = E w_p + sum_c a_c u_c; the axes, fixed in the child, turn with
+    // the parent's E w_p relative to the joint frame: + u_c (E w_p) x a_c.
+    Vec3 omega = parent_omega, alpha = mul(b.to_child, frame_alpha);
+    for (int c = 0; c < frame.speeds(); ++c) {
+      const ex uk = vars.u[frame.speed + c];
+      omega = omega + frame.model.angular_velocity(frame.column(c), uk);
+      alpha = alpha + uk * cross(parent_omega, frame.column(c));
+    }
+    b.omega = named(program, omega);
+    b.alpha_rest = named(program, alpha);
   } else {
     b.omega = parent_omega;
     b.alpha_rest = named(program, mul(b.to_child, frame_alpha));
@@ -237,10 +249,12 @@ TreeKinematics::TreeKinematics(const model::Model& model, const symbolic::Variab
                                symbolic::Program& program, const Vec3& base_acceleration,
                                const std::map<int, NodeAttachment>& attachments)
     : model_(model), program_(program), joints_(model.joints.size()) {
-  // Speeds are numbered in file order of the moving joints.
-  int speed = 0;
-  for (std::size_t k = 0; k < model.joints.size(); ++k)
-    if (model.joints[k].moves()) joints_[k].speed = speed++;
+  // Speeds are numbered in file order of the moving joints (symbolic/variables.hpp).
+  for (std::size_t k = 0; k < model.joints.size(); ++k) {
+    joints_[k].speed = vars.first_speed.at(k);
+    const auto w = vars.quaternion_w.find(static_cast<int>(k));
+    if (w != vars.quaternion_w.end()) joints_[k].quaternion_w = w->second;
+  }
 
   BodyState ground;
   ground.to_child = ground.rotation = identity_mat();

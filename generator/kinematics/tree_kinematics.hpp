@@ -28,10 +28,16 @@ using symbolic::Vec3;
 /// joint's own speed are its column of S, (a_k, 0) (a turn) or (0, a_k) (a
 /// slide), in child axes.
 struct JointFrame {
-  int speed = -1;        ///< index of its generalized speed; -1 for a fixed joint
-  JointModel model;      ///< what its type does (kinematics/joint_model.hpp)
-  Vec3 axis;             ///< a_k, child axes (unit)
-  GiNaC::ex coordinate;  ///< q_k (a moving joint's)
+  int speed = -1;         ///< index of its (first) generalized speed; -1 for a fixed joint
+  JointModel model;       ///< what its type does (kinematics/joint_model.hpp)
+  Vec3 axis;              ///< a_k, child axes (unit)
+  GiNaC::ex coordinate;   ///< q_k (a moving joint's; a spherical joint's quaternion x)
+  int quaternion_w = -1;  ///< a spherical joint's: the index in q of its quaternion's w
+
+  /// The joint's speeds, speed .. speed + speeds() - 1 (none for a fixed joint).
+  int speeds() const { return model.speeds(); }
+  /// Column c of S in child axes: the axis, or a spherical joint's child axis c.
+  Vec3 column(int c) const { return model.column_axis(axis, c); }
   /// The joint frame in the parent's, as the model gives it (before a node's
   /// motion): origin (parent axes) and rotation (joint axes -> parent axes).
   Vec3 origin_xyz;

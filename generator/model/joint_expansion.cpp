@@ -17,7 +17,9 @@ Axis cross(const Axis& a, const Axis& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 
-std::string step_name(const Joint& j, const JointStep& step) { return j.name + "_" + step.suffix; }
+std::string step_name(const Joint& j, const JointStep& step) {
+  return *step.suffix ? j.name + "_" + step.suffix : j.name;
+}
 std::string frame_name(const Joint& j, const JointStep& step) { return step_name(j, step) + "_frame"; }
 
 /// "J_x, J_y and J_theta": the names a user may give instead of J.
@@ -31,13 +33,18 @@ std::string step_names(const Joint& j, const char* conjunction) {
   return out;
 }
 
-/// What a compound joint cannot carry, and a unit axis.
-Axis checked_axis(const Model& m, const Joint& j) {
-  const std::string type = joint_type_info(j.type).name;
+/// What a joint of several coordinates cannot carry (yet): a spring,
+/// damping, a prescribed motion, an independent coordinate of a loop, a node
+/// of a flexible parent.
+void check_several_coordinates(const Model& m, const Joint& j) {
+  const JointTypeInfo& info = joint_type_info(j.type);
+  const std::string type = info.name;
   const auto refuse = [&](const std::string& key, const std::string& what) {
     throw ModelError(m.source_file, j.where + "/" + key, what + " on " + type + " joint '" + j.name + "'",
-                     "remove it (a " + type + " joint carries none), or build the motion from " +
-                         step_names(j, "and") + " as separate joints");
+                     info.compound()
+                         ? "remove it (a " + type + " joint carries none), or build the motion from " +
+                               step_names(j, "and") + " as separate joints"
+                         : "remove it (a " + type + " joint carries none)");
   };
   if (!j.spring_stiffness.is_literal || j.spring_stiffness.value != 0) refuse("spring", "a spring");
   if (!j.damping.is_literal || j.damping.value != 0) refuse("damping", "damping");
@@ -45,6 +52,17 @@ Axis checked_axis(const Model& m, const Joint& j) {
   if (j.independent) refuse("independent", "an independent coordinate");
   if (j.parent_node >= 0 || j.parent_node == kTipNode || !j.parent_node_set.empty())
     refuse(j.parent_node_set.empty() ? "parent_node" : "parent_node_set", "a node of a flexible parent");
+  if (info.speeds != info.coordinates && !m.loops.empty())
+    throw ModelError(m.source_file, j.where + "/type",
+                     type + " joint '" + j.name + "' in a model with closed loops",
+                     "closed loops are assembled over joints whose coordinates are their speeds' integrals; "
+                     "build the motion from revolute and prismatic joints, or open the loop");
+}
+
+/// A compound joint's unit axis (a free joint's frame is the joint frame's x, y, z).
+Axis checked_axis(const Model& m, const Joint& j) {
+  const std::string type = joint_type_info(j.type).name;
+  if (j.type == JointType::free) return {0.0, 0.0, 1.0};
   const double norm = std::sqrt(j.axis[0] * j.axis[0] + j.axis[1] * j.axis[1] + j.axis[2] * j.axis[2]);
   if (!std::isfinite(norm) || norm == 0)
     throw ModelError(m.source_file, j.where + "/axis",
@@ -63,7 +81,7 @@ void check_free_names(const Model& m, const Joint& j) {
     std::vector<std::string> made{step_name(j, info.steps[s])};
     if (s + 1 < info.step_count) made.push_back(frame_name(j, info.steps[s]));
     for (const std::string& name : made)
-      if (taken.count(name))
+      if (name != j.name && taken.count(name))
         throw ModelError(m.source_file, j.where + "/name",
                          std::string(info.name) + " joint '" + j.name + "' names its coordinates' joints " +
                              step_names(j, "and") + " and the frames between them <joint>_x_frame, ...; '" +
@@ -96,24 +114,35 @@ Body massless_frame(const std::string& name, const std::string& where) {
   return b;
 }
 
+/// `count` values of a joint's initial `values` from `first` on, or none for the defaults.
+std::vector<double> slice(const std::vector<double>& values, int first, int count) {
+  if (values.empty()) return {};
+  return {values.begin() + first, values.begin() + first + count};
+}
+
 /// The steps of compound joint j, the frames between them appended to `frames`.
 std::vector<Joint> steps_of(const Model& m, const Joint& j, std::vector<Body>& frames) {
   const JointTypeInfo& info = joint_type_info(j.type);
-  const auto initial = [&](const std::vector<double>& values, int s) {
-    return values.empty() ? 0.0 : values.at(static_cast<std::size_t>(s));
-  };
   const std::array<Axis, 3> frame = compound_joint_frame(checked_axis(m, j));
   std::vector<Joint> steps;
+  int q_first = 0, u_first = 0;  // the step's first initial coordinate and speed
   for (int s = 0; s < info.step_count; ++s) {
     const JointStep& step = info.steps[s];
+    const JointTypeInfo& step_info = joint_type_info(step.type);
     Joint out = j;
     out.name = step_name(j, step);
     out.type = step.type;
     out.axis = frame[static_cast<std::size_t>(step.axis)];
-    out.q0 = initial(j.step_q0, s);
-    out.u0 = initial(j.step_u0, s);
-    out.step_q0.clear();
-    out.step_u0.clear();
+    out.step_q0 = slice(j.step_q0, q_first, step_info.coordinates);
+    out.step_u0 = slice(j.step_u0, u_first, step_info.speeds);
+    if (step_info.coordinates == 1) {
+      out.q0 = out.step_q0.empty() ? 0.0 : out.step_q0[0];
+      out.u0 = out.step_u0.empty() ? 0.0 : out.step_u0[0];
+      out.step_q0.clear();
+      out.step_u0.clear();
+    }
+    q_first += step_info.coordinates;
+    u_first += step_info.speeds;
     if (s > 0) {
       out.parent = frame_name(j, info.steps[s - 1]);
       for (Scalar& c : out.origin_xyz) c = Scalar::number(0.0, j.where);
@@ -147,6 +176,7 @@ void expand_compound_joints(Model& model) {
   std::vector<Joint> joints;
   std::vector<Body> frames;
   for (const Joint& j : model.joints) {
+    if (joint_type_info(j.type).coordinates > 1) check_several_coordinates(model, j);
     if (!joint_type_info(j.type).compound()) {
       joints.push_back(j);
       continue;

@@ -6,9 +6,11 @@
 // is said twice on purpose: by the symbolic joint model
 // (kinematics/joint_model.*) and by the numeric path's own table
 // (numeric/instance.cpp), so that `kanegen verify` compares two derivations.
-// A compound type (planar) is a row of steps: the loaders replace it by one
-// joint of a primitive type per step (model/joint_expansion.hpp), so no
-// later stage sees it.
+// A compound type (planar, free) is a row of steps: the loaders replace it by
+// one joint of a primitive type per step (model/joint_expansion.hpp), so no
+// later stage sees it. A spherical joint is primitive but has more
+// coordinates than speeds: a unit quaternion and the child's angular
+// velocity in its own axes, q_dot = N(q) u (docs/model-format.md).
 #pragma once
 
 #include <array>
@@ -18,12 +20,12 @@
 
 namespace kanegen::model {
 
-enum class JointType { revolute, continuous, prismatic, fixed, planar };
+enum class JointType { revolute, continuous, prismatic, fixed, planar, spherical, free };
 
 /// One step of a compound type: a joint of a primitive type along or about
 /// one axis of the compound joint's frame (0, 1: the two unit vectors across
 /// its axis, model/joint_expansion.hpp; 2: its axis), whose coordinate is
-/// named <joint>_<suffix>.
+/// named <joint>_<suffix>; a step with the suffix "" keeps the joint's name.
 struct JointStep {
   JointType type;
   int axis;
@@ -33,29 +35,45 @@ struct JointStep {
 struct JointTypeInfo {
   JointType type;
   const char* name;  ///< as a model file spells it (JSON and URDF alike)
-  int coordinates;   ///< coordinates, and as many speeds (q_dot = u)
+  int coordinates;   ///< coordinates (q)
+  int speeds;        ///< speeds (u): as many as coordinates (q_dot = u) but for a quaternion's
   /// May sit on a node of a flexible parent (a slide there is not derived).
   bool on_nodes;
-  /// A compound type's steps (step_count of them, one per coordinate); a
-  /// primitive type has none.
+  /// A compound type's steps (step_count of them), in the order of its
+  /// coordinates; a primitive type has none.
   int step_count = 0;
-  std::array<JointStep, 3> steps{};
+  std::array<JointStep, 4> steps{};
 
   bool compound() const { return step_count > 0; }
 };
 
-inline constexpr std::array<JointTypeInfo, 5> joint_types{{
-    {JointType::revolute, "revolute", 1, true},
-    {JointType::continuous, "continuous", 1, true},
-    {JointType::prismatic, "prismatic", 1, false},
-    {JointType::fixed, "fixed", 0, true},
+inline constexpr std::array<JointTypeInfo, 7> joint_types{{
+    {JointType::revolute, "revolute", 1, 1, true},
+    {JointType::continuous, "continuous", 1, 1, true},
+    {JointType::prismatic, "prismatic", 1, 1, false},
+    {JointType::fixed, "fixed", 0, 0, true},
     // URDF's planar: the child slides in the plane across the axis and turns about it.
     {JointType::planar,
      "planar",
      3,
+     3,
      false,
      3,
      {{{JointType::prismatic, 0, "x"}, {JointType::prismatic, 1, "y"}, {JointType::revolute, 2, "theta"}}}},
+    // A ball joint (MuJoCo's ball): quaternion (x, y, z, w) and angular velocity in child axes.
+    {JointType::spherical, "spherical", 4, 3, false},
+    // Six degrees of freedom (MuJoCo's free, URDF's floating): slides along the
+    // joint frame's x, y, z, then a spherical joint that keeps the joint's name.
+    {JointType::free,
+     "free",
+     7,
+     6,
+     false,
+     4,
+     {{{JointType::prismatic, 0, "x"},
+       {JointType::prismatic, 1, "y"},
+       {JointType::prismatic, 2, "z"},
+       {JointType::spherical, 2, ""}}}},
 }};
 
 inline const JointTypeInfo& joint_type_info(JointType type) {

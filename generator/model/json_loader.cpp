@@ -2,6 +2,7 @@
 #include "model/json_loader.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <vector>
 
@@ -336,30 +337,55 @@ class JsonReader {
                 "body (\"node_set\")");
   }
 
-  /// A joint's initial coordinate and speed: numbers, or for a compound
-  /// type (planar) one number per coordinate in an array.
+  /// A joint's initial coordinate and speed: numbers, or for a joint of
+  /// several coordinates one number per coordinate (speed) in an array.
   void read_initial(const json& initial, const std::string& place, Joint& out) const {
     const JointTypeInfo& info = joint_type_info(out.type);
     for (const char* key : {"q", "u"}) {
       if (!initial.contains(key)) continue;
       const json& v = initial[key];
       const std::string at = place + "/" + key;
-      if (!info.compound()) {
+      const bool coordinates = key[0] == 'q';
+      if (info.coordinates == 1) {
         if (!v.is_number())
           error(at, std::string(info.name) + " joint '" + out.name + "' has one coordinate",
                 "give one number");
-        (key[0] == 'q' ? out.q0 : out.u0) = v.get<double>();
+        (coordinates ? out.q0 : out.u0) = v.get<double>();
         continue;
       }
-      if (!v.is_array() || v.size() != static_cast<std::size_t>(info.coordinates))
-        error(at,
-              std::string(info.name) + " joint '" + out.name + "' has " + std::to_string(info.coordinates) +
-                  " coordinates",
-              "give an array of " + std::to_string(info.coordinates) +
-                  " numbers, in the order of its steps (" + step_suffixes(info) + ")");
-      std::vector<double>& values = key[0] == 'q' ? out.step_q0 : out.step_u0;
+      const int count = coordinates ? info.coordinates : info.speeds;
+      const std::string what = coordinates ? " coordinates" : " speeds";
+      if (!v.is_array() || v.size() != static_cast<std::size_t>(count))
+        error(at, std::string(info.name) + " joint '" + out.name + "' has " + std::to_string(count) + what,
+              "give an array of " + std::to_string(count) + " numbers, in the order " +
+                  initial_order(info, coordinates));
+      std::vector<double>& values = coordinates ? out.step_q0 : out.step_u0;
       for (const json& x : v) values.push_back(x.get<double>());
     }
+    if (!out.step_q0.empty()) unit_quaternion(info, place + "/q", out.step_q0);
+  }
+
+  /// The order of a joint's initial coordinates (speeds) in a model file.
+  static std::string initial_order(const JointTypeInfo& info, bool coordinates) {
+    if (info.type == JointType::spherical)
+      return coordinates ? "w, x, y, z (a unit quaternion)" : "wx, wy, wz";
+    if (info.type == JointType::free)
+      return coordinates ? "x, y, z, then the quaternion w, x, y, z" : "x, y, z, then wx, wy, wz";
+    return "of its steps (" + step_suffixes(info) + ")";
+  }
+
+  /// A spherical joint's quaternion (the last four of a free joint's
+  /// coordinates) must have unit length; it is made exactly unit.
+  void unit_quaternion(const JointTypeInfo& info, const std::string& at, std::vector<double>& q) const {
+    if (info.type != JointType::spherical && info.type != JointType::free) return;
+    const std::size_t first = q.size() - 4;
+    double norm = 0;
+    for (std::size_t k = first; k < q.size(); ++k) norm += q[k] * q[k];
+    norm = std::sqrt(norm);
+    if (!(std::abs(norm - 1) <= 1e-6))
+      error(at, "the quaternion of " + std::string(info.name) + " joint has length " + std::to_string(norm),
+            "give a unit quaternion w, x, y, z, e.g. [1, 0, 0, 0] for no turn");
+    for (std::size_t k = first; k < q.size(); ++k) q[k] /= norm;
   }
 
   static std::string step_suffixes(const JointTypeInfo& info) {
@@ -392,6 +418,10 @@ class JsonReader {
                 "remove it, or make the joint " + joint_type_list(JointKinds::moving, "or"));
       out.actuated = false;
     }
+    if (j.contains("axis") && (out.type == JointType::spherical || out.type == JointType::free))
+      error(place + "/axis",
+            std::string(joint_type_info(out.type).name) + " joint '" + out.name + "' has no axis",
+            "remove it: the joint frame's axes (origin rpy) are those of its motion");
     if (j.contains("axis"))
       for (int k = 0; k < 3; ++k) out.axis[k] = j["axis"][k].get<double>();
     const json spring = j.value("spring", json::object());

@@ -198,8 +198,10 @@ struct Joint {
   bool actuated = true;  ///< has an input torque/force tau
   double q0 = 0.0;       ///< initial coordinate
   double u0 = 0.0;       ///< initial speed
-  /// A compound type's (planar) initial coordinates and speeds, one per
-  /// step, or empty for zeros; the expansion gives them to its steps.
+  /// The initial coordinates and speeds of a joint of several coordinates
+  /// (planar, spherical, free), in the order a model file gives them (a
+  /// spherical joint's quaternion w, x, y, z), or empty for zeros (the
+  /// identity quaternion); the expansion gives a compound joint's to its steps.
   std::vector<double> step_q0, step_u0;
   /// The node of a flexible parent the joint sits on (-1: the parent's
   /// frame). The joint frame then moves and turns with the node.

@@ -458,6 +458,12 @@ class Checker {
         error(at(o.where, "joint"),
               "output '" + o.name + "' names fixed joint '" + o.joint + "', which has no coordinate",
               "name a " + joint_type_list(JointKinds::one_coordinate, "or") + " joint");
+      if (joint_type_info(j->type).coordinates > 1)
+        error(at(o.where, "joint"),
+              "output '" + o.name + "' names " + joint_type_info(j->type).name + " joint '" + o.joint +
+                  "', which has several coordinates",
+              "every coordinate and speed is a column of the simulation's CSV already; for the child's "
+              "position give a point_position output");
     }
   }
 
@@ -502,6 +508,11 @@ class Checker {
     if (!j->moves())
       error(at(e.where, "joint"), what + " acts on fixed joint '" + e.joint + "', which has no coordinate",
             "name a " + joint_type_list(JointKinds::one_coordinate, "or") + " joint");
+    if (joint_type_info(j->type).coordinates > 1)
+      error(at(e.where, "joint"),
+            what + " acts on " + joint_type_info(j->type).name + " joint '" + e.joint +
+                "', which has several speeds",
+            "give the moment as a body-fixed force pair, or drive the joint's inputs (tau)");
     if (j->is_prescribed())
       error(at(e.where, "joint"), what + " acts on prescribed joint '" + e.joint + "', whose motion is given",
             "remove it, or name a joint that is not prescribed");

@@ -213,28 +213,47 @@ void check_vocabulary(const tinyxml2::XMLElement* e, const std::string& key, con
   }
 }
 
+/// The joint type of a URDF type name: the table's names that URDF also
+/// has, and URDF's "floating" for the table's free joint; nullptr for
+/// another name (the table's spherical and free are no URDF types).
+const JointTypeInfo* urdf_joint_type(const std::string& type) {
+  if (type == "floating") return &joint_type_info(JointType::free);
+  const JointTypeInfo* info = joint_type_named(type);
+  if (info && (info->type == JointType::spherical || info->type == JointType::free)) return nullptr;
+  return info;
+}
+
+/// The type names a URDF may use, in the table's order.
+std::vector<std::string> urdf_joint_type_names() {
+  std::vector<std::string> names;
+  for (const JointTypeInfo& info : joint_types)
+    if (info.type == JointType::free)
+      names.push_back("floating");
+    else if (urdf_joint_type(info.name))
+      names.push_back(info.name);
+  return names;
+}
+
 /// Joint features urdfdom accepts but kanegen cannot honour, reported here
 /// with their element rather than after urdfdom's terse messages.
 void check_joint_elements(const UrdfIndex& index, const std::string& file) {
   for (const Element& j : index.joints) {
     const char* type_attribute = j.xml->Attribute("type");
     const std::string type = type_attribute ? type_attribute : "";
-    // The types are those of the joint table (model/joint_types.hpp); URDF's
-    // other ones get a hint how to build them from those.
-    const bool known = joint_type_named(type) != nullptr;
-    if (!known && type == "floating")
-      throw ModelError(file, j.place, "joint type '" + type + "' is not supported",
-                       "kanegen handles " + joint_type_list(JointKinds::all, "and") +
-                           " joints: build the motion from those (prismatic x, y, z and revolute joints)");
-    if (!known) {
-      const std::string guess = nearest(type, joint_type_names());
-      const std::vector<std::string> names = joint_type_names();
+    // The types are those of the joint table (model/joint_types.hpp) that URDF has.
+    if (!urdf_joint_type(type)) {
+      const std::vector<std::string> names = urdf_joint_type_names();
+      const std::string guess = nearest(type, names);
       std::string quoted;  // "a", "b" or "c"
       for (std::size_t i = 0; i < names.size(); ++i)
         quoted += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + ("\"" + names[i] + "\"");
+      const bool json_only = joint_type_named(type) != nullptr;
       throw ModelError(
-          file, j.place, type.empty() ? "joint has no type" : "unknown joint type '" + type + "'",
-          (guess.empty() ? std::string() : "did you mean '" + guess + "'? ") + "use type=" + quoted);
+          file, j.place, type.empty() ? "joint has no type" : "unknown URDF joint type '" + type + "'",
+          (json_only ? "a " + type + " joint is a kanegen model file's (docs/model-format.md); in a URDF "
+           : guess.empty() ? std::string()
+                           : "did you mean '" + guess + "'? ") +
+              "use type=" + quoted);
     }
     if (j.xml->FirstChildElement("mimic"))
       throw ModelError(file, j.place + "/mimic", "mimic joints are not supported",
@@ -394,7 +413,7 @@ Joint read_joint(const urdf::Joint& joint, const Element& e, const LoadOptions& 
   j.where = e.place;
   // By the attribute's text, through the joint table: check_joint_elements
   // has rejected the names it does not hold.
-  j.type = joint_type_named(e.xml->Attribute("type"))->type;
+  j.type = urdf_joint_type(e.xml->Attribute("type"))->type;
   j.parent = joint.parent_link_name;
   j.child = joint.child_link_name;
   const urdf::Pose& origin = joint.parent_to_joint_origin_transform;

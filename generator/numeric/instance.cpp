@@ -283,7 +283,10 @@ Motion motion_of(model::JointType type) {
     case model::JointType::fixed:
       return Motion::none;
     case model::JointType::planar:  // compound: the loaders made it primitive steps
+    case model::JointType::free:
       throw std::logic_error("a compound joint type reached the numeric path (model/joint_expansion.hpp)");
+    case model::JointType::spherical:
+      return Motion::ball;
   }
   return Motion::none;
 }
@@ -320,7 +323,13 @@ void add_joints(Instantiation& in) {
   Instance& m = in.m;
   for (const model::Joint& j : in.model.joints) {
     const JointData d = joint_data(in, j);
-    if (j.moves()) {
+    if (d.motion == Motion::ball) {
+      m.ball_joints.push_back(static_cast<int>(m.joints.size()));
+      for (const char* axis : {"_qx", "_qy", "_qz"}) {
+        m.coordinate_joint.push_back(static_cast<int>(m.joints.size()));
+        m.coordinate_names.push_back(j.name + axis);
+      }
+    } else if (j.moves()) {
       m.coordinate_joint.push_back(static_cast<int>(m.joints.size()));
       m.coordinate_names.push_back(j.name);
     }

@@ -4,6 +4,7 @@
 // numeric derivation works on this plain-number form only.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <string>
 #include <utility>
@@ -17,7 +18,13 @@
 
 namespace kanegen::numeric {
 
-enum class Motion { none, rotation, translation };
+/// How a joint moves its child. A ball (spherical joint) has three
+/// coordinates: a rotation vector phi from the joint's base quaternion
+/// (JointData::base), R = R(base) exp([phi]x). The numeric path evaluates
+/// at phi = 0 with the state's quaternion as the base, where q_dot = u holds
+/// for the rotation vector to the second order its derivations take
+/// (numeric/spherical.hpp).
+enum class Motion { none, rotation, translation, ball };
 
 /// One piece of a prescribed motion: q(t) while t < until (the last piece: always).
 struct PrescribedData {
@@ -35,7 +42,8 @@ struct JointData {
   Mat<double> origin_rotation;  ///< joint frame in parent axes (URDF rpy)
   Vec<double> origin_position;  ///< joint frame origin in the parent frame
   Vec<double> axis;             ///< unit, joint-frame axes
-  int coordinate = -1;          ///< index in q and u; -1 for a fixed joint
+  int coordinate = -1;          ///< index in q and u (a ball's first of three); -1 for a fixed joint
+  std::array<double, 4> base{1.0, 0.0, 0.0, 0.0};  ///< a ball's base quaternion w, x, y, z (unit)
   double stiffness = 0, rest = 0, damping = 0;
   bool actuated = false;
   std::vector<PrescribedData> prescribed;  ///< empty: a free coordinate
@@ -202,6 +210,7 @@ struct Instance {
   std::vector<JointData> joints;              ///< model order
   std::vector<int> order;                     ///< body indices, every parent before its children
   std::vector<int> coordinate_joint;          ///< joint index of each joint coordinate (they come first in q)
+  std::vector<int> ball_joints;               ///< the joints that move as a ball, model order
   std::vector<std::string> coordinate_names;  ///< every coordinate: joints, then "<body>.<name>" elastic ones
   Vec<double> gravity;
   std::vector<ForceData> forces;

@@ -34,6 +34,23 @@ Mat<S> rotation_about(const Vec<double>& a, const S& angle) {
           k * (a[2] * a[0]) - s * a[1], k * (a[2] * a[1]) + s * a[0], c + k * (a[2] * a[2])};
 }
 
+/// A ball's turn from its base quaternion (w, x, y, z) by the rotation
+/// vector phi: R(base) (I + [phi]x + 1/2 [phi]x^2), exp([phi]x) to second
+/// order, exact with its first and second derivatives at phi = 0, where the
+/// numeric path evaluates it (Motion::ball).
+template <class S>
+Mat<S> ball_turn(const std::array<double, 4>& base, const S* phi) {
+  const double w = base[0], x = base[1], y = base[2], z = base[3];
+  const Mat<double> r0{1 - 2 * (y * y + z * z), 2 * (x * y - w * z),     2 * (x * z + w * y),
+                       2 * (x * y + w * z),     1 - 2 * (x * x + z * z), 2 * (y * z - w * x),
+                       2 * (x * z - w * y),     2 * (y * z + w * x),     1 - 2 * (x * x + y * y)};
+  const Mat<S> skew{S(0.0), -phi[2], phi[1], phi[2], S(0.0), -phi[0], -phi[1], phi[0], S(0.0)};
+  const Mat<S> square = mul(skew, skew);
+  Mat<S> local = identity<S>();
+  for (int k = 0; k < 9; ++k) local[k] = local[k] + skew[k] + 0.5 * square[k];
+  return mul(r0, local);
+}
+
 /// A node's small rotation theta made exact, Rx(theta_x) Ry(theta_y) Rz(theta_z)
 /// (a planar beam's node turns about z only).
 template <class S>
@@ -89,6 +106,8 @@ std::vector<Pose<S>> body_poses(const Instance& m, const S* q, const std::vector
     pose.origin = add(parent.origin, mul(parent.rotation, j.origin_position));
     if (j.motion == Motion::rotation) {
       pose.rotation = mul(pose.rotation, rotation_about(j.axis, q[j.coordinate]));
+    } else if (j.motion == Motion::ball) {
+      pose.rotation = mul(pose.rotation, ball_turn(j.base, q + j.coordinate));
     } else if (j.motion == Motion::translation) {
       const Vec<S> slide{j.axis[0] * q[j.coordinate], j.axis[1] * q[j.coordinate],
                          j.axis[2] * q[j.coordinate]};

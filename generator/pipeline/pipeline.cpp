@@ -50,6 +50,20 @@ void refuse_controller_kernels(const model::Model& model) {
                               "generate without --controller; " + why);
 }
 
+/// The Jacobian kernels (implicit integration, --controller) are d/dq of
+/// kernels, the whole Jacobian only where q_dot = u: not for a quaternion.
+void refuse_quaternion_jacobians(const model::Model& model, const GenerateOptions& options) {
+  if (!options.jacobians && !options.controller) return;
+  for (const model::Joint& joint : model.joints)
+    if (joint.type == model::JointType::spherical)
+      throw model::ModelError(model.source_file, joint.where + "/type",
+                              "the Jacobian kernels (of the implicit integrators and of --controller) need "
+                              "coordinates whose rates are the speeds, and joint '" +
+                                  joint.name + "' turns by a quaternion",
+                              "integrate with an explicit method (--integrator dopri5 or rk4) and generate "
+                              "without --jacobians and --controller");
+}
+
 /// The articulated-body recursion solves open trees whose every speed is
 /// free: `--dynamics recursive` on anything else is refused, naming why.
 void refuse_recursive_dynamics(const model::Model& model) {
@@ -60,12 +74,18 @@ void refuse_recursive_dynamics(const model::Model& model) {
                                 std::to_string(model.loops.size()) +
                                 " loop(s) (their constraint forces need the saddle-point solve)",
                             fix);
-  for (const model::Joint& joint : model.joints)
+  for (const model::Joint& joint : model.joints) {
     if (joint.is_prescribed())
       throw model::ModelError(model.source_file, joint.where + "/prescribed",
                               "--dynamics recursive solves for every speed, and joint '" + joint.name +
                                   "' has a prescribed motion",
                               fix);
+    if (joint.type == model::JointType::spherical)
+      throw model::ModelError(model.source_file, joint.where + "/type",
+                              "--dynamics recursive solves joints of one speed, and joint '" + joint.name +
+                                  "' is spherical (three)",
+                              fix);
+  }
 }
 
 }  // namespace
@@ -94,6 +114,7 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
   check_precision(model, generate_options);
 
   if (generate_options.controller) refuse_controller_kernels(model);
+  refuse_quaternion_jacobians(model, generate_options);
   if (generate_options.dynamics == codegen::DynamicsMethod::recursive) refuse_recursive_dynamics(model);
 
   // The finite-element bodies: element matrices, invariants, modal bases.

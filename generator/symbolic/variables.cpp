@@ -29,16 +29,21 @@ Variables::Variables(const model::Model& model, const std::vector<int>& elastic_
     udot.emplace_back("udot" + i);
     cpp_names_[udot.back()] = "udot[" + i + "]";
   };
-  for (const auto& joint : model.joints) {
+  first_speed.assign(model.joints.size(), -1);
+  for (std::size_t k = 0; k < model.joints.size(); ++k) {
+    const model::Joint& joint = model.joints[k];
     if (!joint.moves()) continue;
+    first_speed[k] = index;
     if (joint.is_prescribed()) {
       const std::string name = prescribed_acceleration_name(index);
       prescribed_acceleration.emplace(index, GiNaC::symbol(name));
       cpp_names_[prescribed_acceleration.at(index)] = name;
     }
-    add_state();
-    tau.emplace_back("tau" + std::to_string(index - 1));
-    cpp_names_[tau.back()] = "tau[" + std::to_string(index - 1) + "]";
+    for (int c = 0; c < model::joint_type_info(joint.type).speeds; ++c) {
+      add_state();
+      tau.emplace_back("tau" + std::to_string(index - 1));
+      cpp_names_[tau.back()] = "tau[" + std::to_string(index - 1) + "]";
+    }
   }
   joint_coordinates = index;
   elastic_first.assign(model.bodies.size(), -1);
@@ -48,6 +53,13 @@ Variables::Variables(const model::Model& model, const std::vector<int>& elastic_
     elastic_first[b] = index;
     elastic_count[b] = elastic_counts[b];
     for (int k = 0; k < elastic_counts[b]; ++k) add_state();
+  }
+  for (std::size_t k = 0; k < model.joints.size(); ++k) {
+    if (model.joints[k].type != model::JointType::spherical) continue;
+    const std::string i = std::to_string(q.size());
+    quaternion_w.emplace(static_cast<int>(k), static_cast<int>(q.size()));
+    q.emplace_back("q" + i);
+    cpp_names_[q.back()] = "q[" + i + "]";
   }
   for (const auto& parameter : model.parameters) {
     params.emplace_back("p_" + parameter.name);

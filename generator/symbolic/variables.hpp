@@ -23,17 +23,23 @@ std::string prescribed_acceleration_name(int speed);
 
 class Variables {
  public:
-  /// Creates the symbols for `model`: one coordinate, speed and input per
-  /// moving joint (file order), then elastic_counts[b] elastic coordinates
-  /// and speeds for each flexible body b (file order; no inputs), and one
-  /// symbol per parameter.
+  /// Creates the symbols for `model`: per moving joint (file order) one
+  /// speed and input per speed, each with a coordinate of the same index (a
+  /// spherical joint's quaternion x, y, z); then elastic_counts[b] elastic
+  /// coordinates and speeds for each flexible body b (file order; no
+  /// inputs); then the spherical joints' quaternion w (so q[i] belongs to
+  /// u[i] for i < nu); and one symbol per parameter.
   explicit Variables(const model::Model& model, const std::vector<int>& elastic_counts = {});
 
   GiNaC::symbol t{"t"};
   std::vector<GiNaC::symbol> q, u, tau, params;
   /// One per speed: the accelerations given to inverse_dynamics ("udot[i]").
   std::vector<GiNaC::symbol> udot;
-  int joint_coordinates = 0;       ///< q[0 .. joint_coordinates) belong to joints
+  int joint_coordinates = 0;  ///< q[0 .. joint_coordinates) belong to joints
+  /// Per joint (Model::joints order): the index of its first speed, or -1 for a fixed joint.
+  std::vector<int> first_speed;
+  /// Per spherical joint (by index in Model::joints): the index in q of its quaternion's w.
+  std::map<int, int> quaternion_w;
   std::vector<int> elastic_first;  ///< per body: index in q of its first elastic coordinate, or -1
   std::vector<int> elastic_count;  ///< per body: its number of elastic coordinates
   /// Per prescribed speed index: the symbol of its given acceleration (a

@@ -14,6 +14,7 @@ if(KANEGEN_WITH_MUJOCO)
 
     set(_kg_cons_dir ${CMAKE_CURRENT_LIST_DIR})
     add_executable(test_consistency ${_kg_cons_dir}/test_mujoco.cpp
+                                    ${_kg_cons_dir}/test_mujoco_spherical.cpp
                                     ${_kg_cons_dir}/mujoco_reference.cpp)
     target_include_directories(test_consistency PRIVATE ${_kg_cons_dir})
     target_compile_options(test_consistency PRIVATE ${KANEGEN_WARNINGS})
@@ -34,8 +35,12 @@ if(KANEGEN_WITH_MUJOCO)
       endforeach()
       # A branched tree with slides and turned frames, by the articulated-body recursion.
       kanegen_add_model(kanegen_model_mixed_tree ${_kg_cons_dir}/data/mixed_tree.urdf DYNAMICS recursive)
+      # Spherical and free joints (quaternions), with their MJCF twins.
+      kanegen_add_model(kanegen_model_ball_chain ${_kg_cons_dir}/data/ball_chain.json)
+      kanegen_add_model(kanegen_model_free_body ${_kg_cons_dir}/data/free_body.json)
       target_link_libraries(test_consistency PRIVATE kanegen_model_arm7 kanegen_model_chain20
-                                                     kanegen_model_mixed_tree)
+                                                     kanegen_model_mixed_tree kanegen_model_ball_chain
+                                                     kanegen_model_free_body)
       target_compile_definitions(test_consistency PRIVATE KANEGEN_HAVE_GENERATED_MODELS=1)
     else()
       message(WARNING "kanegen: kanegen_add_model() is not defined; test_consistency checks MuJoCo only")

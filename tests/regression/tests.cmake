@@ -31,3 +31,11 @@ add_executable(test_planar_joint ${CMAKE_CURRENT_LIST_DIR}/test_planar_joint.cpp
 target_compile_options(test_planar_joint PRIVATE ${KANEGEN_WARNINGS})
 target_link_libraries(test_planar_joint PRIVATE kanegen_test_planar_body kanegen_test_planar_tilted kanegen_catch_main)
 catch_discover_tests(test_planar_joint TEST_PREFIX "regression: ")
+
+# A spherical joint (quaternion coordinates, q_dot = N(q) u): a heavy
+# symmetric top in steady precession, against its closed form.
+kanegen_add_model(kanegen_test_spherical_top ${PROJECT_SOURCE_DIR}/tests/data/models/spherical_top.json)
+add_executable(test_spherical_joint ${CMAKE_CURRENT_LIST_DIR}/test_spherical_joint.cpp)
+target_compile_options(test_spherical_joint PRIVATE ${KANEGEN_WARNINGS})
+target_link_libraries(test_spherical_joint PRIVATE kanegen_test_spherical_top kanegen_catch_main)
+catch_discover_tests(test_spherical_joint TEST_PREFIX "regression: ")
