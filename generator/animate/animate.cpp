@@ -62,16 +62,34 @@ model::ParameterValues parameter_values(const model::Model& m, const std::vector
   return values;
 }
 
-/// Per coordinate of the instance, its column in the table: simulate writes
-/// t, then the coordinates in the model's order, then their speeds
-/// (<coordinate>_dot), then outputs, so a CSV of another model is told by
-/// its first 2 n + 1 columns.
+/// The columns a run of the model starts with after t: its coordinates (a
+/// spherical joint's quaternion x, y, z, and every w after the others), then
+/// its speeds (<coordinate>_dot, a spherical joint's <joint>_wx, _wy, _wz).
+std::vector<std::string> state_columns(const numeric::Instance& instance) {
+  std::vector<std::string> names = instance.coordinate_names, speeds;
+  for (int k : instance.ball_joints) names.push_back(instance.joints[k].name + "_qw");
+  for (int r = 0; r < instance.coordinates(); ++r) {
+    const numeric::JointData* j =
+        r < instance.joint_coordinates() ? &instance.joints[instance.coordinate_joint[r]] : nullptr;
+    if (j && j->motion == numeric::Motion::ball)
+      speeds.push_back(j->name + "_w" + "xyz"[r - j->coordinate]);
+    else
+      speeds.push_back(instance.coordinate_names[r] + "_dot");
+  }
+  names.insert(names.end(), speeds.begin(), speeds.end());
+  return names;
+}
+
+/// Per coordinate of the model's kernels (numeric/spherical.hpp), its column
+/// in the table: simulate writes t, then the state (state_columns), then
+/// outputs, so a CSV of another model is told by the columns of its state.
 std::vector<int> coordinate_columns(const ResultTable& table, const numeric::Instance& instance,
                                     const std::string& model_path) {
-  const std::size_t n = instance.coordinate_names.size();
-  for (std::size_t k = 1; k <= 2 * n; ++k) {
-    const bool speed = k > n;
-    const std::string expected = instance.coordinate_names[(k - 1) % n] + (speed ? "_dot" : "");
+  const std::vector<std::string> state = state_columns(instance);
+  const std::size_t nq = state.size() - static_cast<std::size_t>(instance.coordinates());
+  for (std::size_t k = 1; k <= state.size(); ++k) {
+    const bool speed = k > nq;
+    const std::string& expected = state[k - 1];
     if (k >= table.columns.size() || table.columns[k] != expected)
       throw std::runtime_error(
           table.file + ": column " + std::to_string(k + 1) + " is '" +
@@ -83,7 +101,7 @@ std::vector<int> coordinate_columns(const ResultTable& table, const numeric::Ins
           "speed in order)");
   }
   std::vector<int> columns;
-  for (std::size_t i = 0; i < n; ++i) columns.push_back(static_cast<int>(i + 1));
+  for (std::size_t i = 0; i < nq; ++i) columns.push_back(static_cast<int>(i + 1));
   return columns;
 }
 

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "numeric/spherical.hpp"
+
 namespace kanegen::animate {
 namespace {
 
@@ -122,10 +124,13 @@ void SceneBuilder::add_elastic(Scene& scene, int body, const Pose<double>& pose,
   }
 }
 
-Scene SceneBuilder::at(const std::vector<double>& q) const {
-  const std::vector<std::vector<double>> dofs = numeric::all_beam_dofs(instance_, q.data());
-  const std::vector<numeric::SecondOrder<double>> second = numeric::all_second_order(instance_, dofs);
-  const std::vector<Pose<double>> poses = numeric::body_poses(instance_, q.data(), dofs, second);
+Scene SceneBuilder::at(const std::vector<double>& kernel_q) const {
+  // A spherical joint's quaternion becomes its base, at a rotation vector 0.
+  numeric::Instance instance = instance_;
+  const std::vector<double> q = numeric::take_kernel_coordinates(instance, kernel_q.data());
+  const std::vector<std::vector<double>> dofs = numeric::all_beam_dofs(instance, q.data());
+  const std::vector<numeric::SecondOrder<double>> second = numeric::all_second_order(instance, dofs);
+  const std::vector<Pose<double>> poses = numeric::body_poses(instance, q.data(), dofs, second);
   Scene scene;
   for (int b = 0; b < static_cast<int>(instance_.bodies.size()); ++b) {
     add_rigid(scene, b, poses[b]);

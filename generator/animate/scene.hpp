@@ -60,8 +60,9 @@ class SceneBuilder {
   /// `scale` magnifies the elastic displacements drawn.
   SceneBuilder(const numeric::Instance& instance, double scale);
 
-  /// The scene at coordinates q (Instance::coordinates() of them).
-  Scene at(const std::vector<double>& q) const;
+  /// The scene at the kernels' coordinates q (as a run's CSV has them: a
+  /// spherical joint's quaternion, numeric/spherical.hpp).
+  Scene at(const std::vector<double>& kernel_q) const;
 
  private:
   struct Box {

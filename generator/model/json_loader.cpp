@@ -354,7 +354,7 @@ class JsonReader {
         continue;
       }
       const int count = coordinates ? info.coordinates : info.speeds;
-      const std::string what = coordinates ? " coordinates" : " speeds";
+      const std::string what = coordinates || info.speeds == info.coordinates ? " coordinates" : " speeds";
       if (!v.is_array() || v.size() != static_cast<std::size_t>(count))
         error(at, std::string(info.name) + " joint '" + out.name + "' has " + std::to_string(count) + what,
               "give an array of " + std::to_string(count) + " numbers, in the order " +

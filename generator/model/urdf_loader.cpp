@@ -250,7 +250,7 @@ void check_joint_elements(const UrdfIndex& index, const std::string& file) {
       const bool json_only = joint_type_named(type) != nullptr;
       throw ModelError(
           file, j.place, type.empty() ? "joint has no type" : "unknown URDF joint type '" + type + "'",
-          (json_only ? "a " + type + " joint is a kanegen model file's (docs/model-format.md); in a URDF "
+          (json_only ? "a " + type + " joint is for kanegen model files (docs/model-format.md), in a URDF "
            : guess.empty() ? std::string()
                            : "did you mean '" + guess + "'? ") +
               "use type=" + quoted);

@@ -4,6 +4,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -17,6 +18,7 @@
 #include "numeric/dynamics.hpp"
 #include "numeric/instance.hpp"
 #include "numeric/loops.hpp"
+#include "numeric/spherical.hpp"
 #include "runner/runner_process.hpp"
 #include "verify/verify_controller.hpp"
 #include "verify/verify_differences.hpp"
@@ -80,9 +82,13 @@ Link link_runner(const model::Model& model, const numeric::Instance& instance, c
   };
   Link link;
   link.coordinates = instance.coordinate_names;
-  if (info["coordinates"].get<std::vector<std::string>>() != link.coordinates)
+  // The kernels' have the quaternions' w after every coordinate with a speed (numeric/spherical.hpp).
+  std::vector<std::string> kernel_coordinates = link.coordinates;
+  for (int k : instance.ball_joints) kernel_coordinates.push_back(instance.joints[k].name + "_qw");
+  if (info["coordinates"].get<std::vector<std::string>>() != kernel_coordinates)
     throw mismatch("coordinates " + info["coordinates"].dump() + ", the model's are " +
-                   json(link.coordinates).dump() + " (moving joints, then elastic coordinates)");
+                   json(kernel_coordinates).dump() +
+                   " (moving joints, then elastic coordinates, then the quaternions' w)");
   if (info["nu"].get<int>() != instance.coordinates())
     throw mismatch("nu = " + info["nu"].dump() + ", expected " + std::to_string(instance.coordinates()));
 
@@ -283,10 +289,21 @@ class Sampler {
     const int n = s.instance.coordinates(), joints = s.instance.joint_coordinates();
     s.state.t = uniform(0, 10);
     for (int r = 0; r < joints; ++r) {
-      const bool slide =
-          s.instance.joints[s.instance.coordinate_joint[r]].motion == numeric::Motion::translation;
-      s.state.q.push_back(slide ? uniform(-1, 1) : uniform(-kPi, kPi));
+      const numeric::Motion motion = s.instance.joints[s.instance.coordinate_joint[r]].motion;
+      // A ball's coordinates are a rotation vector from its base, drawn below.
+      s.state.q.push_back(motion == numeric::Motion::ball          ? 0.0
+                          : motion == numeric::Motion::translation ? uniform(-1, 1)
+                                                                   : uniform(-kPi, kPi));
       s.state.u.push_back(uniform(-2, 2));
+    }
+    for (int k : s.instance.ball_joints) {
+      std::array<double, 4>& base = s.instance.joints[k].base;
+      double length = 0;
+      for (double& c : base) {
+        c = uniform(-1, 1);
+        length += c * c;
+      }
+      for (double& c : base) c /= std::sqrt(length);
     }
     // Elastic coordinates of a small deformation, rates of 20 such per second.
     for (int r = joints; r < n; ++r) {
@@ -337,8 +354,9 @@ class Sampler {
 double scalar(const json& x) { return x.is_null() ? std::nan("") : x.get<double>(); }
 
 void evaluate_generated(runner::RunnerProcess& runner, const Link& link, Sample& s) {
-  json request{{"t", s.state.t},      {"q", s.state.q},  {"u", s.state.u},
-               {"tau", s.runner_tau}, {"p", s.runner_p}, {"kinetic_energy_hessian", true}};
+  json request{{"t", s.state.t},  {"q", numeric::kernel_coordinates(s.instance, s.state.q)},
+               {"u", s.state.u},  {"tau", s.runner_tau},
+               {"p", s.runner_p}, {"kinetic_energy_hessian", true}};
   if (link.inverse_dynamics) request["inverse_dynamics_udot"] = s.id_udot;
   const json reply = runner::batch_request(runner, request);
   if (link.inverse_dynamics) {
@@ -364,8 +382,9 @@ void evaluate_generated(runner::RunnerProcess& runner, const Link& link, Sample&
 }
 
 std::string describe(const model::Model& model, const Sample& s) {
-  std::string text = "t=" + number(s.state.t) + ", q=" + list(s.state.q) + ", u=" + list(s.state.u) +
-                     ", tau=" + list(s.state.tau);
+  std::string text = "t=" + number(s.state.t) +
+                     ", q=" + list(numeric::kernel_coordinates(s.instance, s.state.q)) +
+                     ", u=" + list(s.state.u) + ", tau=" + list(s.state.tau);
   if (!model.parameters.empty()) {
     text += ", parameters";
     for (const model::Parameter& p : model.parameters)
@@ -638,6 +657,11 @@ Row defaults_row(const model::Model& model, const numeric::Instance& defaults, c
       const model::Joint& j = model.joints[defaults.coordinate_joint[r]];
       q = j.q0;
       u = j.u0;
+      if (defaults.joints[defaults.coordinate_joint[r]].motion == numeric::Motion::ball) {
+        const int c = r - defaults.joints[defaults.coordinate_joint[r]].coordinate;  // x, y, z
+        q = j.step_q0.empty() ? 0.0 : j.step_q0[1 + c];
+        u = j.step_u0.empty() ? 0.0 : j.step_u0[c];
+      }
       if (j.is_prescribed()) {
         numeric::JointData first = defaults.joints[defaults.coordinate_joint[r]];
         first.prescribed.resize(1);
@@ -650,6 +674,12 @@ Row defaults_row(const model::Model& model, const numeric::Instance& defaults, c
     generated.insert(generated.end(), {q0.at(r), u0.at(r)});
     reference.insert(reference.end(), {q, u});
     names.insert(names.end(), {"q0 " + link.coordinates[r], "u0 " + link.coordinates[r]});
+  }
+  for (std::size_t b = 0; b < defaults.ball_joints.size(); ++b) {  // the quaternions' w, no speed
+    const model::Joint& j = model.joints[defaults.ball_joints[b]];
+    generated.push_back(q0.at(static_cast<std::size_t>(defaults.coordinates()) + b));
+    reference.push_back(j.step_q0.empty() ? 1.0 : j.step_q0[0]);
+    names.push_back("q0 " + j.name + "_qw");
   }
   Row row("defaults", "model file", rtol);
   row.where_kind = "info";
@@ -895,6 +925,7 @@ constexpr int kControllerSamples = 10;
 std::string controller_refusal(const numeric::Instance& base) {
   if (!base.loops.empty()) return "not made for closed loops (docs/controllers.md)";
   if (base.has_prescribed()) return "not made for prescribed motions (docs/controllers.md)";
+  if (!base.ball_joints.empty()) return "not made for spherical joints (docs/model-format.md)";
   return "";
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "kanegen/runtime/integrators.hpp"
+#include "numeric/spherical.hpp"
 
 namespace kanegen::verify {
 namespace {
@@ -24,12 +25,13 @@ constexpr long kMaxSteps = 400;
 
 Worst power_balance(runner::RunnerProcess& runner, const TrajectoryStart& start, double duration, int index,
                     long* points) {
-  const numeric::Instance& model = *start.instance;
-  const int n = model.coordinates();
+  // x = (q, u, W): the kernels' q (nq: a ball's quaternion, numeric/spherical.hpp), u (n).
+  numeric::Instance model = *start.instance;
+  const int n = model.coordinates(), nq = n + static_cast<int>(model.ball_joints.size()), size = nq + n;
   const auto request = [&](double t, const double* x, const char* what) {
     nlohmann::json r{{"t", t},
-                     {"q", std::vector<double>(x, x + n)},
-                     {"u", std::vector<double>(x + n, x + 2 * n)},
+                     {"q", std::vector<double>(x, x + nq)},
+                     {"u", std::vector<double>(x + nq, x + size)},
                      {"tau", start.runner_tau},
                      {"p", start.runner_p},
                      {"eval", what}};
@@ -48,16 +50,15 @@ Worst power_balance(runner::RunnerProcess& runner, const TrajectoryStart& start,
                      : "M not positive definite (pivot " + std::to_string(pivot) + ")";
       return false;
     }
-    for (int i = 0; i < n; ++i) {
-      xdot[i] = x[n + i];  // u = q_dot
-      xdot[n + i] = a["udot"][i].get<double>();
-    }
+    numeric::kernel_coordinate_rates(model, x, x + nq, xdot);  // u = q_dot, and the quaternions'
+    for (int i = 0; i < n; ++i) xdot[nq + i] = a["udot"][i].get<double>();
     s.t = t;
-    s.q.assign(x, x + n);
-    s.u.assign(x + n, x + 2 * n);
+    s.q = model.ball_joints.empty() ? std::vector<double>(x, x + n)
+                                    : numeric::take_kernel_coordinates(model, x);
+    s.u.assign(x + nq, x + size);
     // With the generated udot for the work of the prescribed speeds' constraint forces.
-    const std::vector<double> udot(xdot + n, xdot + 2 * n);
-    xdot[2 * n] = numeric::nonconservative_power(model, s, &udot);
+    const std::vector<double> udot(xdot + nq, xdot + size);
+    xdot[size] = numeric::nonconservative_power(model, s, &udot);
     return true;
   };
 
@@ -69,24 +70,25 @@ Worst power_balance(runner::RunnerProcess& runner, const TrajectoryStart& start,
     const nlohmann::json a = request(t, x, "energy");
     const double kinetic = a["kinetic_energy"].get<double>(), potential = a["potential_energy"].get<double>();
     if (times.empty()) e0 = kinetic + potential;
-    scale = std::max(scale, kinetic + std::abs(potential) + std::abs(x[2 * n]));
+    scale = std::max(scale, kinetic + std::abs(potential) + std::abs(x[size]));
     times.push_back(t);
     energy.push_back(kinetic + potential - e0);
-    work.push_back(x[2 * n]);
+    work.push_back(x[size]);
     return true;
   };
   const runtime::Observer observer = record;
 
-  std::vector<double> x(2 * n + 1, 0.0);
-  std::copy(start.state.q.begin(), start.state.q.end(), x.begin());
-  std::copy(start.state.u.begin(), start.state.u.end(), x.begin() + n);
+  std::vector<double> x(size + 1, 0.0);
+  const std::vector<double> q0 = numeric::kernel_coordinates(*start.instance, start.state.q);
+  std::copy(q0.begin(), q0.end(), x.begin());
+  std::copy(start.state.u.begin(), start.state.u.end(), x.begin() + nq);
   runtime::IntegrationOptions opt;
   opt.t_end = start.state.t + duration;
   opt.dt = duration / kOutputs;
   opt.rtol = opt.atol = kIntegrationTolerance;
   opt.max_steps = kMaxSteps;
   const runtime::IntegrationResult result =
-      runtime::integrate(runtime::Method::kDopri5, rhs, start.state.t, x.data(), 2 * n + 1, opt, observer);
+      runtime::integrate(runtime::Method::kDopri5, rhs, start.state.t, x.data(), size + 1, opt, observer);
   // A random start is not on the loops, and its trajectory can reach a state
   // where the loop equations are dependent (the generated solve stops
   // there): the balance is checked up to it, as up to kMaxSteps.

@@ -137,6 +137,32 @@ def check_arm_frame(g, header, row, scale, where):
     check(12 in g["cells"] and 4 in g["cells"], "%s: a hexahedron (box) and a polyline (beam)" % where)
 
 
+def check_free_body(kanegen, model, work):
+    """A box on a free joint and an arm on a spherical one (quaternions): frame origins and box centres."""
+    csv_path = os.path.join(work, "free_body.csv")
+    run(kanegen, "simulate", model, "--t-end", "0.5", "-o", csv_path, "--quiet", "--u0", "base_wx=3",
+        "--u0", "base_wy=-2", "--u0", "base_z_dot=1", "--u0", "wrist_wz=5", "--u0", "wrist_wx=1")
+    header, rows = read_csv(csv_path)
+    times = {row[0]: row for row in rows}
+    out = os.path.join(work, "free_body_vtk")
+    run(kanegen, "animate", csv_path, model, "-o", out, "--frames", "3", "--quiet")
+    frames = frames_of(os.path.join(out, "free_body.pvd"))
+    check(len(frames) == 3, "free body: three frames, got %d" % len(frames))
+    for t, path in frames:
+        g = read_vtu(path)
+        pts, body, kind = g["points"], g["body"], g["kind"]
+        for b, name in ((0, "box"), (1, "arm")):
+            where = "free body t=%g %s" % (t, name)
+            origin = pts[(body == b) & (kind == 0)]
+            check(len(origin) == 1, "%s: one frame origin" % where)
+            err = np.abs(origin[0] - point_output(header, times[t], name + "_origin")).max()
+            check(err < TOL, "%s: origin off by %.3g" % (where, err))
+            corners = pts[(body == b) & (kind == 1)]
+            check(len(corners) == 8, "%s: a box of 8 corners" % where)
+            err = np.abs(corners.mean(axis=0) - point_output(header, times[t], name + "_com")).max()
+            check(err < TOL, "%s: the box's centre off the centre of mass by %.3g" % (where, err))
+
+
 def check_mesh(kanegen, model, work):
     csv_path = os.path.join(work, "plate.csv")
     run(kanegen, "simulate", model, "--t-end", "0.02", "-o", csv_path, "--quiet")
@@ -181,6 +207,7 @@ def main():
     os.makedirs(a.work)
     check_arm(a.kanegen, os.path.join(a.source, "tests/data/models/animate_arm.json"), a.work)
     check_refusals(a.kanegen, a.source, a.work)
+    check_free_body(a.kanegen, os.path.join(a.source, "tests/consistency/data/free_body.json"), a.work)
     check_mesh(a.kanegen, os.path.join(a.source, "models/plate_hub.json"), a.work)
     if failures:
         print("%d failure(s)" % len(failures))

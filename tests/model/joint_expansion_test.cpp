@@ -185,3 +185,106 @@ TEST_CASE("bad planar joints: what they cannot carry, names they would take, ref
     expect_model_error(f.path, "/forces/0/joint", "joint force 'e' names planar joint 'p'", "'p_theta'");
   }
 }
+
+namespace {
+
+/// A JSON model with a joint "s" of `type` from the ground to body "b".
+std::string joint_json(const std::string& type, const std::string& joint, const std::string& rest = "") {
+  return R"({"format": "kanegen-model", "version": 1, "name": "ball_case",
+    "bodies": [{"name": "b", "mass": 1, "inertia": {"ixx": 1, "iyy": 1, "izz": 1}}],
+    "joints": [{"name": "s", "type": ")" +
+         type + R"(", "parent": "ground", "child": "b")" + joint + "}]" + rest + "}";
+}
+
+}  // namespace
+
+TEST_CASE("a free joint loads as three slides and a spherical joint, its initial values split among them",
+          "[model][spherical]") {
+  const TempModel f("free", ".json", joint_json("free", R"(, "origin": {"xyz": [0, 0, 1]},
+      "initial": {"q": [1, 2, 3, 0.6, 0.8, 0, 0], "u": [4, 5, 6, 7, 8, 9]})"));
+  const Model m = load_model(f.path);
+  REQUIRE(m.joints.size() == 4);
+  const std::vector<std::string> names{"s_x", "s_y", "s_z", "s"};
+  for (std::size_t k = 0; k < 4; ++k) CHECK(m.joints[k].name == names[k]);
+  CHECK(m.joints[0].axis == std::array<double, 3>{1, 0, 0});
+  CHECK(m.joints[1].axis == std::array<double, 3>{0, 1, 0});
+  CHECK(m.joints[2].axis == std::array<double, 3>{0, 0, 1});
+  CHECK(m.joints[0].origin_xyz[2].value == 1.0);
+  CHECK(m.joints[3].origin_xyz[2].value == 0.0);
+  CHECK(joint_named(m, "s").type == JointType::spherical);
+  CHECK(m.joints[3].parent == "s_z_frame");
+  CHECK(m.joints[3].child == "b");
+  CHECK(m.joints[0].q0 == 1.0);
+  CHECK(m.joints[2].u0 == 6.0);
+  CHECK(m.joints[3].step_q0 == std::vector<double>{0.6, 0.8, 0, 0});
+  CHECK(m.joints[3].step_u0 == std::vector<double>{7, 8, 9});
+}
+
+TEST_CASE("URDF's floating joint is a free joint; spherical and free are no URDF types",
+          "[model][spherical][urdf]") {
+  const auto urdf = [](const std::string& type) {
+    return R"(<robot name="r">
+  <link name="base"/>
+  <link name="box"><inertial><mass value="2"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="j" type=")" +
+           type + R"("><parent link="base"/><child link="box"/></joint>
+</robot>)";
+  };
+  const TempModel floating("floating", ".urdf", urdf("floating"));
+  const Model m = load_model(floating.path);
+  REQUIRE(m.joints.size() == 4);
+  CHECK(m.joints[3].name == "j");
+  CHECK(m.joints[3].type == JointType::spherical);
+  CHECK(m.joints[0].axis == std::array<double, 3>{1, 0, 0});  // not URDF's default axis (1, 0, 0) turned
+  const TempModel spherical("spherical", ".urdf", urdf("spherical"));
+  expect_model_error(spherical.path, "line 4: <joint name=\"j\">", "unknown URDF joint type 'spherical'",
+                     "a spherical joint is for kanegen model files");
+}
+
+TEST_CASE("bad spherical and free joints: what they cannot carry, quaternions, loops, references",
+          "[model][spherical][bad]") {
+  {
+    const TempModel f("unit", ".json", joint_json("spherical", R"(, "initial": {"q": [1, 1, 0, 0]})"));
+    expect_model_error(f.path, "/joints/0/initial/q", "the quaternion of spherical joint has length 1.41",
+                       "give a unit quaternion w, x, y, z");
+  }
+  {
+    const TempModel f("count", ".json", joint_json("spherical", R"(, "initial": {"u": [1, 2, 3, 4]})"));
+    expect_model_error(f.path, "/joints/0/initial/u", "spherical joint 's' has 3 speeds",
+                       "give an array of 3 numbers, in the order wx, wy, wz");
+  }
+  {
+    const TempModel f("free_count", ".json", joint_json("free", R"(, "initial": {"q": [0, 0, 0, 1]})"));
+    expect_model_error(f.path, "/joints/0/initial/q", "free joint 's' has 7 coordinates",
+                       "x, y, z, then the quaternion w, x, y, z");
+  }
+  {
+    const TempModel f("axis", ".json", joint_json("spherical", R"(, "axis": [0, 0, 1])"));
+    expect_model_error(f.path, "/joints/0/axis", "spherical joint 's' has no axis", "remove it");
+  }
+  {
+    const TempModel f("spring", ".json", joint_json("spherical", R"(, "spring": {"stiffness": 3})"));
+    expect_model_error(f.path, "/joints/0/spring", "a spring on spherical joint 's'",
+                       "remove it (a spherical joint carries none)");
+  }
+  {
+    const TempModel f("free_damping", ".json", joint_json("free", R"(, "damping": 0.1)"));
+    expect_model_error(f.path, "/joints/0/damping", "damping on free joint 's'",
+                       "or build the motion from 's_x', 's_y', 's_z' and 's' as separate joints");
+  }
+  {
+    const TempModel f(
+        "output", ".json",
+        joint_json("spherical", "", R"(, "outputs": [{"name": "a", "type": "joint", "joint": "s"}])"));
+    expect_model_error(f.path, "/outputs/0/joint", "output 'a' names spherical joint 's', which has several",
+                       "give a point_position output");
+  }
+  {
+    const TempModel f(
+        "loop", ".json",
+        joint_json("spherical", "", R"(, "loops": [{"name": "l", "type": "spherical", "body": "b",
+        "point": [0, 0, 1], "body2": "ground", "point2": [0, 0, 1]}])"));
+    expect_model_error(f.path, "/joints/0/type", "spherical joint 's' in a model with closed loops",
+                       "build the motion from revolute and prismatic joints, or open the loop");
+  }
+}

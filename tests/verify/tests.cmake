@@ -44,15 +44,22 @@ catch_discover_tests(test_verify_cli TEST_PREFIX "verify: ")
 # slender_propped, is left out: a stiff bar pinned at both ends, whose small
 # prop force in random states is the difference of elastic forces 1e3 times
 # larger, so that lambda agrees only to about 2e-9); planar joints (a body
-# across z, one on an oblique, turned plane, a pendulum on a planar cart).
+# across z, one on an oblique, turned plane, a pendulum on a planar cart); a
+# top on a spherical joint.
 file(GLOB KANEGEN_VERIFY_MODELS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/models/*.json ${PROJECT_SOURCE_DIR}/models/*.urdf)
 foreach(name forced_cart_pendulum flex_hub_planar flex_hub_modal flex_spatial_hub flex_prescribed_hub flex_tip_body
              force_elements flex_spring assumed_hub assumed_spatial_hub rsur_spherical rsur_revolute ring_slider
              quick_return free_strip free_strip_modal l_beam_stiffened euler_column_modal
              rsur_revolute_flexible ring_slider_flexible plate_tip_pendulum
              plate_tip_cb plate_node_set_loops tip_bar_loops slender_tip_force solid_slider_crank_stiff
-             planar_body planar_tilted planar_pendulum)
+             planar_body planar_tilted planar_pendulum spherical_top)
   list(APPEND KANEGEN_VERIFY_MODELS ${PROJECT_SOURCE_DIR}/tests/data/models/${name}.json)
+endforeach()
+# Spherical and free joints (quaternions; the numeric path's rotation vectors
+# from a random base quaternion, numeric/spherical.hpp), the twins of MuJoCo's
+# ball and free joints in tests/consistency.
+foreach(name ball_chain free_body)
+  list(APPEND KANEGEN_VERIFY_MODELS ${PROJECT_SOURCE_DIR}/tests/consistency/data/${name}.json)
 endforeach()
 # Fewer samples where the numeric path's quadrature is slow: the solid rod's 28 C3D20 elements take
 # 0.5 s per sample (100 samples and 3 trajectories: 70 s on 2 loaded cores; 30 and 1: about 25 s).
