@@ -136,7 +136,10 @@ Problem set_up(const model::Model& model, const json& info, const ModesOptions& 
   const auto speeds = info.at("speeds").get<std::vector<std::string>>();
   const int nq = info.at("nq").get<int>();
   if (info.at("nu").get<int>() != nq)
-    throw std::runtime_error("the runner has not as many speeds as coordinates");
+    throw std::runtime_error(model.source_file +
+                             ": kanegen modes linearizes in coordinates whose rates are the speeds, and this "
+                             "model turns a spherical or free joint by a quaternion; simulate it instead, or "
+                             "build the joint from revolute joints for its modes (docs/model-format.md)");
   Problem pb;
   pb.parameter_names = info.at("parameters").get<std::vector<std::string>>();
   OperatingPoint& point = pb.point;
