@@ -12,21 +12,15 @@ extern const char* const viewer_html_template;
 namespace kanegen::animate {
 
 std::string viewer_page(const std::string& three_js, const std::string& data_json) {
-  if (three_js.find("exports.WebGLRenderer = WebGLRenderer") == std::string::npos)
-    throw std::runtime_error(
-        "--format html: the three.js found is not its one-file CommonJS build (three 0.186 and later ship a "
-        "stub "
-        "in its place); install the version viewer/package.json pins with `npm ci` in viewer/, or set "
-        "KANEGEN_THREE_JS to build/three.cjs of three 0.185");
   if (!script_safe(three_js) || !script_safe(data_json))
     throw std::runtime_error(
         "--format html: three.js's text holds '</script' or '<!--', which would end the page's "
         "<script> early; install the version viewer/package.json pins");
-  // One pass over the template's two places, so that nothing put in is read for a place again.
   // The template's first two lines are its SPDX line and what it is, for the repository; the page
   // says its license in an HTML comment.
   std::string page = embedded::viewer_html_template;
   for (int line = 0; line < 2; ++line) page.erase(0, page.find('\n') + 1);
+  // One pass over the template's two places, so that nothing put in is read for a place again.
   const std::string places[] = {"/*@THREE_JS@*/", "/*@KANEGEN_DATA@*/"};
   const std::string* texts[] = {&three_js, &data_json};
   std::string out;

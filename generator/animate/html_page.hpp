@@ -10,8 +10,7 @@ namespace kanegen::animate {
 
 /// The page with three.js's CommonJS build (three_js_text) in an IIFE that
 /// sets window.THREE, and the JSON of viewer_json. Throws std::runtime_error
-/// if the three.js text is not that build (a stub of a later three that only
-/// re-exports the ES module, say) or could end its <script> element early.
+/// if either text could end its <script> element early.
 std::string viewer_page(const std::string& three_js, const std::string& data_json);
 
 }  // namespace kanegen::animate

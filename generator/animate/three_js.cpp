@@ -15,6 +15,22 @@
 namespace kanegen::animate {
 namespace fs = std::filesystem;
 
+namespace {
+
+/// The text, if it is three's one-file CommonJS build; a later three ships a
+/// stub in its place that only re-exports the ES module, which a page cannot use.
+std::string checked(std::string text, const std::string& path) {
+  if (text.find("exports.WebGLRenderer = WebGLRenderer") == std::string::npos)
+    throw std::runtime_error(
+        "--format html: " + path +
+        " is not three.js's one-file CommonJS build (three 0.186 and later ship a stub in "
+        "its place); install the version viewer/package.json pins with `npm ci` in viewer/, "
+        "or set KANEGEN_THREE_JS to build/three.cjs of three 0.185");
+  return text;
+}
+
+}  // namespace
+
 std::string three_js_text() {
   std::vector<std::string> tried;
   const auto read = [&](const fs::path& path, std::string* text) {
@@ -29,15 +45,16 @@ std::string three_js_text() {
   };
   std::string text;
   if (const char* given = std::getenv("KANEGEN_THREE_JS"); given && *given) {
-    if (read(given, &text)) return text;
+    if (read(given, &text)) return checked(text, given);
     throw std::runtime_error(
         std::string("KANEGEN_THREE_JS=") + given +
         ": not a readable file; give the path of three.js's build/three.cjs, or unset it");
   }
   std::error_code error;
   const fs::path exe = fs::canonical("/proc/self/exe", error);
-  if (!error && read(exe.parent_path().parent_path() / "share/kanegen/three/three.cjs", &text)) return text;
-  if (*KANEGEN_THREE_JS_BUILD && read(KANEGEN_THREE_JS_BUILD, &text)) return text;
+  if (!error && read(exe.parent_path().parent_path() / "share/kanegen/three/three.cjs", &text))
+    return checked(text, tried.back());
+  if (*KANEGEN_THREE_JS_BUILD && read(KANEGEN_THREE_JS_BUILD, &text)) return checked(text, tried.back());
   std::string where;
   for (const std::string& path : tried) where += (where.empty() ? "" : ", ") + path;
   throw std::runtime_error(

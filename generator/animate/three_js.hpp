@@ -13,7 +13,8 @@ namespace kanegen::animate {
 /// The text of three.cjs, from the first of: $KANEGEN_THREE_JS (a path),
 /// the installed copy (PREFIX/share/kanegen/three/three.cjs, PREFIX above
 /// kanegen's bin/), the copy CMake found when it configured this build.
-/// Throws std::runtime_error saying where it looked and how to get it.
+/// Throws std::runtime_error saying where it looked and how to get it, or
+/// that the file found is not that build.
 std::string three_js_text();
 
 }  // namespace kanegen::animate
