@@ -111,7 +111,7 @@ def check_arm(kanegen, viewer, model, work):
     page = os.path.join(out, "animate_arm.html")
     check(os.listdir(out) == ["animate_arm.html"], "one file, the page: %s" % os.listdir(out))
     result = probe(viewer, work, page, times="page", scales=[10, 1], bodies=["hub", "motor", "link2"],
-                   beams=["link2"], play_seconds=1)
+                   beams=["link2"], play_seconds=1, controls="link2")
     if not result:
         return
     by_time = {row[0]: row for row in rows}
@@ -128,6 +128,11 @@ def check_arm(kanegen, viewer, model, work):
     print("arm: largest position difference %.3g m (tolerance %.3g m = 1e-5 x reach %.3g m)" % (worst, tol, reach))
     played = result.get("played")
     check(played and played["frames"] > 0 and played["t1"] != played["t0"], "the arm plays: %r" % played)
+    c = result.get("controls") or {}
+    check(c.get("playingAfterClick") and c.get("pausedAfterClick") and 0 < c.get("timeAfterPlay", 0) < rows[-1][0],
+          "the play button plays and pauses, at speed 0.25: %r" % c)
+    check(c.get("timeAfterSlider") == rows[-1][0] and c.get("nodesMoveWithScale"),
+          "the slider sets the time, the magnification field moves the nodes: %r" % c)
 
 
 def check_arm_frame(header, row, at, tol):

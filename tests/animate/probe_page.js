@@ -7,7 +7,7 @@
 //   node probe_page.js PLAN.json
 // Plan: {page, viewer (the folder of node_modules), chromium, times: [t...],
 // scales: [s...], bodies: [name...], beams: [name...], columns: [plotted column...],
-// screenshot (a PNG path), play_seconds}.
+// screenshot (a PNG path), play_seconds, controls (a beam whose nodes the magnification moves)}.
 'use strict';
 const fs = require('fs');
 const path = require('path');
@@ -42,6 +42,26 @@ async function play(page, seconds) {
     k.pause();
     return { t0, t1, frames: f1 - f0, seconds: (w1 - w0) / 1000, fps: (f1 - f0) / ((w1 - w0) / 1000) };
   }, seconds);
+}
+
+/** The controls as a user works them: the play button, the slider, the speed and the magnification. */
+async function useControls(page, beam) {
+  const k = (f, arg) => page.evaluate(f, arg);
+  const out = {};
+  await page.selectOption('#speed', '0.25');
+  await k(() => window.kanegen.setTime(window.kanegen.times()[0]));
+  await page.click('#play');
+  out.playingAfterClick = await k(() => window.kanegen.playing());
+  await page.waitForTimeout(400);
+  await page.click('#play');
+  out.pausedAfterClick = !(await k(() => window.kanegen.playing()));
+  out.timeAfterPlay = await k(() => window.kanegen.time());
+  await k(() => { const s = document.getElementById('slider'); s.value = s.max; s.dispatchEvent(new Event('input')); });
+  out.timeAfterSlider = await k(() => window.kanegen.time());
+  const before = await k((name) => window.kanegen.nodePositions(name), beam);
+  await page.fill('#scale', '0');
+  out.nodesMoveWithScale = JSON.stringify(before) !== JSON.stringify(await k((name) => window.kanegen.nodePositions(name), beam));
+  return out;
 }
 
 /** What the page shows of the names: each must come back as the text it was. */
@@ -82,6 +102,7 @@ async function main() {
       }, plan.columns);
     if (plan.screenshot) await page.screenshot({ path: plan.screenshot });  // at the last time and scale read
     if (plan.play_seconds) result.played = await play(page, plan.play_seconds);
+    if (plan.controls) result.controls = await useControls(page, plan.controls);
   } finally {
     await browser.close();
   }
