@@ -8,7 +8,8 @@ positions from the three.js groups' world matrices (float32). The reference
 is what check_vtk.py compares with: the generated kernels' outputs that
 `kanegen simulate` wrote for the same rows (frame origins against point
 outputs at those origins; a flexible link's nodes, at scale 10 and 1,
-against its origin, x axis and node displacement outputs). Tolerance:
+against its origin, x axis and node displacement outputs), and in 3-D the
+payload of models/spatial_arm2.json against its point output. Tolerance:
 1e-5 L, L the largest distance of a frame origin from the world origin over
 the run; float32 keeps about 6e-8 L, so this is loose by two orders only to
 allow a few roundings in the page's matrix products.
@@ -157,6 +158,28 @@ def check_arm_frame(header, row, at, tol):
     return worst
 
 
+def check_spatial(kanegen, viewer, model, work):
+    """models/spatial_arm2.json: turns about z, then about y on a flexible link's tip node, in 3-D."""
+    csv_path = os.path.join(work, "spatial.csv")
+    run(kanegen, "simulate", model, "--t-end", "0.5", "-o", csv_path, "--quiet")
+    header, rows = read_csv(csv_path)
+    out = os.path.join(work, "spatial_html")
+    run(kanegen, "animate", csv_path, model, "-o", out, "--format", "html", "--frames", "3", "--quiet")
+    result = probe(viewer, work, os.path.join(out, "spatial_arm2.html"), times="page", scales=[1],
+                   bodies=["payload"])
+    if not result:
+        return
+    by_time = {row[0]: row for row in rows}
+    reach = max(distance(point(header, row, "payload"), [0, 0, 0]) for row in rows)
+    worst = 0.0
+    for at in result["at"]:
+        err = distance(at["bodies"]["payload"], point(header, by_time[at["t"]], "payload"))
+        worst = max(worst, err)
+        check(err < 1e-5 * reach, "spatial_arm2: t=%g: the payload off by %.3g" % (at["t"], err))
+    check(len(result["at"]) == 3, "spatial_arm2: 3 frames read, got %d" % len(result["at"]))
+    print("spatial_arm2: payload at most %.3g m off (tolerance %.3g m)" % (worst, 1e-5 * reach))
+
+
 def check_hostile(kanegen, viewer, source, work):
     """Names that try to end the page's script or open a comment stay text."""
     model = os.path.join(source, "tests/data/models/hostile_names.urdf")
@@ -238,6 +261,7 @@ def main():
     shutil.rmtree(a.work, ignore_errors=True)  # a stale page would pass for a new one
     os.makedirs(a.work)
     check_arm(a.kanegen, viewer, os.path.join(a.source, "tests/data/models/animate_arm.json"), a.work)
+    check_spatial(a.kanegen, viewer, os.path.join(a.source, "models/spatial_arm2.json"), a.work)
     check_hostile(a.kanegen, viewer, a.source, a.work)
     check_fps(a.kanegen, viewer, a.source, a.work)
     if failures:
