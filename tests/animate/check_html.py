@@ -214,9 +214,10 @@ def check_hostile(kanegen, viewer, source, work):
 def check_fps(kanegen, viewer, source, work):
     """models/flexible_arm10.json over 10 s: 10 flexible links (4 modes each), 200 frames.
 
-    The fps depend on what is drawn, not on the values, and generating and
-    compiling this model takes minutes, so the run is made up: every
-    coordinate a smooth function of t, in the columns simulate writes."""
+    The fps depend on what is drawn, not on the values, and generating,
+    compiling and running this model takes about a minute (53 s here), so
+    the run is made up: every coordinate a smooth function of t, in the
+    columns simulate writes. (A real run plays at the same rate: docs/animation.md.)"""
     model = os.path.join(source, "models/flexible_arm10.json")
     with open(model) as f:
         m = json.load(f)
