@@ -519,8 +519,9 @@ struct AnimateCommand {
 
 void add_animate(CLI::App& app, AnimateCommand& c) {
   c.command =
-      app.add_subcommand("animate", "draw a simulation's bodies frame by frame: a ParaView time series or a page "
-                                    "for the browser");
+      app.add_subcommand("animate",
+                         "draw a simulation's bodies frame by frame: a ParaView time series or a page "
+                         "for the browser");
   kanegen::animate::AnimateOptions& o = c.options;
   c.command->add_option("RESULT", o.result, "a CSV written by kanegen simulate")
       ->required()
@@ -528,7 +529,8 @@ void add_animate(CLI::App& app, AnimateCommand& c) {
   c.command->add_option("MODEL", o.model, "the model of the run (.json or .urdf)")
       ->required()
       ->check(CLI::ExistingFile);
-  c.command->add_option("-o,--output", o.output_dir, "the directory for MODEL.pvd and its frames, or MODEL.html")
+  c.command
+      ->add_option("-o,--output", o.output_dir, "the directory for MODEL.pvd and its frames, or MODEL.html")
       ->required()
       ->type_name("DIR");
   c.command
