@@ -14,6 +14,7 @@ packages=(
   pybind11-dev python3-dev python3-numpy python3-pytest
   gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
   python3-vtk9
+  nodejs chromium
 )
 # libsundials-dev: CVODE, the runtime's adaptive implicit integrator
 # (--integrator implicit); libomp-dev: clang's OpenMP, which SUNDIALS's CMake
@@ -33,6 +34,12 @@ packages=(
 # 97 MB downloaded; 90 s to install here. python3-vtk9: VTK's Python
 # bindings, with which tests/animate reads back what `kanegen animate`
 # writes (VTK's own reader, not ours); 47 MB installed, with its libraries.
+# nodejs, npm and chromium: `kanegen animate --format html` inlines three.js,
+# which `npm ci` puts in viewer/node_modules (the version viewer/package-lock.json
+# pins; CMake finds it there and installs it with kanegen), and its test
+# (tests/animate/check_html.py) opens the page in headless chromium driven by
+# playwright-core from the same folder. npm is installed only if no npm came
+# with nodejs: NodeSource's nodejs carries its own and conflicts with Debian's.
 if [ "$(id -u)" -ne 0 ]; then
   echo "install-deps.sh: run as root (apt-get needs it), e.g. sudo bash scripts/install-deps.sh" >&2
   exit 1
@@ -40,3 +47,5 @@ fi
 export DEBIAN_FRONTEND=noninteractive
 apt-get update -q
 apt-get install -y -q --no-install-recommends "${packages[@]}"
+command -v npm >/dev/null || apt-get install -y -q --no-install-recommends npm
+(cd "$(dirname "$0")/../viewer" && npm ci --no-audit --no-fund)

@@ -7,8 +7,11 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "animate/html_page.hpp"
 #include "animate/result_table.hpp"
 #include "animate/scene.hpp"
+#include "animate/three_js.hpp"
+#include "animate/viewer_data.hpp"
 #include "animate/vtk_writer.hpp"
 #include "kanegen/runtime/text.hpp"
 #include "model/expression_eval.hpp"
@@ -105,11 +108,48 @@ std::vector<int> coordinate_columns(const ResultTable& table, const numeric::Ins
   return columns;
 }
 
+/// The VTK series: a .vtu per frame, then the .pvd that lists them.
+std::string write_vtk(const AnimateOptions& o, const std::string& name, const numeric::Instance& instance,
+                      const ResultTable& table, const std::vector<int>& columns, const fs::path& dir) {
+  const SceneBuilder builder(instance, o.scale);
+  const std::vector<std::size_t> rows = chosen_rows(table.rows.size(), o.frames);
+  std::vector<std::pair<double, std::string>> frames;
+  std::vector<double> q(columns.size());
+  for (std::size_t f = 0; f < rows.size(); ++f) {
+    const std::vector<double>& row = table.rows[rows[f]];
+    for (std::size_t i = 0; i < columns.size(); ++i) q[i] = row[static_cast<std::size_t>(columns[i])];
+    char suffix[64];
+    std::snprintf(suffix, sizeof suffix, "_%05zu.vtu", f);
+    frames.emplace_back(row[0], name + suffix);
+    write_whole(dir / frames.back().second, vtu_text(builder.at(q)));
+    if (o.verbose && (f + 1 == rows.size() || (f + 1) % std::max<std::size_t>(rows.size() / 10, 1) == 0))
+      std::fprintf(stderr, "kanegen: animate: %zu of %zu frames\n", f + 1, rows.size());
+  }
+  const fs::path pvd = dir / (name + ".pvd");
+  write_whole(pvd, pvd_text(frames));
+  return pvd.string();
+}
+
+/// The browser viewer: one HTML file with three.js and the frames in it.
+std::string write_html(const AnimateOptions& o, const std::string& three, const std::string& name,
+                       const numeric::Instance& instance, const ResultTable& table,
+                       const std::vector<int>& columns, const fs::path& dir) {
+  ViewerRun run{name, &instance, &table, chosen_rows(table.rows.size(), o.frames), columns, o.scale};
+  if (o.verbose) std::fprintf(stderr, "kanegen: animate: %zu frames into one page\n", run.rows.size());
+  const fs::path html = dir / (name + ".html");
+  write_whole(html, viewer_page(three, viewer_json(run)));
+  return html.string();
+}
+
 }  // namespace
 
 std::string animate(const AnimateOptions& o) {
   if (!(o.scale >= 0) || !std::isfinite(o.scale))
     throw std::runtime_error("--scale " + runtime::format_double(o.scale) + ": give a finite number >= 0");
+  if (o.format != "vtk" && o.format != "html")
+    throw std::runtime_error("--format " + o.format + ": give vtk or html");
+  // Before anything is read or written, so that a missing three.js is what is told.
+  const std::string three = o.format == "html" ? three_js_text() : std::string();
   const model::Model m = model::load_model(o.model, o.load);
   const numeric::Instance instance = numeric::instantiate(m, parameter_values(m, o.sets));
   const ResultTable table = read_result_table(o.result);
@@ -119,23 +159,8 @@ std::string animate(const AnimateOptions& o) {
   fs::create_directories(dir, error);
   if (!fs::is_directory(dir))
     throw std::runtime_error(o.output_dir + ": cannot be made a directory; give another -o");
-  const SceneBuilder builder(instance, o.scale);
-  const std::vector<std::size_t> rows = chosen_rows(table.rows.size(), o.frames);
-  std::vector<std::pair<double, std::string>> frames;
-  std::vector<double> q(columns.size());
-  for (std::size_t f = 0; f < rows.size(); ++f) {
-    const std::vector<double>& row = table.rows[rows[f]];
-    for (std::size_t i = 0; i < columns.size(); ++i) q[i] = row[static_cast<std::size_t>(columns[i])];
-    char name[64];
-    std::snprintf(name, sizeof name, "_%05zu.vtu", f);
-    frames.emplace_back(row[0], m.name + name);
-    write_whole(dir / frames.back().second, vtu_text(builder.at(q)));
-    if (o.verbose && (f + 1 == rows.size() || (f + 1) % std::max<std::size_t>(rows.size() / 10, 1) == 0))
-      std::fprintf(stderr, "kanegen: animate: %zu of %zu frames\n", f + 1, rows.size());
-  }
-  const fs::path pvd = dir / (m.name + ".pvd");
-  write_whole(pvd, pvd_text(frames));
-  return pvd.string();
+  if (o.format == "html") return write_html(o, three, m.name, instance, table, columns, dir);
+  return write_vtk(o, m.name, instance, table, columns, dir);
 }
 
 }  // namespace kanegen::animate

@@ -17,8 +17,17 @@ std::array<double, 3> world_point(const Pose<double>& pose, const Vec<double>& l
   return numeric::add(pose.origin, numeric::mul(pose.rotation, local));
 }
 
-/// The box of a rigid part: its mass and principal moments about its centre
-/// of mass, body frame; not drawn without mass or inertia.
+std::int32_t add_point(Scene& scene, const std::array<double, 3>& at, int body, PointKind kind) {
+  scene.points.push_back(at);
+  scene.displacement.push_back({0, 0, 0});
+  scene.joint_axis.push_back({0, 0, 0});
+  scene.point_body.push_back(body);
+  scene.point_kind.push_back(static_cast<std::int32_t>(kind));
+  return static_cast<std::int32_t>(scene.points.size() - 1);
+}
+
+}  // namespace
+
 std::array<std::array<double, 3>, 8> equivalent_box(const numeric::BodyData& b, bool* drawn) {
   std::array<std::array<double, 3>, 8> corners{};
   Eigen::Matrix3d inertia;
@@ -47,16 +56,28 @@ std::array<std::array<double, 3>, 8> equivalent_box(const numeric::BodyData& b, 
   return corners;
 }
 
-std::int32_t add_point(Scene& scene, const std::array<double, 3>& at, int body, PointKind kind) {
-  scene.points.push_back(at);
-  scene.displacement.push_back({0, 0, 0});
-  scene.joint_axis.push_back({0, 0, 0});
-  scene.point_body.push_back(body);
-  scene.point_kind.push_back(static_cast<std::int32_t>(kind));
-  return static_cast<std::int32_t>(scene.points.size() - 1);
+BodyStates body_states(const numeric::Instance& model, const std::vector<double>& kernel_q) {
+  // A spherical joint's quaternion becomes its base, at a rotation vector 0.
+  numeric::Instance instance = model;
+  const std::vector<double> q = numeric::take_kernel_coordinates(instance, kernel_q.data());
+  const std::vector<std::vector<double>> dofs = numeric::all_beam_dofs(instance, q.data());
+  const std::vector<numeric::SecondOrder<double>> second = numeric::all_second_order(instance, dofs);
+  BodyStates states{numeric::body_poses(instance, q.data(), dofs, second), {}};
+  states.node_moves.resize(instance.bodies.size());
+  for (std::size_t b = 0; b < instance.bodies.size(); ++b) {
+    if (!instance.bodies[b].elastic) continue;
+    const numeric::FlexibleData& f = *instance.bodies[b].elastic;
+    for (int n = 0; n < static_cast<int>(f.nodes.size()); ++n) {
+      Vec<double> moved = numeric::node_translation(f, dofs[b], n);
+      if (f.mesh && !second[b].mesh_dofs.empty())
+        moved = numeric::add(moved, numeric::node_translation(f, second[b].mesh_dofs, n));
+      else if (!f.mesh)
+        moved = numeric::sub(numeric::displaced_node(f, dofs[b], second[b], n), f.nodes[n]);
+      states.node_moves[b].push_back(moved);
+    }
+  }
+  return states;
 }
-
-}  // namespace
 
 bool vtk_cell_of(const std::string& calculix_type, CellType* type) {
   // The same node order as CalculiX's (Abaqus's): corners, then mid-edge nodes.
@@ -94,16 +115,11 @@ void SceneBuilder::add_rigid(Scene& scene, int body, const Pose<double>& pose) c
 }
 
 void SceneBuilder::add_elastic(Scene& scene, int body, const Pose<double>& pose,
-                               const std::vector<double>& dofs,
-                               const numeric::SecondOrder<double>& second) const {
+                               const std::vector<Vec<double>>& moves) const {
   const numeric::FlexibleData& f = *instance_.bodies[body].elastic;
   const std::int32_t first = static_cast<std::int32_t>(scene.points.size());
   for (int n = 0; n < static_cast<int>(f.nodes.size()); ++n) {
-    Vec<double> moved = numeric::node_translation(f, dofs, n);
-    if (f.mesh && !second.mesh_dofs.empty())
-      moved = numeric::add(moved, numeric::node_translation(f, second.mesh_dofs, n));
-    else if (!f.mesh)
-      moved = numeric::sub(numeric::displaced_node(f, dofs, second, n), f.nodes[n]);
+    const Vec<double>& moved = moves[n];
     const std::int32_t p =
         add_point(scene, world_point(pose, numeric::add(f.nodes[n], numeric::scale(moved, scale_))), body,
                   PointKind::elastic_node);
@@ -125,16 +141,11 @@ void SceneBuilder::add_elastic(Scene& scene, int body, const Pose<double>& pose,
 }
 
 Scene SceneBuilder::at(const std::vector<double>& kernel_q) const {
-  // A spherical joint's quaternion becomes its base, at a rotation vector 0.
-  numeric::Instance instance = instance_;
-  const std::vector<double> q = numeric::take_kernel_coordinates(instance, kernel_q.data());
-  const std::vector<std::vector<double>> dofs = numeric::all_beam_dofs(instance, q.data());
-  const std::vector<numeric::SecondOrder<double>> second = numeric::all_second_order(instance, dofs);
-  const std::vector<Pose<double>> poses = numeric::body_poses(instance, q.data(), dofs, second);
+  const BodyStates states = body_states(instance_, kernel_q);
   Scene scene;
   for (int b = 0; b < static_cast<int>(instance_.bodies.size()); ++b) {
-    add_rigid(scene, b, poses[b]);
-    if (instance_.bodies[b].elastic) add_elastic(scene, b, poses[b], dofs[b], second[b]);
+    add_rigid(scene, b, states.poses[b]);
+    if (instance_.bodies[b].elastic) add_elastic(scene, b, states.poses[b], states.node_moves[b]);
   }
   return scene;
 }

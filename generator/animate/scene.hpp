@@ -51,6 +51,23 @@ struct Scene {
   std::vector<Cell> cells;
 };
 
+/// What places a frame's drawing, at the kernels' coordinates q (as a run's
+/// CSV has them: a spherical joint's quaternion, numeric/spherical.hpp): each body's world pose
+/// and, per flexible body, each node's elastic displacement (body frame,
+/// unscaled; a beam's with its foreshortening under geometric stiffening in
+/// modes, a mesh's with its second-order part).
+struct BodyStates {
+  std::vector<numeric::Pose<double>> poses;
+  std::vector<std::vector<numeric::Vec<double>>> node_moves;  ///< per body; empty for a rigid one
+};
+BodyStates body_states(const numeric::Instance& instance, const std::vector<double>& kernel_q);
+
+/// The box of a rigid part: its mass and principal moments about its centre
+/// of mass (sides sqrt(6 (I_j + I_k - I_i) / m) along its principal axes),
+/// corners in the body frame in VTK's hexahedron order; `drawn` false (no
+/// box) without mass or inertia.
+std::array<std::array<double, 3>, 8> equivalent_box(const numeric::BodyData& body, bool* drawn);
+
 /// The VTK cell of a CalculiX element type whose node order VTK shares,
 /// or false (the element is then left out of the picture).
 bool vtk_cell_of(const std::string& calculix_type, CellType* type);
@@ -70,8 +87,8 @@ class SceneBuilder {
     std::array<std::array<double, 3>, 8> corners{};  ///< body frame, VTK hexahedron order
   };
   void add_rigid(Scene& scene, int body, const numeric::Pose<double>& pose) const;
-  void add_elastic(Scene& scene, int body, const numeric::Pose<double>& pose, const std::vector<double>& dofs,
-                   const numeric::SecondOrder<double>& second) const;
+  void add_elastic(Scene& scene, int body, const numeric::Pose<double>& pose,
+                   const std::vector<numeric::Vec<double>>& moves) const;
 
   const numeric::Instance& instance_;
   double scale_;

@@ -515,12 +515,13 @@ struct AnimateCommand {
   CLI::App* command = nullptr;
   kanegen::animate::AnimateOptions options;
   bool quiet = false;
-  std::string format = "vtk";
 };
 
 void add_animate(CLI::App& app, AnimateCommand& c) {
   c.command =
-      app.add_subcommand("animate", "draw a simulation's bodies frame by frame as a ParaView time series");
+      app.add_subcommand("animate",
+                         "draw a simulation's bodies frame by frame: a ParaView time series or a page "
+                         "for the browser");
   kanegen::animate::AnimateOptions& o = c.options;
   c.command->add_option("RESULT", o.result, "a CSV written by kanegen simulate")
       ->required()
@@ -528,12 +529,15 @@ void add_animate(CLI::App& app, AnimateCommand& c) {
   c.command->add_option("MODEL", o.model, "the model of the run (.json or .urdf)")
       ->required()
       ->check(CLI::ExistingFile);
-  c.command->add_option("-o,--output", o.output_dir, "the directory for MODEL.pvd and its frames")
+  c.command
+      ->add_option("-o,--output", o.output_dir, "the directory for MODEL.pvd and its frames, or MODEL.html")
       ->required()
       ->type_name("DIR");
-  c.command->add_option("--format", c.format, "vtk: a .pvd collection of .vtu files (ParaView)")
+  c.command
+      ->add_option("--format", o.format,
+                   "vtk: a .pvd collection of .vtu files (ParaView); html: one page with a three.js viewer")
       ->capture_default_str()
-      ->check(CLI::IsMember({"vtk"}));
+      ->check(CLI::IsMember({"vtk", "html"}));
   c.command->add_option("--scale", o.scale, "magnification of the elastic displacements drawn")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1e12));
@@ -548,8 +552,10 @@ void add_animate(CLI::App& app, AnimateCommand& c) {
 
 int run_animate(AnimateCommand& c) {
   c.options.verbose = !c.quiet;
-  const std::string pvd = kanegen::animate::animate(c.options);
-  if (c.options.verbose) std::fprintf(stderr, "kanegen: wrote %s (open it in ParaView)\n", pvd.c_str());
+  const std::string written = kanegen::animate::animate(c.options);
+  if (c.options.verbose)
+    std::fprintf(stderr, "kanegen: wrote %s (open it in %s)\n", written.c_str(),
+                 c.options.format == "html" ? "a web browser" : "ParaView");
   return 0;
 }
 

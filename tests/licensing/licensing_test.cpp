@@ -106,8 +106,8 @@ TEST_CASE("generated code carries the MIT identifier and says it is kanegen's ou
 }
 
 TEST_CASE("the license files exist and THIRD_PARTY.md names every dependency", "[licensing]") {
-  for (const char* file : {"LICENSE", "LICENSES/MIT.txt", "LICENSES/GPL-2.0-or-later.txt", "THIRD_PARTY.md",
-                           "docs/licensing.md"}) {
+  for (const char* file : {"LICENSE", "LICENSES/MIT.txt", "LICENSES/GPL-2.0-or-later.txt",
+                           "LICENSES/MIT-three.js.txt", "THIRD_PARTY.md", "docs/licensing.md"}) {
     INFO(file);
     CHECK(fs::file_size(kRoot / file) > 500);
   }
@@ -116,8 +116,9 @@ TEST_CASE("the license files exist and THIRD_PARTY.md names every dependency", "
   CHECK(kanegen_test::slurp(kRoot / "LICENSES/GPL-2.0-or-later.txt").find("GNU GENERAL PUBLIC LICENSE") !=
         std::string::npos);
   const std::string third = kanegen_test::slurp(kRoot / "THIRD_PARTY.md");
-  for (const char* dependency : {"GiNaC", "CLN", "Eigen", "nlohmann-json", "Catch2", "urdfdom", "TinyXML-2",
-                                 "CLI11", "valijson", "MuJoCo", "Google Benchmark", "SUNDIALS (CVODE)"}) {
+  for (const char* dependency :
+       {"GiNaC", "CLN", "Eigen", "nlohmann-json", "Catch2", "urdfdom", "TinyXML-2", "CLI11", "valijson",
+        "MuJoCo", "Google Benchmark", "SUNDIALS (CVODE)", "three.js", "Playwright"}) {
     INFO(dependency);
     CHECK(third.find(std::string("| ") + dependency + " |") != std::string::npos);
   }
