@@ -102,8 +102,9 @@ SceneBuilder::SceneBuilder(const numeric::Instance& instance, double scale)
 void SceneBuilder::add_rigid(Scene& scene, int body, const Pose<double>& pose) const {
   const std::int32_t origin = add_point(scene, pose.origin, body, PointKind::frame_origin);
   const numeric::JointData& joint = instance_.joints[instance_.bodies[body].joint];
-  // The axis in the joint frame is the child's too: a turn about it or a slide along it leaves it.
-  if (joint.motion != numeric::Motion::none)
+  // The axis in the joint frame is the child's too: a turn about it or a slide along it leaves it
+  // (a ball has none).
+  if (joint.motion == numeric::Motion::rotation || joint.motion == numeric::Motion::translation)
     scene.joint_axis[origin] = numeric::mul(pose.rotation, joint.axis);
   scene.cells.push_back({CellType::vertex, {origin}, body});
   const Box& box = boxes_[body];

@@ -109,15 +109,30 @@ std::string elastic_json(const numeric::FlexibleData& f, int first_node) {
   return s + "}";
 }
 
+/// The page's name of how a joint moves its child (templates/viewer.html.in
+/// draws its glyph by it). No default: a new motion is a compile error here.
+const char* motion_name(numeric::Motion motion) {
+  switch (motion) {
+    case numeric::Motion::none:
+      return "fixed";
+    case numeric::Motion::rotation:
+      return "turn";
+    case numeric::Motion::translation:
+      return "slide";
+    case numeric::Motion::ball:
+      return "ball";
+  }
+  return "fixed";
+}
+
 std::string body_json(const numeric::Instance& instance, std::size_t b,
                       const std::array<std::array<double, 3>, 8>& box, bool drawn, int first_node) {
   const numeric::BodyData& body = instance.bodies[b];
   static const numeric::JointData none{};  // a body no joint carries: drawn where it is, no glyph
   const numeric::JointData& joint = body.joint >= 0 ? instance.joints[body.joint] : none;
-  static const char* const motions[] = {"fixed", "turn", "slide"};
   std::string s = "{\"name\":" + script_json_string(body.name) +
                   ",\"joint\":" + script_json_string(joint.name) + ",\"motion\":\"" +
-                  motions[static_cast<int>(joint.motion)] + "\"" + ",\"axis\":" + point_list({joint.axis}) +
+                  motion_name(joint.motion) + "\"" + ",\"axis\":" + point_list({joint.axis}) +
                   ",\"mass\":" + short_number(body.mass);
   s += ",\"box\":" +
        (drawn ? point_list(std::vector<Vec<double>>(box.begin(), box.end())) : std::string("null"));

@@ -180,6 +180,30 @@ def check_spatial(kanegen, viewer, model, work):
     print("spatial_arm2: payload at most %.3g m off (tolerance %.3g m)" % (worst, 1e-5 * reach))
 
 
+def check_free_body(kanegen, viewer, model, work):
+    """A box on a free joint carrying an arm on a spherical one: both turned by quaternions."""
+    csv_path = os.path.join(work, "free_body.csv")
+    run(kanegen, "simulate", model, "--t-end", "0.5", "-o", csv_path, "--quiet", "--u0", "base_wx=3",
+        "--u0", "base_wy=-2", "--u0", "wrist_wz=5")
+    header, rows = read_csv(csv_path)
+    out = os.path.join(work, "free_body_html")
+    run(kanegen, "animate", csv_path, model, "-o", out, "--format", "html", "--frames", "3", "--quiet")
+    result = probe(viewer, work, os.path.join(out, "free_body.html"), times="page", scales=[1],
+                   bodies=["box", "arm"])
+    if not result:
+        return
+    by_time = {row[0]: row for row in rows}
+    reach = max(distance(point(header, row, "arm_origin"), [0, 0, 0]) for row in rows)
+    worst = 0.0
+    for at in result["at"]:
+        for body in ("box", "arm"):
+            err = distance(at["bodies"][body], point(header, by_time[at["t"]], body + "_origin"))
+            worst = max(worst, err)
+            check(err < 1e-5 * reach, "free_body: t=%g: %s off by %.3g" % (at["t"], body, err))
+    check(len(result["at"]) == 3, "free_body: 3 frames read, got %d" % len(result["at"]))
+    print("free_body: origins at most %.3g m off (tolerance %.3g m)" % (worst, 1e-5 * reach))
+
+
 def check_hostile(kanegen, viewer, source, work):
     """Names that try to end the page's script or open a comment stay text."""
     model = os.path.join(source, "tests/data/models/hostile_names.urdf")
@@ -263,6 +287,7 @@ def main():
     os.makedirs(a.work)
     check_arm(a.kanegen, viewer, os.path.join(a.source, "tests/data/models/animate_arm.json"), a.work)
     check_spatial(a.kanegen, viewer, os.path.join(a.source, "models/spatial_arm2.json"), a.work)
+    check_free_body(a.kanegen, viewer, os.path.join(a.source, "tests/consistency/data/free_body.json"), a.work)
     check_hostile(a.kanegen, viewer, a.source, a.work)
     check_fps(a.kanegen, viewer, a.source, a.work)
     if failures:
