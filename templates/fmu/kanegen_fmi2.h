@@ -1,10 +1,10 @@
-/* SPDX-License-Identifier: MIT */
-/* This file is kanegen's output: you may use, copy, modify and distribute it under any terms you choose
-   (docs/licensing.md). */
-/* The FMI 2.0 types and functions that kanegen's FMU wrapper implements, written for kanegen from the
-   function signatures in the FMI 2.0 standard's text (chapters 2.1, 3.2 and 4.2); not the Modelica
-   Association's headers. With FMI2_FUNCTION_PREFIX defined (a source FMU compiled into an importer), each
-   function is named PREFIX##name, as the standard asks of source code FMUs. */
+// SPDX-License-Identifier: MIT
+// This file is kanegen's output: you may use, copy, modify and distribute it under any terms you choose
+// (docs/licensing.md).
+// The FMI 2.0 types and functions that kanegen's FMU wrapper implements, written for kanegen from the
+// function signatures in the FMI 2.0 standard's text (chapters 2.1, 3.2 and 4.2); not the Modelica
+// Association's headers. With FMI2_FUNCTION_PREFIX defined (a source FMU compiled into an importer), each
+// function is named PREFIX##name, as the standard asks of source code FMUs.
 #ifndef KANEGEN_FMI2_H
 #define KANEGEN_FMI2_H
 
@@ -69,7 +69,7 @@ typedef struct {
 #define KANEGEN_FMI2_EXPORT __attribute__((visibility("default")))
 #endif
 
-/* KANEGEN_FMI2_FUNCTIONS(X): X(return type, name, (parameters)) for every function of the standard. */
+// KANEGEN_FMI2_FUNCTIONS(X): X(return type, name, (parameters)) for every function of the standard.
 #define KANEGEN_FMI2_FUNCTIONS(X)                                                                            \
   X(const char*, fmi2GetTypesPlatform, (void))                                                               \
   X(const char*, fmi2GetVersion, (void))                                                                     \
@@ -149,4 +149,4 @@ KANEGEN_FMI2_FUNCTIONS(KANEGEN_FMI2_DECLARE)
 }
 #endif
 
-#endif /* KANEGEN_FMI2_H */
+#endif  // KANEGEN_FMI2_H

@@ -1,10 +1,10 @@
-/* SPDX-License-Identifier: MIT */
-/* This file is kanegen's output: you may use, copy, modify and distribute it under any terms you choose
-   (docs/licensing.md). */
-/* The FMI 3.0 types and functions that kanegen's FMU wrapper implements, written for kanegen from the
-   function signatures in the FMI 3.0 standard's text (section 2.2 and chapters 3 to 5); not the Modelica
-   Association's headers. With FMI3_FUNCTION_PREFIX defined (a source FMU compiled into an importer), each
-   function is named PREFIX##name, as the standard asks of source code FMUs. */
+// SPDX-License-Identifier: MIT
+// This file is kanegen's output: you may use, copy, modify and distribute it under any terms you choose
+// (docs/licensing.md).
+// The FMI 3.0 types and functions that kanegen's FMU wrapper implements, written for kanegen from the
+// function signatures in the FMI 3.0 standard's text (section 2.2 and chapters 3 to 5); not the Modelica
+// Association's headers. With FMI3_FUNCTION_PREFIX defined (a source FMU compiled into an importer), each
+// function is named PREFIX##name, as the standard asks of source code FMUs.
 #ifndef KANEGEN_FMI3_H
 #define KANEGEN_FMI3_H
 
@@ -80,7 +80,7 @@ typedef void (*fmi3UnlockPreemptionCallback)(void);
 #define KANEGEN_FMI3_EXPORT __attribute__((visibility("default")))
 #endif
 
-/* The getters and setters of one type: X(type name, C type). */
+// The getters and setters of one type: X(type name, C type).
 #define KANEGEN_FMI3_VALUE_TYPES(X) \
   X(Float32, fmi3Float32)           \
   X(Float64, fmi3Float64)           \
@@ -105,7 +105,7 @@ typedef void (*fmi3UnlockPreemptionCallback)(void);
 KANEGEN_FMI3_VALUE_TYPES(KANEGEN_FMI3_DECLARE_VALUES)
 #undef KANEGEN_FMI3_DECLARE_VALUES
 
-/* KANEGEN_FMI3_FUNCTIONS(X): X(return type, name, (parameters)) for the other functions of the standard. */
+// KANEGEN_FMI3_FUNCTIONS(X): X(return type, name, (parameters)) for the other functions of the standard.
 #define KANEGEN_FMI3_FUNCTIONS(X)                                                                            \
   X(const char*, fmi3GetVersion, (void))                                                                     \
   X(fmi3Status, fmi3SetDebugLogging,                                                                         \
@@ -234,4 +234,4 @@ KANEGEN_FMI3_FUNCTIONS(KANEGEN_FMI3_DECLARE)
 }
 #endif
 
-#endif /* KANEGEN_FMI3_H */
+#endif  // KANEGEN_FMI3_H

@@ -1,0 +1,36 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# kanegen fmu (docs/fmu.md): the XML escaping and the ZIP writer on their own; then FMUs read back as an
+# importer reads them (tests/fmu/check_fmu.py: Python's zipfile and xml.etree, FMI's rules from the
+# standards' text in fmi_rules.py, our own C importer fmu_driver.c), compared with kanegen simulate, their
+# sources/ compiled alone by g++ and clang++ with -Werror, hostile names and refused input.
+add_executable(test_fmu ${CMAKE_CURRENT_LIST_DIR}/test_fmu_text.cpp)
+target_compile_options(test_fmu PRIVATE ${KANEGEN_WARNINGS})
+target_link_libraries(test_fmu PRIVATE kanegen_fmu kanegen_catch_main)
+catch_discover_tests(test_fmu TEST_PREFIX "fmu: ")
+
+enable_language(C)
+add_executable(fmu_driver ${CMAKE_CURRENT_LIST_DIR}/fmu_driver.c)
+set_target_properties(fmu_driver PROPERTIES C_STANDARD 99 C_EXTENSIONS ON)
+target_compile_options(fmu_driver PRIVATE -Wall -Wextra)
+target_link_libraries(fmu_driver PRIVATE ${CMAKE_DL_LIBS})
+
+# name;arguments of check_fmu.py
+set(KANEGEN_FMU_CASES
+    "four_bar (closed loop) FMI 2 and 3 against simulate|run four_bar.json 2 3"
+    "double_pendulum FMI 3 against simulate, its sources alone with g++ and clang++ -Werror|sources double_pendulum.json 3"
+    "hostile names|hostile"
+    "bad input refused, nothing written|refused")
+foreach(case ${KANEGEN_FMU_CASES})
+  string(FIND "${case}" "|" bar)
+  string(SUBSTRING "${case}" 0 ${bar} name)
+  math(EXPR bar "${bar} + 1")
+  string(SUBSTRING "${case}" ${bar} -1 arguments)
+  separate_arguments(arguments)
+  string(MAKE_C_IDENTIFIER "${name}" folder)
+  add_test(NAME "fmu: ${name}"
+           COMMAND /usr/bin/python3 ${CMAKE_CURRENT_LIST_DIR}/check_fmu.py --kanegen $<TARGET_FILE:kanegen>
+                   --driver $<TARGET_FILE:fmu_driver> --source ${PROJECT_SOURCE_DIR}
+                   --work ${CMAKE_CURRENT_BINARY_DIR}/fmu_work/${folder} ${arguments})
+  set_tests_properties("fmu: ${name}" PROPERTIES
+                       ENVIRONMENT "KANEGEN_CACHE_DIR=${CMAKE_CURRENT_BINARY_DIR}/fmu_work/${folder}/cache")
+endforeach()
