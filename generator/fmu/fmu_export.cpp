@@ -15,6 +15,7 @@
 #include "fmu/xml_text.hpp"
 #include "fmu/zip_writer.hpp"
 #include "model/joint_types.hpp"
+#include "model/model_error.hpp"
 #include "pipeline/pipeline.hpp"
 #include "runner/generation_interrupt.hpp"
 #include "runner/runner_build.hpp"
@@ -106,7 +107,11 @@ std::string documentation(const ModelFacts& facts, const DescriptionOptions& o) 
 std::string archive(const ModelFacts& facts, const DescriptionOptions& description,
                     const std::map<std::string, std::string>& sources, const fs::path& binary) {
   ZipWriter zip;
-  zip.add("modelDescription.xml", model_description(facts, fmu_variables(facts), description));
+  try {
+    zip.add("modelDescription.xml", model_description(facts, fmu_variables(facts), description));
+  } catch (const XmlTextError& e) {  // a name XML cannot carry: the model's to fix
+    throw model::ModelError(facts.model_file, "modelDescription.xml", e.what(), "");
+  }
   zip.add("binaries/" + platform_folder(description.fmi_version) + "/" + facts.identifier + ".so",
           pipeline::read_file(binary.string()));
   for (const auto& [path, text] : sources) zip.add("sources/" + path, text);

@@ -4,6 +4,8 @@
 #include <map>
 #include <stdexcept>
 
+#include "model/model_error.hpp"
+
 namespace kanegen::fmu {
 
 namespace {
@@ -90,10 +92,11 @@ FmuVariables fmu_variables(const ModelFacts& f) {
     out.all[i].value_reference = static_cast<unsigned>(i);
     const auto [at, fresh] = seen.emplace(out.all[i].name, i);
     if (!fresh)
-      throw std::runtime_error(f.model_file + ": the FMU would have two variables named '" + out.all[i].name +
-                               "' (kinds: " + out.all[at->second].description + ", " +
-                               out.all[i].description +
-                               "); FMI asks for unique names: rename one in the model file");
+      throw model::ModelError(
+          f.model_file, "the FMU's variable '" + out.all[i].name + "'",
+          "two variables would have this name (kinds: " + out.all[at->second].description + ", " +
+              out.all[i].description + "), and FMI asks for unique names",
+          "rename one in the model file");
   }
   return out;
 }

@@ -46,8 +46,8 @@ struct FmuVariables {
   std::vector<int> states, derivatives, outputs;  ///< indices into all
 };
 
-/// The FMU's variables of `facts`. Throws std::runtime_error if two would have the same name (FMI asks
-/// for unique names), naming both and the model file.
+/// The FMU's variables of `facts`. Throws model::ModelError if two would have the same name (FMI asks
+/// for unique names), naming both kinds and the model file.
 FmuVariables fmu_variables(const ModelFacts& facts);
 
 /// The units the variables use, each with its exponents of SI base units (for UnitDefinitions).

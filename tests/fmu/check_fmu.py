@@ -213,6 +213,13 @@ def case_refused(a):
     refused(a, [model, "-o", os.path.join(work, "p.zip")], "ends in .fmu", work)
     refused(a, [model, "-o", out, "--integrator", "bdf"], "dopri5, rk4, radau", work)
     refused(a, [model, "-o", out, "--fmi", "4"], "--fmi", work, status=105)
+    # An output named as a coordinate: FMI asks for unique variable names.
+    with open(model) as f:
+        text = f.read()
+    duplicate = os.path.join(work, "duplicate.json")
+    with open(duplicate, "w") as f:
+        f.write(text.replace('"name": "angle"', '"name": "pivot"'))
+    refused(a, [duplicate, "-o", out], "the FMU's variable 'pivot'", work)
     bad = os.path.join(a.source, "tests", "data", "bad_models", "duplicate_joint.json")
     refused(a, [bad, "-o", out], "duplicate_joint.json", work)
     # A failed export leaves an existing FMU as it was.
