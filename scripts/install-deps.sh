@@ -33,6 +33,9 @@ packages=(
 # 97 MB downloaded; 90 s to install here. python3-vtk9: VTK's Python
 # bindings, with which tests/animate reads back what `kanegen animate`
 # writes (VTK's own reader, not ours); 47 MB installed, with its libraries.
+# kanegen fmu needs no package of its own (its ZIP writer and FMI declarations
+# are kanegen's); tests/fmu builds each FMU's sources/ with g++ and clang++
+# (listed above) and reads the FMUs back with python3's zipfile and xml.etree.
 if [ "$(id -u)" -ne 0 ]; then
   echo "install-deps.sh: run as root (apt-get needs it), e.g. sudo bash scripts/install-deps.sh" >&2
   exit 1
