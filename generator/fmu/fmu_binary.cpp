@@ -7,6 +7,8 @@
 #include <memory>
 #include <stdexcept>
 
+#include "fmu/fmu_sources.hpp"
+#include "fmu/shared_object.hpp"
 #include "kanegen/runtime/model.hpp"
 #include "kanegen/runtime/model_table.hpp"
 #include "runner/runner_build.hpp"
@@ -25,14 +27,22 @@ std::string platform_folder(int fmi_version) {
 #endif
 }
 
-void compile_binary(const std::string& sources_dir, const std::vector<std::string>& files,
-                    const std::string& binary) {
+void compile_binary(const std::string& sources_dir, const std::map<std::string, std::string>& sources,
+                    const std::string& binary, bool verbose) {
   // Hidden visibility: only the FMI functions (and the table kanegen reads) are exported, so that the
   // FMU's runtime never binds to another copy in the importer's process.
-  std::vector<std::string> args = {"-std=c++17",      "-O2", "-fPIC", "-shared", "-fvisibility=hidden",
-                                   "-I" + sources_dir};
-  for (const std::string& file : files) args.push_back(sources_dir + "/" + file);
-  runner::compile_with(args, binary, "the FMU", sources_dir + "/" + files.front(),
+  const std::vector<std::string> flags = {"-std=c++17", "-O2", "-fPIC", "-fvisibility=hidden"};
+  const std::string shared = shared_object(sources, flags, verbose);
+  std::vector<std::string> args = flags;
+  args.insert(args.end(), {"-shared", "-I" + sources_dir});
+  std::string first;
+  for (const std::string& file : compiled_files(sources))
+    if (!is_shared(file)) {
+      args.push_back(sources_dir + "/" + file);
+      if (first.empty()) first = args.back();
+    }
+  args.push_back(shared);
+  runner::compile_with(args, binary, "the FMU", first,
                        "the FMU's sources did not compile; please report this as a kanegen bug");
 }
 

@@ -4,6 +4,7 @@
 // that binary, so that modelDescription.xml names exactly what the compiled code holds.
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -15,10 +16,12 @@ namespace kanegen::fmu {
 /// std::runtime_error on a platform neither names.
 std::string platform_folder(int fmi_version);
 
-/// Compiles `files` (relative to `sources_dir`) into the shared library `binary`. Throws
-/// std::runtime_error with the compiler's messages, runner::Interrupted if the user stopped it.
-void compile_binary(const std::string& sources_dir, const std::vector<std::string>& files,
-                    const std::string& binary);
+/// Compiles the .cpp files of `sources` (path -> text, written in `sources_dir`) into the shared library
+/// `binary`: those that do not depend on the model through the cached shared object (shared_object.hpp),
+/// the others here, all with the same flags. Throws std::runtime_error with the compiler's messages,
+/// runner::Interrupted if the user stopped it.
+void compile_binary(const std::string& sources_dir, const std::map<std::string, std::string>& sources,
+                    const std::string& binary, bool verbose);
 
 /// Sizes, names, initial state and default parameters of the model compiled into `binary` (through its
 /// kanegen_fmu_model_table export). The units and model_file are left to the caller.

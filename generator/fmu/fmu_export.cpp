@@ -171,7 +171,7 @@ void export_fmu(const ExportOptions& o) {
   const fs::path binary = work.path() / (generated.name + ".so");
   if (o.verbose) std::fprintf(stderr, "kanegen: compiling the FMU of %s ...\n", generated.name.c_str());
   const std::vector<std::string> files = compiled_files(sources);
-  compile_binary((work.path() / "sources").string(), files, binary.string());
+  compile_binary((work.path() / "sources").string(), sources, binary.string(), o.verbose);
 
   ModelFacts facts = read_facts(binary.string());
   facts.model_file = o.model;

@@ -321,6 +321,8 @@ std::string build_cached(const std::string& model_path, const BuildOptions& opti
 
 }  // namespace
 
+std::string compiler_command() { return compiler(); }
+
 void compile_with(const std::vector<std::string>& args, const std::string& output, const std::string& name,
                   const std::string& failed_file, const std::string& if_failed) {
   const fs::path out(output);

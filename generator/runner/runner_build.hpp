@@ -62,6 +62,9 @@ void set_generator_location(const std::string& generator_file);
 /// `kanegen generate`, possibly edited), cached by a digest of their content.
 std::string build_runner_from_directory(const std::string& kernels_dir, const BuildOptions& options);
 
+/// The compiler the runners are built with: $KANEGEN_CXX, else $CXX, else c++.
+std::string compiler_command();
+
 /// Runs the compiler the runners are built with ($KANEGEN_CXX, else $CXX, else c++) on `args` with
 /// "-o" a temporary name next to `output`, renamed to `output` when it succeeds (kanegen fmu's binary).
 /// Throws Interrupted if the user stopped it, else std::runtime_error naming `failed_file`, then
