@@ -75,7 +75,7 @@ typedef struct {
   int (*set_states)(void*, const double*, size_t);
   int (*get_states)(void*, double*, size_t);
   int (*derivatives)(void*, double*, size_t);
-  int (*completed_step)(void*, bool* event); /* ME: after an accepted step */
+  int (*completed_step)(void*, bool* event);                    /* ME: after an accepted step */
   int (*handle_event)(void*, bool enter, bool* states_changed); /* enter: not yet in event mode */
   int (*do_step)(void*, double t, double h);
 } Fmu;
@@ -93,7 +93,8 @@ typedef struct {
   double next_event_time;
 } Fmi2EventInfo;
 
-static void fmi2_logger(void* env, const char* name, int status, const char* category, const char* message, ...) {
+static void fmi2_logger(void* env, const char* name, int status, const char* category, const char* message,
+                        ...) {
   va_list args;
   (void)env;
   va_start(args, message);
@@ -142,11 +143,15 @@ static void fmi2_open(Fmu* f, const Plan* p, bool me) {
   f->completed_step = fmi2_completed;
   f->handle_event = fmi2_event;
   f->do_step = fmi2_do_step;
-  if (FMI2(fmi2SetupExperiment, int (*)(void*, int, double, double, int, double))(f->instance, 0, 0, 0, 1, p->stop))
+  if (FMI2(fmi2SetupExperiment, int (*)(void*, int, double, double, int, double))(f->instance, 0, 0, 0, 1,
+                                                                                  p->stop))
     fail("fmi2SetupExperiment failed");
-  if (FMI2(fmi2EnterInitializationMode, int (*)(void*))(f->instance)) fail("fmi2EnterInitializationMode failed");
-  if (p->nset && f->set_real(f->instance, p->set_vr, (size_t)p->nset, p->set_value)) fail("fmi2SetReal failed");
-  if (FMI2(fmi2ExitInitializationMode, int (*)(void*))(f->instance)) fail("fmi2ExitInitializationMode failed");
+  if (FMI2(fmi2EnterInitializationMode, int (*)(void*))(f->instance))
+    fail("fmi2EnterInitializationMode failed");
+  if (p->nset && f->set_real(f->instance, p->set_vr, (size_t)p->nset, p->set_value))
+    fail("fmi2SetReal failed");
+  if (FMI2(fmi2ExitInitializationMode, int (*)(void*))(f->instance))
+    fail("fmi2ExitInitializationMode failed");
 }
 
 /* ---- FMI 3.0 ---- */
@@ -189,13 +194,13 @@ static int fmi3_do_step(void* c, double t, double h) {
 static void fmi3_open(Fmu* f, const Plan* p, bool me) {
   if (me) {
     typedef void* (*Instantiate)(const char*, const char*, const char*, bool, bool, void*, void*);
-    f->instance = FMI3(fmi3InstantiateModelExchange, Instantiate)("driver", p->token, NULL, false, false, NULL,
-                                                                  (void*)fmi3_logger);
+    f->instance = FMI3(fmi3InstantiateModelExchange, Instantiate)("driver", p->token, NULL, false, false,
+                                                                  NULL, (void*)fmi3_logger);
   } else {
-    typedef void* (*Instantiate)(const char*, const char*, const char*, bool, bool, bool, bool, const uint32_t*,
-                                 size_t, void*, void*, void*);
-    f->instance = FMI3(fmi3InstantiateCoSimulation, Instantiate)("driver", p->token, NULL, false, false, false,
-                                                                 false, NULL, 0, NULL, (void*)fmi3_logger, NULL);
+    typedef void* (*Instantiate)(const char*, const char*, const char*, bool, bool, bool, bool,
+                                 const uint32_t*, size_t, void*, void*, void*);
+    f->instance = FMI3(fmi3InstantiateCoSimulation, Instantiate)(
+        "driver", p->token, NULL, false, false, false, false, NULL, 0, NULL, (void*)fmi3_logger, NULL);
   }
   if (!f->instance) fail("fmi3Instantiate failed");
   f->set_real = fmi3_set;
@@ -207,11 +212,13 @@ static void fmi3_open(Fmu* f, const Plan* p, bool me) {
   f->completed_step = fmi3_completed;
   f->handle_event = fmi3_event;
   f->do_step = fmi3_do_step;
-  if (FMI3(fmi3EnterInitializationMode, int (*)(void*, bool, double, double, bool, double))(f->instance, false, 0,
-                                                                                           0, true, p->stop))
+  if (FMI3(fmi3EnterInitializationMode, int (*)(void*, bool, double, double, bool, double))(
+          f->instance, false, 0, 0, true, p->stop))
     fail("fmi3EnterInitializationMode failed");
-  if (p->nset && f->set_real(f->instance, p->set_vr, (size_t)p->nset, p->set_value)) fail("fmi3SetFloat64 failed");
-  if (FMI3(fmi3ExitInitializationMode, int (*)(void*))(f->instance)) fail("fmi3ExitInitializationMode failed");
+  if (p->nset && f->set_real(f->instance, p->set_vr, (size_t)p->nset, p->set_value))
+    fail("fmi3SetFloat64 failed");
+  if (FMI3(fmi3ExitInitializationMode, int (*)(void*))(f->instance))
+    fail("fmi3ExitInitializationMode failed");
   if (!me && FMI3(fmi3EnterStepMode, int (*)(void*))(f->instance)) fail("fmi3EnterStepMode failed");
 }
 
@@ -219,7 +226,8 @@ static void fmi3_open(Fmu* f, const Plan* p, bool me) {
 static void record(FILE* out, const Fmu* f, const Plan* p, double t) {
   double values[MAX_VARS];
   int i;
-  if (p->nout && f->get_real(f->instance, p->out_vr, (size_t)p->nout, values)) fail("getting the outputs failed");
+  if (p->nout && f->get_real(f->instance, p->out_vr, (size_t)p->nout, values))
+    fail("getting the outputs failed");
   fprintf(out, "%.17g", t);
   for (i = 0; i < p->nout; ++i) fprintf(out, ",%.17g", values[i]);
   fputc('\n', out);
@@ -245,11 +253,13 @@ static void rk4_step(const Fmu* f, double t, double h, double* x, int n) {
   for (i = 0; i < n; ++i) y[i] = x[i] + h * k3[i];
   rhs(f, t + h, y, k4, n);
   for (i = 0; i < n; ++i) x[i] += h / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
-  if (f->set_time(f->instance, t + h) || f->set_states(f->instance, x, (size_t)n)) fail("setting the state failed");
+  if (f->set_time(f->instance, t + h) || f->set_states(f->instance, x, (size_t)n))
+    fail("setting the state failed");
   if (f->completed_step(f->instance, &event)) fail("completed integrator step failed");
   if (event) {
     if (f->handle_event(f->instance, true, &changed)) fail("the step event failed");
-    if (changed && f->get_states(f->instance, x, (size_t)n)) fail("getting the states after the event failed");
+    if (changed && f->get_states(f->instance, x, (size_t)n))
+      fail("getting the states after the event failed");
   }
 }
 
@@ -266,8 +276,10 @@ int main(int argc, char** argv) {
   me = !strcmp(argv[3], "me");
   g_library = dlopen(argv[1], RTLD_NOW | RTLD_LOCAL);
   if (!g_library) fail(dlerror());
-  if (!strcmp(argv[2], "2")) fmi2_open(&f, &plan, me);
-  else fmi3_open(&f, &plan, me);
+  if (!strcmp(argv[2], "2"))
+    fmi2_open(&f, &plan, me);
+  else
+    fmi3_open(&f, &plan, me);
   out = fopen(argv[5], "w");
   if (!out || plan.states > MAX_VARS || plan.interval <= 0) fail("bad output file or plan");
   if (me) { /* event mode after initialization, then continuous time */
@@ -290,8 +302,10 @@ int main(int argc, char** argv) {
       rk4_step(&f, t + j * plan.interval / plan.substeps, plan.interval / plan.substeps, x, plan.states);
   }
   fclose(out);
-  if (!strcmp(argv[2], "2")) FMI2(fmi2FreeInstance, void (*)(void*))(f.instance);
-  else FMI3(fmi3FreeInstance, void (*)(void*))(f.instance);
+  if (!strcmp(argv[2], "2"))
+    FMI2(fmi2FreeInstance, void (*)(void*))(f.instance);
+  else
+    FMI3(fmi3FreeInstance, void (*)(void*))(f.instance);
   dlclose(g_library);
   return 0;
 }
