@@ -8,11 +8,16 @@ target_compile_options(test_fmu PRIVATE ${KANEGEN_WARNINGS})
 target_link_libraries(test_fmu PRIVATE kanegen_fmu kanegen_catch_main)
 catch_discover_tests(test_fmu TEST_PREFIX "fmu: ")
 
-enable_language(C)
-add_executable(fmu_driver ${CMAKE_CURRENT_LIST_DIR}/fmu_driver.c)
-set_target_properties(fmu_driver PROPERTIES C_STANDARD 99 C_EXTENSIONS ON)
-target_compile_options(fmu_driver PRIVATE -Wall -Wextra)
-target_link_libraries(fmu_driver PRIVATE ${CMAKE_DL_LIBS})
+# The importer is built as an importer would be, by the system's C compiler and with none of this build's
+# flags (a sanitized build's instrumentation would make it another program than the FMUs expect).
+find_program(KANEGEN_FMU_CC NAMES cc gcc clang REQUIRED)
+set(KANEGEN_FMU_DRIVER ${CMAKE_CURRENT_BINARY_DIR}/fmu_driver)
+add_custom_command(OUTPUT ${KANEGEN_FMU_DRIVER}
+                   COMMAND ${KANEGEN_FMU_CC} -std=gnu99 -O1 -Wall -Wextra -Werror ${CMAKE_CURRENT_LIST_DIR}/fmu_driver.c
+                           -o ${KANEGEN_FMU_DRIVER} -ldl
+                   DEPENDS ${CMAKE_CURRENT_LIST_DIR}/fmu_driver.c
+                   COMMENT "Building tests/fmu/fmu_driver.c, the FMU tests' importer" VERBATIM)
+add_custom_target(fmu_driver ALL DEPENDS ${KANEGEN_FMU_DRIVER})
 
 # name;arguments of check_fmu.py
 set(KANEGEN_FMU_CASES
@@ -29,7 +34,7 @@ foreach(case ${KANEGEN_FMU_CASES})
   string(MAKE_C_IDENTIFIER "${name}" folder)
   add_test(NAME "fmu: ${name}"
            COMMAND /usr/bin/python3 ${CMAKE_CURRENT_LIST_DIR}/check_fmu.py --kanegen $<TARGET_FILE:kanegen>
-                   --driver $<TARGET_FILE:fmu_driver> --source ${PROJECT_SOURCE_DIR}
+                   --driver ${KANEGEN_FMU_DRIVER} --source ${PROJECT_SOURCE_DIR}
                    --work ${CMAKE_CURRENT_BINARY_DIR}/fmu_work/${folder} ${arguments})
   # One cache for all: the FMU runtime every export shares is compiled once (fmu/shared_object.hpp).
   set_tests_properties("fmu: ${name}" PROPERTIES ENVIRONMENT "KANEGEN_CACHE_DIR=${CMAKE_CURRENT_BINARY_DIR}/fmu_work/cache")
