@@ -71,23 +71,27 @@ void Instance::log_error(const std::string& message) const {
 
 void Instance::enter_initialization(double start_time) { t_ = start_time; }
 
-bool Instance::exit_initialization() {
+bool Instance::start_state(std::vector<double>& x, runtime::Assembly* assembly) const {
   std::vector<double> start(size(nq_ + nu_));
   model_.initial_state(start.data(), start.data() + nq_);
-  for (int i = 0; i < nq_ + nu_; ++i)
-    if (!state_set_[static_cast<std::size_t>(i)])
-      x_[static_cast<std::size_t>(i)] = start[static_cast<std::size_t>(i)];
-  if (loops_.active()) {
-    try {
-      const runtime::Assembly assembly = loops_.assemble(x_.data(), x_.data() + nq_);
-      if (logger_)
-        logger_(false, "loops closed to |phi| = " + std::to_string(assembly.residual) + " in " +
-                           std::to_string(assembly.iterations) + " Newton steps");
-    } catch (const std::exception& e) {
-      log_error(e.what());
-      return false;
-    }
+  for (std::size_t i = 0; i < static_cast<std::size_t>(nq_ + nu_); ++i)
+    if (!state_set_[i]) x[i] = start[i];
+  if (!loops_.active()) return true;
+  try {
+    *assembly = loops_.assemble(x.data(), x.data() + nq_);
+  } catch (const std::exception& e) {
+    log_error(e.what());
+    return false;
   }
+  return true;
+}
+
+bool Instance::exit_initialization() {
+  runtime::Assembly assembly;
+  if (!start_state(x_, &assembly)) return false;
+  if (loops_.active() && logger_)
+    logger_(false, "loops closed to |phi| = " + std::to_string(assembly.residual) + " in " +
+                       std::to_string(assembly.iterations) + " Newton steps");
   initialized_ = true;
   return true;
 }
@@ -98,8 +102,10 @@ int Instance::evaluate(double t, const double* x, double* dx) {
                          : model_.forward_dynamics(t, x, x + nq_, tau_.data(), dx + nq_);
 }
 
-bool Instance::derivatives(double* dx) {
-  const int pivot = evaluate(t_, x_.data(), dx);
+bool Instance::derivatives(double* dx) { return derivatives_at(x_.data(), dx); }
+
+bool Instance::derivatives_at(const double* x, double* dx) {
+  const int pivot = evaluate(t_, x, dx);
   if (pivot == 0) return true;
   log_error("the mass matrix (or the loops' equations) is singular at t = " + std::to_string(t_) +
             " (pivot " + std::to_string(pivot) + ")");
@@ -109,26 +115,36 @@ bool Instance::derivatives(double* dx) {
 bool Instance::get(unsigned value_reference, double* value) {
   const Variable v = variable(value_reference);
   const auto i = static_cast<std::size_t>(v.index);
+  // In initialization mode the states, their derivatives and the outputs are those initialization will
+  // end with (FMI lists them as initial unknowns): the start state, assembled on the loops.
+  const double* x = x_.data();
+  std::vector<double> provisional;
+  runtime::Assembly ignored;
+  if (!initialized_ && v.role != Role::time && v.role != Role::input && v.role != Role::parameter) {
+    provisional = x_;
+    if (!start_state(provisional, &ignored)) return false;
+    x = provisional.data();
+  }
   switch (v.role) {
     case Role::time:
       *value = t_;
       return true;
     case Role::coordinate:
-      *value = x_[i];
+      *value = x[i];
       return true;
     case Role::speed:
-      *value = x_[static_cast<std::size_t>(nq_) + i];
+      *value = x[static_cast<std::size_t>(nq_) + i];
       return true;
     case Role::coordinate_rate:
     case Role::acceleration:
-      if (!derivatives(dx_.data())) return false;
+      if (!derivatives_at(x, dx_.data())) return false;
       *value = dx_[(v.role == Role::acceleration ? static_cast<std::size_t>(nq_) : 0) + i];
       return true;
     case Role::input:
       *value = tau_[i];
       return true;
     case Role::output:
-      model_.outputs(t_, x_.data(), x_.data() + nq_, y_.data());
+      model_.outputs(t_, x, x + nq_, y_.data());
       *value = y_[i];
       return true;
     case Role::parameter:

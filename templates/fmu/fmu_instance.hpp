@@ -74,6 +74,10 @@ class Instance {
 
  private:
   int evaluate(double t, const double* x, double* dx);
+  bool derivatives_at(const double* x, double* dx);
+  /// x with the states not set replaced by the model's initial state, then assembled on the loops
+  /// (*assembly says how); false (logged) if they do not close.
+  bool start_state(std::vector<double>& x, kanegen::runtime::Assembly* assembly) const;
   void log_error(const std::string& message) const;
 
   Logger logger_;
