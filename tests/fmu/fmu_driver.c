@@ -105,6 +105,7 @@ static void fmi2_logger(void* env, const char* name, int status, const char* cat
 }
 
 static void* g_library;
+static long g_events, g_moved; /* step events, and those that moved the states */
 #define FMI2(name, type) ((type)symbol(g_library, #name))
 
 static int fmi2_completed(void* c, bool* event) {
@@ -257,7 +258,9 @@ static void rk4_step(const Fmu* f, double t, double h, double* x, int n) {
     fail("setting the state failed");
   if (f->completed_step(f->instance, &event)) fail("completed integrator step failed");
   if (event) {
+    ++g_events;
     if (f->handle_event(f->instance, true, &changed)) fail("the step event failed");
+    g_moved += changed;
     if (changed && f->get_states(f->instance, x, (size_t)n))
       fail("getting the states after the event failed");
   }
@@ -302,6 +305,7 @@ int main(int argc, char** argv) {
       rk4_step(&f, t + j * plan.interval / plan.substeps, plan.interval / plan.substeps, x, plan.states);
   }
   fclose(out);
+  printf("step events: %ld, states moved: %ld\n", g_events, g_moved);
   if (!strcmp(argv[2], "2"))
     FMI2(fmi2FreeInstance, void (*)(void*))(f.instance);
   else
