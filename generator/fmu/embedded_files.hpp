@@ -16,5 +16,7 @@ struct EmbeddedFile {
 extern const EmbeddedFile fmu_files[];
 /// templates/fmu/fmu_model.cpp.in: the model and the export's settings, filled per FMU.
 extern const char* const fmu_model_template;
+/// LICENSES/MIT.txt: the license of the runtime's files in sources/.
+extern const char* const mit_license;
 
 }  // namespace kanegen::embedded

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "fmu/embedded_files.hpp"
 #include "fmu/fmu_binary.hpp"
 #include "fmu/fmu_sources.hpp"
 #include "fmu/model_description.hpp"
@@ -118,6 +119,8 @@ std::string archive(const ModelFacts& facts, const DescriptionOptions& descripti
   if (description.fmi_version == 3)
     zip.add("sources/buildDescription.xml", build_description(facts, description));
   zip.add("documentation/index.html", documentation(facts, description));
+  // FMI 3.0 2.5.1's place for licenses; the MIT license asks that its notice go with the runtime's files.
+  zip.add("documentation/licenses/kanegen-runtime-MIT.txt", embedded::mit_license);
   return zip.finish();
 }
 
