@@ -50,6 +50,12 @@ fmi3Status unsupported(fmi3Instance c, const char* function) {
   return fmi3Error;
 }
 
+// Every variable is a scalar: as many values as value references.
+bool scalars_only(kanegen_fmu::Instance& i) {
+  i.log_error("nValues differs from nValueReferences, and every variable of this FMU is a scalar");
+  return false;
+}
+
 fmi3Instance instantiate(fmi3String instanceName, fmi3String token, bool model_exchange,
                          fmi3Boolean loggingOn, fmi3InstanceEnvironment environment,
                          fmi3LogMessageCallback logger) {
@@ -143,7 +149,7 @@ fmi3Status KANEGEN_FMI3_NAME(fmi3Reset)(fmi3Instance c) {
 fmi3Status KANEGEN_FMI3_NAME(fmi3GetFloat64)(fmi3Instance c, const fmi3ValueReference valueReferences[],
                                              size_t nValueReferences, fmi3Float64 values[], size_t nValues) {
   return guarded(c, "fmi3GetFloat64", [&](kanegen_fmu::Instance& i) {
-    if (nValues != nValueReferences) return false;  // every variable is a scalar
+    if (nValues != nValueReferences) return scalars_only(i);
     for (size_t k = 0; k < nValueReferences; ++k)
       if (!i.get(valueReferences[k], &values[k])) return false;
     return true;
@@ -154,7 +160,7 @@ fmi3Status KANEGEN_FMI3_NAME(fmi3SetFloat64)(fmi3Instance c, const fmi3ValueRefe
                                              size_t nValueReferences, const fmi3Float64 values[],
                                              size_t nValues) {
   return guarded(c, "fmi3SetFloat64", [&](kanegen_fmu::Instance& i) {
-    if (nValues != nValueReferences) return false;
+    if (nValues != nValueReferences) return scalars_only(i);
     for (size_t k = 0; k < nValueReferences; ++k)
       if (!i.set(valueReferences[k], values[k])) return false;
     return true;

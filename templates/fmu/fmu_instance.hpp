@@ -69,6 +69,9 @@ class Instance {
   /// Puts the state back on the loops (event mode); *changed when it moved. False (logged) if it fails.
   bool project(bool* changed);
 
+  /// Reports a failure through the importer's logger.
+  void log_error(const std::string& message) const;
+
   // Co-simulation: integrates [t, t + h] with the inputs held. False (logged) if the integrator fails.
   bool do_step(double t, double h);
 
@@ -78,7 +81,6 @@ class Instance {
   /// x with the states not set replaced by the model's initial state, then assembled on the loops
   /// (*assembly says how); false (logged) if they do not close.
   bool start_state(std::vector<double>& x, kanegen::runtime::Assembly* assembly) const;
-  void log_error(const std::string& message) const;
 
   Logger logger_;
   Settings settings_;
