@@ -151,6 +151,14 @@ void check_export_options(const ExportOptions& o) {
   if (!(o.rtol > 0) || !(o.atol > 0) || !(o.max_step > 0))
     throw std::invalid_argument("--rtol, --atol and --max-step must be positive");
   if (!o.model_exchange && !o.co_simulation) throw std::invalid_argument("--kind: me, cs or both");
+  // Before anything is generated, as simulate -o: the directory is made, and must take the .fmu.
+  const fs::path directory = fs::absolute(output).parent_path();
+  std::error_code error;
+  fs::create_directories(directory, error);
+  if (error || access(directory.c_str(), W_OK | X_OK) != 0)
+    throw std::invalid_argument("-o " + o.output + ": cannot write in " + directory.string() +
+                                (error ? " (" + error.message() + ")" : std::string()) +
+                                "; choose a directory of yours");
 }
 
 void export_fmu(const ExportOptions& o) {
@@ -186,7 +194,6 @@ void export_fmu(const ExportOptions& o) {
                                  "kanegen " KANEGEN_VERSION,
                                  o.integrator,
                                  files};
-  fs::create_directories(fs::absolute(o.output).parent_path());  // as simulate -o does
   write_atomically(o.output, archive(facts, description, sources, binary));
   if (o.verbose)
     std::fprintf(stderr, "kanegen: wrote %s (FMI %d.0, %s) in %.1f s\n", o.output.c_str(), o.fmi_version,
