@@ -4,11 +4,13 @@
 # GiNaC (license, build time, and the numeric path's independence from the
 # symbolic one), nor a layer above them.
 #
-# kanegen_layer(<target> [FORBID <target>...] [STANDARD_LIBRARY_ONLY [ALLOW <target>...]])
+# kanegen_layer(<target> [SYMBOLIC] [FORBID <target>...] [STANDARD_LIBRARY_ONLY [ALLOW <target>...]])
 #   Declares <target> GiNaC-free, and free of the FORBIDden targets (or of
 #   any link library at all but the ALLOWed ones and what they link). At compile time, every <ginac/*.h> its own
 #   sources include resolves first to a header that stops with #error (a
-#   private include directory searched before the system's).
+#   private include directory searched before the system's). SYMBOLIC: a
+#   layer on the symbolic side (it may link GiNaC through the layers below
+#   it), held to its FORBIDden targets only.
 # kanegen_check_layers()
 #   Once all targets exist: walks each declared target's link closure
 #   (LINK_LIBRARIES and INTERFACE_LINK_LIBRARIES, recursively, through
@@ -37,12 +39,15 @@ function(_kanegen_write_no_ginac_headers)
 endfunction()
 
 function(kanegen_layer target)
-  cmake_parse_arguments(PARSE_ARGV 1 arg "STANDARD_LIBRARY_ONLY" "" "FORBID;ALLOW")
+  cmake_parse_arguments(PARSE_ARGV 1 arg "STANDARD_LIBRARY_ONLY;SYMBOLIC" "" "FORBID;ALLOW")
   if(NOT TARGET ${target})
     message(FATAL_ERROR "kanegen layering: no target ${target} (renamed? update cmake/KanegenLayers.cmake)")
   endif()
-  _kanegen_write_no_ginac_headers()
-  target_include_directories(${target} BEFORE PRIVATE ${CMAKE_BINARY_DIR}/kanegen_no_ginac)
+  set_property(GLOBAL PROPERTY KANEGEN_LAYER_SYMBOLIC_${target} ${arg_SYMBOLIC})
+  if(NOT arg_SYMBOLIC)
+    _kanegen_write_no_ginac_headers()
+    target_include_directories(${target} BEFORE PRIVATE ${CMAKE_BINARY_DIR}/kanegen_no_ginac)
+  endif()
   set_property(GLOBAL APPEND PROPERTY KANEGEN_LAYERS ${target})
   set_property(GLOBAL PROPERTY KANEGEN_LAYER_FORBID_${target} ${arg_FORBID})
   set_property(GLOBAL PROPERTY KANEGEN_LAYER_STD_ONLY_${target} ${arg_STANDARD_LIBRARY_ONLY})
@@ -97,6 +102,7 @@ function(kanegen_check_layers)
     get_property(forbid GLOBAL PROPERTY KANEGEN_LAYER_FORBID_${layer})
     get_property(std_only GLOBAL PROPERTY KANEGEN_LAYER_STD_ONLY_${layer})
     get_property(allow GLOBAL PROPERTY KANEGEN_LAYER_ALLOW_${layer})
+    get_property(symbolic GLOBAL PROPERTY KANEGEN_LAYER_SYMBOLIC_${layer})
     set(only "the standard library only")
     if(allow)
       list(JOIN allow ", " allowed)
@@ -120,7 +126,7 @@ function(kanegen_check_layers)
       if(NOT current STREQUAL layer)
         list(APPEND closure "${current}")
         _kanegen_is_ginac("${current}" ginac)
-        if(ginac)
+        if(ginac AND NOT symbolic)
           message(FATAL_ERROR "kanegen layering: ${layer} links GiNaC (${chain}); "
                               "${layer} must stay GiNaC-free (docs/architecture.md)")
         endif()
@@ -165,6 +171,9 @@ function(kanegen_enforce_layers)
   kanegen_layer(kanegen_numeric FORBID ${above_numeric})
   if(TARGET kanegen_animate)  # the scratch projects of tests/layers have no such layer
     kanegen_layer(kanegen_animate FORBID ${above_numeric})
+  endif()
+  if(TARGET kanegen_fmu)  # kanegen fmu: on the runner, beside verify, never the numeric path or verify
+    kanegen_layer(kanegen_fmu SYMBOLIC FORBID kanegen_numeric kanegen_verify)
   endif()
   kanegen_check_layers()
 endfunction()

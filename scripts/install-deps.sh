@@ -40,6 +40,9 @@ packages=(
 # (tests/animate/check_html.py) opens the page in headless chromium driven by
 # playwright-core from the same folder. npm is installed only if no npm came
 # with nodejs: NodeSource's nodejs carries its own and conflicts with Debian's.
+# kanegen fmu needs no package of its own (its ZIP writer and FMI declarations
+# are kanegen's); tests/fmu builds each FMU's sources/ with g++ and clang++
+# (listed above) and reads the FMUs back with python3's zipfile and xml.etree.
 if [ "$(id -u)" -ne 0 ]; then
   echo "install-deps.sh: run as root (apt-get needs it), e.g. sudo bash scripts/install-deps.sh" >&2
   exit 1

@@ -22,6 +22,7 @@
 #include "cli/plot.hpp"
 #include "cli/preflight.hpp"
 #include "codegen/emitter.hpp"
+#include "fmu/fmu_export.hpp"
 #include "kanegen/runtime/options.hpp"
 #include "model/model_error.hpp"
 #include "pipeline/pipeline.hpp"
@@ -559,6 +560,67 @@ int run_animate(AnimateCommand& c) {
   return 0;
 }
 
+struct FmuCommand {
+  CLI::App* command = nullptr;
+  RunOptions run;
+  kanegen::fmu::ExportOptions options;
+  int fmi = 2;
+  std::string kind = "both";
+};
+
+void add_fmu(CLI::App& app, FmuCommand& c) {
+  c.command = app.add_subcommand(
+      "fmu",
+      "export the model as an FMU (FMI 2.0 or 3.0, model exchange and co-simulation): modelDescription.xml, "
+      "a binary for this platform and the sources that build it (docs/fmu.md)");
+  add_common(c.command, c.run);
+  kanegen::fmu::ExportOptions& o = c.options;
+  c.command->add_option("-o,--output", o.output, "the FMU to write, NAME.fmu (written whole or not at all)")
+      ->required()
+      ->type_name("FILE.fmu");
+  c.command->add_option("--fmi", c.fmi, "the FMI version, 2 or 3")
+      ->capture_default_str()
+      ->check(CLI::IsMember({2, 3}));
+  c.command
+      ->add_option("--kind", c.kind,
+                   "me (model exchange), cs (co-simulation) or both (default: one FMU with both interfaces)")
+      ->check(CLI::IsMember({"me", "cs", "both"}));
+  c.command
+      ->add_option("--integrator", o.integrator,
+                   "co-simulation: the runtime's integrator between communication points, dopri5, rk4 or "
+                   "radau (implicit)")
+      ->capture_default_str();
+  c.command->add_option("--rtol", o.rtol, "co-simulation: dopri5's and radau's relative tolerance")
+      ->capture_default_str()
+      ->check(kPositive);
+  c.command->add_option("--atol", o.atol, "co-simulation: their absolute tolerance")
+      ->capture_default_str()
+      ->check(kPositive);
+  c.command->add_option("--max-step", o.max_step, "co-simulation: rk4's largest step in a communication step")
+      ->capture_default_str()
+      ->check(kPositive);
+}
+
+int run_fmu(FmuCommand& c) {
+  kanegen::fmu::ExportOptions& o = c.options;
+  const BuildOptions b = build_options(c.run);
+  o.model = c.run.model;
+  o.load = b.load;
+  o.dynamics = b.dynamics;
+  o.verbose = b.verbose;
+  o.fmi_version = c.fmi;
+  o.model_exchange = c.kind != "cs";
+  o.co_simulation = c.kind != "me";
+  try {
+    kanegen::fmu::check_export_options(o);
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  }
+  kanegen::fmu::export_fmu(o);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -574,6 +636,7 @@ int main(int argc, char** argv) {
   ModesCommand modes;
   PlotCommand plot;
   AnimateCommand animate;
+  FmuCommand fmu;
   add_generate(app, generate);
   add_simulate(app, simulate);
   add_eval(app, eval);
@@ -581,11 +644,12 @@ int main(int argc, char** argv) {
   add_modes(app, modes);
   add_plot(app, plot);
   add_animate(app, animate);
+  add_fmu(app, fmu);
 
   CLI11_PARSE(app, argc, argv);
 
   for (const CLI::App* command : {generate.command, simulate.command, eval.command, verify.command,
-                                  modes.command, plot.command, animate.command})
+                                  modes.command, plot.command, animate.command, fmu.command})
     if (*command)
       if (const std::string unknown = kanegen::cli::unknown_arguments_message(*command); !unknown.empty()) {
         std::fprintf(stderr, "error: %s\n", unknown.c_str());
@@ -600,6 +664,7 @@ int main(int argc, char** argv) {
     if (*modes.command) return run_modes(modes);
     if (*plot.command) return run_plot(plot);
     if (*animate.command) return run_animate(animate);
+    if (*fmu.command) return run_fmu(fmu);
   } catch (const kanegen::runner::Interrupted& e) {  // as an interrupted simulation reports it
     std::fprintf(stderr, "error: %s\n", e.what());
     return 128 + e.signal_number;

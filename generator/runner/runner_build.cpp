@@ -321,6 +321,14 @@ std::string build_cached(const std::string& model_path, const BuildOptions& opti
 
 }  // namespace
 
+std::string compiler_command() { return compiler(); }
+
+void compile_with(const std::vector<std::string>& args, const std::string& output, const std::string& name,
+                  const std::string& failed_file, const std::string& if_failed) {
+  const fs::path out(output);
+  compile_to(args, out, name, failed_file, if_failed, out.parent_path() / (out.filename().string() + ".log"));
+}
+
 std::string build_runner(const std::string& model_path, const BuildOptions& options) {
   return build_cached(model_path, options, "", "runner", compile_runner);
 }

@@ -62,6 +62,16 @@ void set_generator_location(const std::string& generator_file);
 /// `kanegen generate`, possibly edited), cached by a digest of their content.
 std::string build_runner_from_directory(const std::string& kernels_dir, const BuildOptions& options);
 
+/// The compiler the runners are built with: $KANEGEN_CXX, else $CXX, else c++.
+std::string compiler_command();
+
+/// Runs the compiler the runners are built with ($KANEGEN_CXX, else $CXX, else c++) on `args` with
+/// "-o" a temporary name next to `output`, renamed to `output` when it succeeds (kanegen fmu's binary).
+/// Throws Interrupted if the user stopped it, else std::runtime_error naming `failed_file`, then
+/// `if_failed` and the compiler's first messages.
+void compile_with(const std::vector<std::string>& args, const std::string& output, const std::string& name,
+                  const std::string& failed_file, const std::string& if_failed);
+
 /// Runs a program with arguments, waits, and returns its exit status; its
 /// stderr goes to `error_file` (created 0600, truncated) if one is given.
 int run_program(const std::string& program, const std::vector<std::string>& args,

@@ -2,8 +2,10 @@
 # No #include crosses a layer the wrong way: model, fem, numeric and the
 # runtime include no GiNaC (or CLN); none of them includes a layer above it;
 # the symbolic side includes nothing of the numeric path (its independence,
-# docs/verify.md); runner/ and verify/ include nothing of the command line,
-# and runner/ nothing of verify/ (generator/CMakeLists.txt orders the layers).
+# docs/verify.md); runner/, verify/ and fmu/ include nothing of the command
+# line, runner/ nothing of verify/ or fmu/, and fmu/ (beside verify/, on the
+# runner) nothing of verify/ or the numeric path (generator/CMakeLists.txt
+# orders the layers).
 # tests/verify/check_independence.cmake holds the numeric path to its one use
 # of fem. Run as cmake -DROOT=<source tree> -P.
 set(ginac "^(ginac|cln)/")
@@ -20,8 +22,9 @@ set(rules
     "generator/kane|^(numeric|pipeline|${above_pipeline})/"
     "generator/codegen|^(numeric|pipeline|${above_pipeline})/"
     "generator/pipeline|^(numeric|${above_pipeline})/"
-    "generator/runner|^(numeric|verify|cli)/"
-    "generator/verify|^cli/")
+    "generator/runner|^(numeric|verify|fmu|cli)/"
+    "generator/verify|^(fmu|cli)/"
+    "generator/fmu|^(numeric|verify|cli)/")
 set(problems "")
 foreach(rule ${rules})
   string(FIND "${rule}" "|" bar)
