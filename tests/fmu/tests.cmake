@@ -23,6 +23,7 @@ add_custom_target(fmu_driver ALL DEPENDS ${KANEGEN_FMU_DRIVER})
 set(KANEGEN_FMU_CASES
     "four_bar (closed loop) FMI 2 and 3 against simulate|run four_bar.json 2 3"
     "double_pendulum FMI 3 against simulate, its sources alone with g++ and clang++ -Werror|sources double_pendulum.json 3"
+    "spherical top (quaternion states) FMI 2 against simulate|run ${PROJECT_SOURCE_DIR}/tests/data/models/spherical_top.json 2"
     "hostile names|hostile"
     "bad input refused, nothing written|refused")
 foreach(case ${KANEGEN_FMU_CASES})
