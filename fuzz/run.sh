@@ -85,11 +85,9 @@ for n, (mode, fields) in enumerate(seeds):
 EOF
 }
 
-status=0
-for target in "${targets[@]}"; do
-  exe=$build/fuzz/fuzz_$target
-  [ -x "$exe" ] || { echo "fuzz/run.sh: $exe is missing; build the fuzz_$target target" >&2; exit 2; }
-  work=$build/fuzz-work/$target
+# One target: its seeds, its run, its verdict (a report on stdout; exit 1 on a finding).
+fuzz_target() {
+  local target=$1 exe=$build/fuzz/fuzz_$1 work=$build/fuzz-work/$1 start a
   rm -rf "$work/seeds" "$work/artifacts"
   mkdir -p "$work/seeds" "$work/corpus" "$work/artifacts"
   seed_files "$target" | while read -r f; do cp "$f" "$work/seeds/$(basename "$(dirname "$f")")_$(basename "$f")"; done
@@ -103,7 +101,6 @@ for target in "${targets[@]}"; do
     grep -E '^stat::(number_of_executed_units|new_units_added|peak_rss_mb)' "$work/log.txt" | tr '\n' ' '
     echo "($(($(date +%s) - start)) s, no finding)"
   else
-    status=1
     tail -n 60 "$work/log.txt"
     for a in "$work"/artifacts/*; do
       [ -e "$a" ] || continue
@@ -112,6 +109,34 @@ for target in "${targets[@]}"; do
       echo "  after the fix, keep it: cp $a $root/tests/data/fuzz_regressions/${target%_model}/"
     done
     echo "fuzz_$target: FAILED (full log: $work/log.txt)"
+    return 1
   fi
+}
+
+for target in "${targets[@]}"; do
+  [ -x "$build/fuzz/fuzz_$target" ] || { echo "fuzz/run.sh: $build/fuzz/fuzz_$target is missing; build the fuzz_$target target" >&2; exit 2; }
+done
+
+# The targets run side by side, as many at once as there are cores
+# (KANEGEN_FUZZ_JOBS overrides): each is single-threaded, and CI's 2 cores
+# would otherwise idle through half of the fuzzing time. Reports are printed
+# in the targets' order once all have ended.
+jobs=${KANEGEN_FUZZ_JOBS:-$(nproc)}
+running=0
+for target in "${targets[@]}"; do
+  if [ "$running" -ge "$jobs" ]; then
+    wait -n || true
+    running=$((running - 1))
+  fi
+  mkdir -p "$build/fuzz-work/$target"
+  (if fuzz_target "$target" >"$build/fuzz-work/$target/report.txt" 2>&1; then echo 0; else echo 1; fi \
+    >"$build/fuzz-work/$target/status") &
+  running=$((running + 1))
+done
+wait
+status=0
+for target in "${targets[@]}"; do
+  cat "$build/fuzz-work/$target/report.txt"
+  [ "$(cat "$build/fuzz-work/$target/status")" = 0 ] || status=1
 done
 exit $status

@@ -30,16 +30,17 @@ FLAGS = ["-std=c++17", "-O1", "-fPIC", "-shared", "-fvisibility=hidden", "-Wall"
 
 # kanegen fmu builds the FMUs with the plain compiler even in a sanitized build (whose ctest sets
 # KANEGEN_CXX to the sanitizing one): fmu_driver, like any importer, is not instrumented and could not
-# load an instrumented binary. kanegen itself still runs sanitized.
+# load an instrumented binary. kanegen itself still runs sanitized. kanegen simulate, the reference,
+# keeps KANEGEN_CXX: its runner links the build's runtime library, sanitized in such a build.
 PLAIN = {k: v for k, v in os.environ.items() if k != "KANEGEN_CXX"}
 
 
-def run(args):
-    return subprocess.run(args, capture_output=True, text=True, env=PLAIN)
+def run(args, env=None):
+    return subprocess.run(args, capture_output=True, text=True, env=PLAIN if env is None else env)
 
 
-def must(args, what):
-    r = run(args)
+def must(args, what, env=None):
+    r = run(args, env)
     if r.returncode != 0:
         sys.exit(f"FAIL: {what}: exit {r.returncode}\n{r.stdout}\n{r.stderr}")
     return r
@@ -111,7 +112,7 @@ TIGHT = ["--rtol", "1e-10", "--atol", "1e-12"]
 def simulated(a, model, work):
     """kanegen simulate's CSV of 1 s, the reference."""
     sim = os.path.join(work, "simulate.csv")
-    must([a.kanegen, "simulate", model, "--t-end", "1", "--dt", "0.01", *TIGHT, "-o", sim, "--quiet"], "simulate")
+    must([a.kanegen, "simulate", model, "--t-end", "1", "--dt", "0.01", *TIGHT, "-o", sim, "--quiet"], "simulate", os.environ)
     return read_csv(sim)
 
 

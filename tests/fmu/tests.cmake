@@ -17,7 +17,7 @@ add_custom_command(OUTPUT ${KANEGEN_FMU_DRIVER}
                            -o ${KANEGEN_FMU_DRIVER} -ldl
                    DEPENDS ${CMAKE_CURRENT_LIST_DIR}/fmu_driver.c
                    COMMENT "Building tests/fmu/fmu_driver.c, the FMU tests' importer" VERBATIM)
-add_custom_target(fmu_driver ALL DEPENDS ${KANEGEN_FMU_DRIVER})
+add_custom_target(kanegen_fmu_driver ALL DEPENDS ${KANEGEN_FMU_DRIVER})
 
 # name;arguments of check_fmu.py
 set(KANEGEN_FMU_CASES
