@@ -27,8 +27,10 @@
 #include "free_strip_cps8_linear.hpp"
 #include "free_strip_modal.hpp"
 #include "spin_up_beam.hpp"
+#ifndef KANEGEN_NO_C3D20_TUBES  // tests/flexible/tests.cmake says when and why
 #include "spin_up_c3d20.hpp"
 #include "spin_up_c3d20_cb.hpp"
+#endif
 #include "spin_up_cps8.hpp"
 #include "spin_up_cps8_cb.hpp"
 #include "spin_up_cps8_linear.hpp"
@@ -286,6 +288,7 @@ TEST_CASE("a free CPS8 pendulum with stiffening keeps T + V and follows the beam
        << beams_apart / beam_scale * 100 << " %)");
 }
 
+#ifndef KANEGEN_NO_C3D20_TUBES
 TEST_CASE("spin-up: a C3D20 tube with stiffening follows the beam model within 2 %",
           "[flexible][spin-up][mesh_stiffening]") {
   spin_up_against_beam<kanegen_models::spin_up_c3d20::System, kanegen_models::spin_up_c3d20_cb::System>(
@@ -339,6 +342,8 @@ TEST_CASE("spin-up: the C3D20 tube's mass matrix stays positive definite where i
        << cb_elastic << " (elastic block), " << cb_whole << " (with the hub); clamped modes " << modal_elastic
        << " (elastic block), " << modal_whole << " (with the hub)");
 }
+
+#endif  // KANEGEN_NO_C3D20_TUBES
 
 TEST_CASE("Craig-Bampton bodies with stiffening keep M positive definite at verify's interface motions",
           "[flexible][mesh_stiffening]") {

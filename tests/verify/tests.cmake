@@ -77,6 +77,13 @@ foreach(model ${KANEGEN_VERIFY_MODELS})
   add_test(NAME "verify: model ${stem}" COMMAND kanegen verify ${model} ${KANEGEN_VERIFY_OPTIONS_${stem}})
   set_tests_properties("verify: model ${stem}" PROPERTIES ENVIRONMENT "KANEGEN_CACHE_DIR=${KANEGEN_VERIFY_CACHE}")
 endforeach()
+# The longest (a minute or more on 2 cores, mostly compiling their runners) start first under ctest -j,
+# so that none of them is left running alone at the end (ctest runs the costliest first).
+foreach(stem nfourbar40 l_frame solid_slider_crank solid_slider_crank_stiff chain20 spatial_arm2)
+  if(TEST "verify: model ${stem}")
+    set_tests_properties("verify: model ${stem}" PROPERTIES COST 60)
+  endif()
+endforeach()
 
 # The planar joints' steps (a slide, a slide and a turn, with massless frames
 # between them) by the articulated-body recursion, which auto does not pick
