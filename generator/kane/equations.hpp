@@ -178,6 +178,8 @@ class DerivationContext {
   /// How many times `product` has been derived: 0 or 1.
   int derivations(Product product) const;
 
+  /// The inputs and the products derived so far (defined in equations.cpp,
+  /// whose derivation steps take it).
   struct State;
 
  private:
