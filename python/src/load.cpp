@@ -3,8 +3,6 @@
 // exported table; the parameters; the lengths of the kernels' arguments.
 #include <dlfcn.h>
 
-#include <cctype>
-#include <cstring>
 #include <stdexcept>
 #include <string>
 

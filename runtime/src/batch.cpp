@@ -183,7 +183,12 @@ void parse_kernels(const std::map<std::string, Value>& m, Request& r) {
   if (const auto k = m.find("kernels"); k != m.end()) {
     if (k->second.kind != Value::names && !(k->second.kind == Value::array && k->second.xs.empty()))
       throw std::invalid_argument("\"kernels\" must be an array of kernel names");
-    for (const std::string& name : k->second.words) r.kernels.push_back(callable_kernel(name));
+    for (const std::string& name : k->second.words) {
+      const Kernel kernel = callable_kernel(name);
+      if (std::find(r.kernels.begin(), r.kernels.end(), kernel) != r.kernels.end())
+        throw std::invalid_argument("\"kernels\": \"" + name + "\" named twice");
+      r.kernels.push_back(kernel);
+    }
   }
   for (const auto& [key, value] : m)
     if (key.rfind("input_", 0) == 0) {

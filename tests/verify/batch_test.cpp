@@ -143,6 +143,7 @@ TEST_CASE("batch: a bad line gives an error answer, the others are still answere
       "{\"q\": [0.3], \"u\": [1], \"kernels\": [\"inverse_dynamics\"]}",
       "{\"q\": [0.3], \"u\": [1], \"kernels\": [\"inverse_dynamics\"], \"input_udot\": []}",
       "{\"q\": [0.3], \"u\": [1], \"kernels\": [1]}",
+      "{\"q\": [0.3], \"u\": [1], \"kernels\": [\"forcing\", \"forcing\"]}",
   };
   for (const char* line : bad) {
     INFO(line);
