@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdio>
 #include <kanegen/runtime/driver.hpp>
+#include <kanegen/runtime/kernel_thunks.hpp>
+#include <kanegen/runtime/model.hpp>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -109,6 +111,40 @@ TEST_CASE("batch calls the kernels named in \"kernels\" through their spec", "[b
   CHECK(k["forward_dynamics"]["returns"].get<double>() == 0.0);
   CHECK(k["inverse_dynamics"]["tau"][0].get<double>() == Approx(m * l * l * a + m * g * l * std::sin(q)));
   CHECK_FALSE(k["mass_matrix"].contains("returns"));  // void
+}
+
+TEST_CASE("batch \"kernels\" calls every kernel of the spec the model has, by its spec alone", "[batch]") {
+  // Nothing here names a kernel: a kernel added to kernels.def is covered too.
+  const kanegen::runtime::Model model =
+      kanegen::runtime::make_model<kanegen_models::simple_pendulum::System>();
+  std::string names;
+  std::vector<const kanegen::runtime::KernelSpec*> called;
+  for (const kanegen::runtime::KernelSpec& spec : kanegen::runtime::kernel_specs) {
+    bool arrays_and_scalars = spec.params != kanegen::runtime::ParamsAccess::write;
+    for (std::size_t i = 0; i < spec.argument_count; ++i)
+      arrays_and_scalars =
+          arrays_and_scalars && (spec.arguments[i].role != kanegen::runtime::ArgumentRole::text &&
+                                 spec.arguments[i].role != kanegen::runtime::ArgumentRole::index);
+    if (!arrays_and_scalars || !model.has(spec.kernel)) continue;
+    names += std::string(names.empty() ? "" : ", ") + "\"" + spec.name + "\"";
+    called.push_back(&spec);
+  }
+  REQUIRE(called.size() >= 10);
+  const Outcome o = batch("{\"q\": [0.3], \"u\": [1], \"eval\": \"energy\", \"kernels\": [" + names +
+                          "], \"input_udot\": [0.5], \"input_a\": [1], \"input_lambda\": []}\n");
+  REQUIRE(o.code == 0);
+  const json& k = o.replies.at(0)["kernels"];
+  CHECK(k.size() == called.size());
+  for (const kanegen::runtime::KernelSpec* spec : called) {
+    INFO(spec->name);
+    REQUIRE(k.contains(spec->name));
+    for (std::size_t i = 0; i < spec->argument_count; ++i)
+      if (spec->arguments[i].role == kanegen::runtime::ArgumentRole::out) {
+        const int n = kanegen::runtime::kernel_argument_length(model.table(), spec->arguments[i].size);
+        CHECK(k[spec->name][spec->arguments[i].name].flatten().size() == static_cast<std::size_t>(n));
+      }
+    CHECK(k[spec->name].contains("returns") == (std::string(spec->returns) != "void"));
+  }
 }
 
 TEST_CASE("batch selections: udot only, energy only", "[batch]") {
