@@ -19,6 +19,7 @@
 #include "model/model_error.hpp"
 #include "model/names.hpp"
 #include "numeric/instance.hpp"
+#include "numeric/spherical.hpp"
 
 namespace kanegen::animate {
 namespace {
@@ -69,8 +70,7 @@ model::ParameterValues parameter_values(const model::Model& m, const std::vector
 /// spherical joint's quaternion x, y, z, and every w after the others), then
 /// its speeds (<coordinate>_dot, a spherical joint's <joint>_wx, _wy, _wz).
 std::vector<std::string> state_columns(const numeric::Instance& instance) {
-  std::vector<std::string> names = instance.coordinate_names, speeds;
-  for (int k : instance.ball_joints) names.push_back(instance.joints[k].name + "_qw");
+  std::vector<std::string> names = numeric::kernel_coordinate_names(instance), speeds;
   for (int r = 0; r < instance.coordinates(); ++r) {
     const numeric::JointData* j =
         r < instance.joint_coordinates() ? &instance.joints[instance.coordinate_joint[r]] : nullptr;

@@ -36,7 +36,7 @@ std::string array_size(std::size_t n) { return std::to_string(n > 0 ? n : 1); }
 
 /// The bodies each coordinate moves as one list and where each
 /// coordinate's part starts (nq + 1 offsets).
-void add_moved_bodies(TemplateValues& values, const kane::Equations& eq) {
+void add_moved_bodies(TemplateValues& values, const kane::Coordinates& eq, int nq) {
   std::vector<std::string> bodies;
   std::string first = "0";
   for (const std::vector<std::string>& moved : eq.moved_bodies) {
@@ -47,7 +47,7 @@ void add_moved_bodies(TemplateValues& values, const kane::Equations& eq) {
   values["MOVED_BODIES_FIRST"] = first;
   values["MOVED_BODIES"] = bodies.empty() ? "nullptr" : quoted_list(bodies);
   values["MOVED_BODIES_ARRAY"] = array_size(bodies.size());
-  values["NQ1_ARRAY"] = std::to_string(eq.nq + 1);
+  values["NQ1_ARRAY"] = std::to_string(nq + 1);
 }
 
 /// The sections of a template file whose lines "//== KEY" start each one;
@@ -78,8 +78,11 @@ std::string embedded_region(const std::string& text) {
 /// Names, sizes, initial state and parameters: everything but the kernels.
 /// A float model is named <name>_float (files and namespace), so that a
 /// program can hold both precisions of one model.
-TemplateValues model_values(const model::Model& model, const kane::Equations& eq,
-                            const std::string& model_hash, const ScalarType& scalar) {
+TemplateValues model_values(kane::DerivationContext& products, const std::string& model_hash,
+                            const ScalarType& scalar) {
+  const model::Model& model = products.model();
+  const kane::Coordinates& eq = products.coordinates();
+  const std::vector<std::string>& output_names = products.outputs().names;
   std::vector<std::string> parameter_names;
   std::string fields;
   for (const model::Parameter& par : model.parameters) {
@@ -87,7 +90,7 @@ TemplateValues model_values(const model::Model& model, const kane::Equations& eq
     fields += "  " + std::string(scalar.name()) + " " + cpp_identifier(par.name) + " = " +
               scalar.literal(par.value) + ";\n";
   }
-  const std::size_t ntau = eq.input_names.size(), ny = eq.output_names.size();
+  const std::size_t ntau = eq.input_names.size(), ny = output_names.size();
   return {
       {"MODEL_NAME", cpp_identifier(emitted_name(model.name, scalar))},
       {"SCALAR", scalar.name()},
@@ -99,21 +102,21 @@ TemplateValues model_values(const model::Model& model, const kane::Equations& eq
       {"MODEL_HASH", model_hash},
       {"GENERATOR_VERSION", KANEGEN_VERSION},
       {"PARAMS_FIELDS", fields},
-      {"NQ", std::to_string(eq.nq)},
-      {"NU", std::to_string(eq.nu)},
+      {"NQ", std::to_string(products.nq())},
+      {"NU", std::to_string(products.nu())},
       {"NTAU", std::to_string(ntau)},
-      {"NONCONSERVATIVE", eq.nonconservative ? "true" : "false"},
+      {"NONCONSERVATIVE", products.energies().nonconservative ? "true" : "false"},
       {"NY", std::to_string(ny)},
       {"NP", std::to_string(parameter_names.size())},
-      {"NQ_ARRAY", array_size(eq.nq)},
-      {"NU_ARRAY", array_size(eq.nu)},
+      {"NQ_ARRAY", array_size(products.nq())},
+      {"NU_ARRAY", array_size(products.nu())},
       {"NTAU_ARRAY", array_size(ntau)},
       {"NY_ARRAY", array_size(ny)},
       {"NP_ARRAY", array_size(parameter_names.size())},
       {"COORDINATE_NAMES", quoted_list(eq.coordinate_names)},
       {"SPEED_NAMES", quoted_list(eq.speed_names)},
       {"INPUT_NAMES", quoted_list(eq.input_names)},
-      {"OUTPUT_NAMES", quoted_list(eq.output_names)},
+      {"OUTPUT_NAMES", quoted_list(output_names)},
       {"PARAMETER_NAMES", quoted_list(parameter_names)},
       {"Q0", number_list(eq.q0, scalar)},
       {"U0", number_list(eq.u0, scalar)},
@@ -122,14 +125,16 @@ TemplateValues model_values(const model::Model& model, const kane::Equations& eq
 
 /// The loop parts (templates/loop_parts.in and the saddle-point solver, in
 /// the model's precision), or nothing for an open tree.
-void add_loop_values(TemplateValues& values, const kane::Equations& eq, const ScalarType& scalar) {
-  const bool loops = eq.loops.size() > 0;
+void add_loop_values(TemplateValues& values, kane::DerivationContext& products, const ScalarType& scalar) {
+  const bool loops = products.has_loops();
   TemplateValues sections = template_sections(embedded::loop_parts_template);
   std::string roles;
-  for (int role : eq.coordinate_role) roles += (roles.empty() ? "" : ", ") + std::to_string(role);
+  for (int role : products.coordinates().roles) roles += (roles.empty() ? "" : ", ") + std::to_string(role);
   TemplateValues loop_values = values;
-  loop_values["NC"] = std::to_string(eq.loops.size());
-  loop_values["CONSTRAINT_NAMES"] = quoted_list(eq.loops.names);
+  if (loops) {
+    loop_values["NC"] = std::to_string(products.loops().size());
+    loop_values["CONSTRAINT_NAMES"] = quoted_list(products.loops().names);
+  }
   loop_values["COORDINATE_ROLES"] = roles;
   for (const auto& [key, text] : sections) values[key] = loops ? fill_template(text, loop_values) : "";
   values["HELPERS"] = loops ? "namespace {\n\n" +
@@ -191,25 +196,19 @@ std::string fill_template(const std::string& text, const std::map<std::string, s
   return out + text.substr(pos);
 }
 
-EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, const symbolic::Variables& vars,
-                        const symbolic::Program& program, const std::string& model_hash,
-                        const EmitOptions& options) {
-  ExpressionGraph graph(vars, program);
-  return emit_model(model, eq, vars, graph, model_hash, options);
-}
-
-EmittedModel emit_model(const model::Model& model, const kane::Equations& eq, const symbolic::Variables& vars,
-                        ExpressionGraph& graph, const std::string& model_hash, const EmitOptions& options) {
+EmittedModel emit_model(kane::DerivationContext& products, ExpressionGraph& graph,
+                        const std::string& model_hash, const EmitOptions& options) {
+  const model::Model& model = products.model();
   const ScalarType scalar(options.precision);
   // The Jacobian kernels (and linearize, which calls them) are written in double.
   if (!scalar.is_double() && options.jacobians) throw std::logic_error("float kernels with Jacobians");
   DynamicsChoice dynamics;
   const std::vector<KernelCode> kernels =
-      derive_kernels(model, eq, vars, graph, options.jacobians, options.controller, scalar, options.dynamics,
+      derive_kernels(products, graph, options.jacobians, options.controller, scalar, options.dynamics,
                      &dynamics, options.split_threshold);
-  TemplateValues values = model_values(model, eq, model_hash, scalar);
-  add_moved_bodies(values, eq);
-  add_loop_values(values, eq, scalar);
+  TemplateValues values = model_values(products, model_hash, scalar);
+  add_moved_bodies(values, products.coordinates(), products.nq());
+  add_loop_values(values, products, scalar);
   add_kernel_values(values, kernels, model.name, scalar);
   EmittedModel emitted;
   emitted.dynamics = dynamics;

@@ -36,7 +36,7 @@ struct EmitOptions {
   /// Jacobians) are named <name>_float and have no runner and no runtime face.
   Precision precision = Precision::double_precision;
   /// forward_dynamics's method; `recursive` needs a rigid tree without loops
-  /// or prescribed motions (Equations::recursive_unavailable says why not).
+  /// or prescribed motions (kane::Recursion::unavailable says why not).
   DynamicsMethod dynamics = DynamicsMethod::automatic;
   /// Kernels of more statements are split into functions of at most this
   /// many, so that the compile time grows linearly (kernel_splitter.hpp); 0: never.
@@ -46,16 +46,12 @@ struct EmitOptions {
 /// The name of the emitted files and namespace: the model's, "_float" added for float.
 std::string emitted_name(const std::string& model_name, const ScalarType& scalar);
 
+/// The model's files, its kernels derived from `products` on `graph` (a
+/// graph of their program, which may already hold some of them, e.g. from
+/// codegen::composite_operations: the text does not depend on what it held).
 /// model_hash: a digest of the model file, quoted in the header comment.
-EmittedModel emit_model(const model::Model& model, const kane::Equations& equations,
-                        const symbolic::Variables& vars, const symbolic::Program& program,
+EmittedModel emit_model(kane::DerivationContext& products, ExpressionGraph& graph,
                         const std::string& model_hash, const EmitOptions& options = {});
-/// The same on a graph that already holds some of these equations (e.g.
-/// from codegen::composite_operations), so that they are not converted again;
-/// the text does not depend on what the graph held.
-EmittedModel emit_model(const model::Model& model, const kane::Equations& equations,
-                        const symbolic::Variables& vars, ExpressionGraph& graph,
-                        const std::string& model_hash, const EmitOptions& options);
 
 /// Replaces every {{KEY}} of `text`; throws std::logic_error on a key left over.
 std::string fill_template(const std::string& text, const std::map<std::string, std::string>& values);

@@ -21,7 +21,7 @@ std::string str(long i) { return std::to_string(i); }
 /// printed from, and which speeds are solved for.
 struct Derivation {
   const model::Model& model;
-  const kane::Equations& eq;
+  kane::DerivationContext& eq;
   const symbolic::Variables& vars;
   ExpressionGraph& graph;
   ScalarType scalar;  ///< of the emitted code
@@ -39,13 +39,13 @@ struct Derivation {
   /// (forward_dynamics with loops calls it and takes its count).
   mutable std::optional<KernelCode> constrained{};
 
-  int n() const { return eq.nu; }
+  int n() const { return eq.nu(); }
   int ns() const { return static_cast<int>(solved.size()); }
-  bool loops() const { return eq.loops.size() > 0; }
+  bool loops() const { return eq.has_loops(); }
   /// f_i - sum_p M_ip a_p over the prescribed speeds p: the right-hand side of a solved row.
   GiNaC::ex solved_rhs(int i) const {
-    GiNaC::ex rhs = eq.forcing[i];
-    for (const auto& [p, a] : vars.prescribed_acceleration) rhs -= eq.mass_matrix[i * n() + p] * a;
+    GiNaC::ex rhs = eq.forcing()[i];
+    for (const auto& [p, a] : vars.prescribed_acceleration) rhs -= eq.mass_matrix()[i * n() + p] * a;
     return rhs;
   }
 };
@@ -70,11 +70,12 @@ void split_speeds(Derivation& d) {
 
 /// `double ap<i> = 0.0;` (or float) then the acceleration of the piece in force.
 void print_prescribed_accelerations(Derivation& d) {
-  for (const kane::PrescribedSpeed& ps : d.eq.prescribed) {
+  for (const kane::PrescribedSpeed& ps : d.eq.coordinates().prescribed) {
     const std::string a = symbolic::prescribed_acceleration_name(ps.speed);
     std::string& text = d.prescribed.body;
     text += "  " + std::string(d.scalar.name()) + " " + a + " = " + d.scalar.literal(0.0) +
-            ";  // prescribed acceleration of " + cpp_comment_text(d.eq.speed_names[ps.speed]) + "\n";
+            ";  // prescribed acceleration of " + cpp_comment_text(d.eq.coordinates().speed_names[ps.speed]) +
+            "\n";
     for (std::size_t k = 0; k < ps.pieces.size(); ++k) {
       const kane::PrescribedSpeed::Piece& piece = ps.pieces[k];
       const PrintedKernel p = print_kernel(d.graph, {{a, d.graph.add(piece.acceleration)}}, d.scalar, "    ",
@@ -91,7 +92,7 @@ void print_prescribed_accelerations(Derivation& d) {
 /// "  udot[i] = ap<i>;" for every prescribed speed.
 std::string given_accelerations(const Derivation& d) {
   std::string s;
-  for (const kane::PrescribedSpeed& ps : d.eq.prescribed)
+  for (const kane::PrescribedSpeed& ps : d.eq.coordinates().prescribed)
     s += "  udot[" + str(ps.speed) + "] = " + symbolic::prescribed_acceleration_name(ps.speed) + ";\n";
   return s;
 }
@@ -126,7 +127,7 @@ KernelCode get_parameter_kernel(const Derivation& d) {
 
 KernelCode initial_state_kernel(const Derivation& d) {
   std::vector<Assignment> initial;
-  for (const kane::PrescribedSpeed& ps : d.eq.prescribed) {
+  for (const kane::PrescribedSpeed& ps : d.eq.coordinates().prescribed) {
     initial.push_back({"q[" + str(ps.speed) + "]", d.graph.add(ps.position0)});
     initial.push_back({"u[" + str(ps.speed) + "]", d.graph.add(ps.speed0)});
   }
@@ -137,18 +138,18 @@ KernelCode initial_state_kernel(const Derivation& d) {
 }
 
 bool has_world_mass(const Derivation& d) {
-  const kane::Equations::WorldMass& w = d.eq.world_mass;
+  const kane::WorldMass& w = d.eq.world_mass();
   return static_cast<int>(w.axis.size()) == d.n() && static_cast<int>(w.momentum.size()) == d.n() &&
          !w.pairs.empty();
 }
 
-/// M as a loop over the pairs (r, s) of Equations::WorldMass: straight-line
+/// M as a loop over the pairs (r, s) of kane::WorldMass: straight-line
 /// code for the n axes and momenta, then per pair a product of six. The
 /// source grows as n (plus a table of the pairs) where the entries one by
 /// one grow as n^2, and so does the compile time; each entry costs 11
 /// operations, structural zeros or not.
 KernelCode world_mass_loop_kernel(const Derivation& d, long straight_line) {
-  const kane::Equations::WorldMass& w = d.eq.world_mass;
+  const kane::WorldMass& w = d.eq.world_mass();
   std::vector<Assignment> values;
   for (int r = 0; r < d.n(); ++r)
     for (int k = 0; k < 6; ++k) values.push_back({"ax[" + str(6 * r + k) + "]", d.graph.add(w.axis[r][k])});
@@ -187,7 +188,7 @@ KernelCode world_mass_loop_kernel(const Derivation& d, long straight_line) {
 KernelCode mass_matrix_kernel(const Derivation& d) {
   std::vector<Assignment> mass;
   for (int k = 0; k < d.n() * d.n(); ++k)
-    mass.push_back({"M[" + str(k) + "]", d.graph.add(d.eq.mass_matrix[k])});
+    mass.push_back({"M[" + str(k) + "]", d.graph.add(d.eq.mass_matrix()[k])});
   if (d.split_threshold > 0 && has_world_mass(d)) {
     const long straight_line = count_operations(d.graph, mass);
     if (straight_line > d.split_threshold) return world_mass_loop_kernel(d, straight_line);
@@ -197,7 +198,7 @@ KernelCode mass_matrix_kernel(const Derivation& d) {
 
 KernelCode forcing_kernel(const Derivation& d) {
   std::vector<Assignment> force;
-  for (int i = 0; i < d.n(); ++i) force.push_back({"f[" + str(i) + "]", d.graph.add(d.eq.forcing[i])});
+  for (int i = 0; i < d.n(); ++i) force.push_back({"f[" + str(i) + "]", d.graph.add(d.eq.forcing()[i])});
   return printed(Kernel::forcing, d, force);
 }
 
@@ -213,7 +214,7 @@ CompositeParts composite_parts(const Derivation& d) {
   CompositeParts parts{{}, std::vector<bool>(static_cast<std::size_t>(d.ns()) * d.ns(), false)};
   for (int i = 0; i < d.n(); ++i)
     for (int j = 0; j < d.n(); ++j) {
-      const int node = d.graph.add(d.eq.mass_matrix[i * d.n() + j]);
+      const int node = d.graph.add(d.eq.mass_matrix()[i * d.n() + j]);
       const int li = d.local[i], lj = d.local[j];
       if (li < 0 || lj < 0 || lj > li) continue;
       const Node& entry = d.graph.node(node);
@@ -223,7 +224,7 @@ CompositeParts composite_parts(const Derivation& d) {
             {"const " + std::string(d.scalar.name()) + " m" + str(li) + "_" + str(lj), node});
     }
   for (int i = 0; i < d.n(); ++i) {
-    const int node = d.graph.add(d.eq.forcing[i]);
+    const int node = d.graph.add(d.eq.forcing()[i]);
     if (d.local[i] < 0) continue;
     parts.assignments.push_back({"udot[" + str(i) + "]", d.vars.prescribed_acceleration.empty()
                                                              ? node
@@ -255,10 +256,10 @@ long composite_dynamics_operations(const Derivation& d) {
 std::vector<Assignment> recursive_assignments(const Derivation& d) {
   std::vector<Assignment> dynamics;
   const std::string real = "const " + std::string(d.scalar.name()) + " ";
-  for (int s : d.eq.recursive_pivot_order)
-    dynamics.push_back({real + "pivot" + str(s), d.graph.add(d.eq.recursive_pivots[s])});
+  for (int s : d.eq.recursion().pivot_order)
+    dynamics.push_back({real + "pivot" + str(s), d.graph.add(d.eq.recursion().pivots[s])});
   for (int r = 0; r < d.n(); ++r)
-    dynamics.push_back({"udot[" + str(r) + "]", d.graph.add(d.eq.recursive_accelerations[r])});
+    dynamics.push_back({"udot[" + str(r) + "]", d.graph.add(d.eq.recursion().accelerations[r])});
   return dynamics;
 }
 
@@ -268,7 +269,7 @@ std::vector<Assignment> recursive_assignments(const Derivation& d) {
 KernelCode recursive_dynamics_kernel(const Derivation& d) {
   const KernelCode body = printed(Kernel::forward_dynamics, d, recursive_assignments(d));
   std::string checks;
-  for (int s : d.eq.recursive_pivot_order)
+  for (int s : d.eq.recursion().pivot_order)
     checks += "  if (!(pivot" + str(s) + " > " + d.scalar.literal(0.0) + ")) return " + str(s + 1) + ";\n";
   return {Kernel::forward_dynamics,
           "  // Articulated-body recursion; pivot<k>: the subtree's inertia about joint k's axis.\n" +
@@ -277,7 +278,8 @@ KernelCode recursive_dynamics_kernel(const Derivation& d) {
 }
 
 bool has_recursion(const Derivation& d) {
-  return d.eq.recursive_unavailable.empty() && static_cast<int>(d.eq.recursive_accelerations.size()) == d.n();
+  return d.eq.recursion().unavailable.empty() &&
+         static_cast<int>(d.eq.recursion().accelerations.size()) == d.n();
 }
 
 /// An open tree's choice between the recursion and the composite solve, as
@@ -320,22 +322,22 @@ KernelCode tree_dynamics_kernel(const Derivation& d, DynamicsMethod method, Dyna
 
 KernelCode constraints_kernel(const Derivation& d) {
   std::vector<Assignment> phi;
-  for (int c = 0; c < d.eq.loops.size(); ++c)
-    phi.push_back({"phi[" + str(c) + "]", d.graph.add(d.eq.loops.phi[c])});
+  for (int c = 0; c < d.eq.loops().size(); ++c)
+    phi.push_back({"phi[" + str(c) + "]", d.graph.add(d.eq.loops().phi[c])});
   return printed(Kernel::constraints, d, phi);
 }
 
 KernelCode constraint_jacobian_kernel(const Derivation& d) {
   std::vector<Assignment> jacobian;
-  for (int k = 0; k < d.eq.loops.size() * d.n(); ++k)
-    jacobian.push_back({"C[" + str(k) + "]", d.graph.add(d.eq.loops.jacobian[k])});
+  for (int k = 0; k < d.eq.loops().size() * d.n(); ++k)
+    jacobian.push_back({"C[" + str(k) + "]", d.graph.add(d.eq.loops().jacobian[k])});
   return printed(Kernel::constraint_jacobian, d, jacobian);
 }
 
 KernelCode constraint_bias_kernel(const Derivation& d) {
   std::vector<Assignment> bias;
-  for (int c = 0; c < d.eq.loops.size(); ++c)
-    bias.push_back({"gamma[" + str(c) + "]", d.graph.add(d.eq.loops.bias[c])});
+  for (int c = 0; c < d.eq.loops().size(); ++c)
+    bias.push_back({"gamma[" + str(c) + "]", d.graph.add(d.eq.loops().bias[c])});
   return printed(Kernel::constraint_bias, d, bias);
 }
 
@@ -346,12 +348,12 @@ struct SaddleNodes {
 };
 
 SaddleNodes saddle_nodes(const Derivation& d) {
-  const int n = d.n(), ns = d.ns(), nc = d.eq.loops.size();
+  const int n = d.n(), ns = d.ns(), nc = d.eq.loops().size();
   SaddleNodes s;
   for (int r = 0; r < nc; ++r) {
-    GiNaC::ex g = d.eq.loops.bias[r];
+    GiNaC::ex g = d.eq.loops().bias[r];
     for (int i = 0; i < n; ++i) {
-      const GiNaC::ex& entry = d.eq.loops.jacobian[r * n + i];
+      const GiNaC::ex& entry = d.eq.loops().jacobian[r * n + i];
       if (d.local[i] >= 0)
         s.c.push_back(d.graph.add(entry));
       else
@@ -360,7 +362,8 @@ SaddleNodes saddle_nodes(const Derivation& d) {
     s.g.push_back(d.graph.add(g));
   }
   for (int i = 0; i < ns; ++i)
-    for (int j = 0; j < ns; ++j) s.m.push_back(d.graph.add(d.eq.mass_matrix[d.solved[i] * n + d.solved[j]]));
+    for (int j = 0; j < ns; ++j)
+      s.m.push_back(d.graph.add(d.eq.mass_matrix()[d.solved[i] * n + d.solved[j]]));
   for (int i = 0; i < ns; ++i) s.b.push_back(d.graph.add(d.solved_rhs(d.solved[i])));
   return s;
 }
@@ -368,7 +371,7 @@ SaddleNodes saddle_nodes(const Derivation& d) {
 /// Dense in everything: M, C and the right-hand sides as arrays, then
 /// templates/solve_saddle.hpp.
 KernelCode dense_constrained_dynamics_kernel(const Derivation& d, const SaddleNodes& nodes) {
-  const int ns = d.ns(), nc = d.eq.loops.size();
+  const int ns = d.ns(), nc = d.eq.loops().size();
   std::vector<Assignment> saddle;
   for (int r = 0; r < nc; ++r) {
     for (int i = 0; i < ns; ++i) saddle.push_back({"Cs[" + str(r * ns + i) + "]", nodes.c[r * ns + i]});
@@ -394,7 +397,7 @@ KernelCode dense_constrained_dynamics_kernel(const Derivation& d, const SaddleNo
 KernelCode sparse_constrained_dynamics_kernel(const Derivation& d, const SaddleNodes& nodes,
                                               const SaddleStructure& structure, const std::vector<int>& order,
                                               const UnrolledSaddle& solve) {
-  const int ns = d.ns(), nc = d.eq.loops.size();
+  const int ns = d.ns(), nc = d.eq.loops().size();
   std::vector<int> position(order.size());
   for (std::size_t k = 0; k < order.size(); ++k) position[order[k]] = static_cast<int>(k);
   const std::string real = "const " + std::string(d.scalar.name()) + " ";
@@ -427,7 +430,7 @@ KernelCode sparse_constrained_dynamics_kernel(const Derivation& d, const SaddleN
 /// the saddle-point solve, sparse (unrolled for the structure of M and C)
 /// or dense (templates/solve_saddle.hpp), whichever counts fewer operations.
 KernelCode saddle_dynamics_kernel(const Derivation& d) {
-  const int ns = d.ns(), nc = d.eq.loops.size();
+  const int ns = d.ns(), nc = d.eq.loops().size();
   const SaddleNodes nodes = saddle_nodes(d);
   SaddleStructure structure{ns, nc, std::vector<bool>(nodes.m.size()), std::vector<bool>(nodes.c.size())};
   for (std::size_t k = 0; k < nodes.m.size(); ++k) structure.nonzero_m[k] = !is_zero(d.graph, nodes.m[k]);
@@ -469,8 +472,8 @@ KernelCode forward_dynamics_kernel(const Derivation& d) {
 
 KernelCode coordinate_rates_kernel(const Derivation& d) {
   std::vector<Assignment> rates;
-  for (int i = 0; i < d.eq.nq; ++i)
-    rates.push_back({"qdot[" + str(i) + "]", d.graph.add(d.eq.coordinate_rates[i])});
+  for (int i = 0; i < d.eq.nq(); ++i)
+    rates.push_back({"qdot[" + str(i) + "]", d.graph.add(d.eq.coordinates().rates[i])});
   return printed(Kernel::coordinate_rates, d, rates);
 }
 
@@ -482,29 +485,29 @@ KernelCode energy_kernel(Kernel kernel, const char* variable, const GiNaC::ex& e
 }
 
 KernelCode kinetic_energy_kernel(const Derivation& d) {
-  return energy_kernel(Kernel::kinetic_energy, "T", d.eq.kinetic_energy, d);
+  return energy_kernel(Kernel::kinetic_energy, "T", d.eq.energies().kinetic, d);
 }
 
 KernelCode potential_energy_kernel(const Derivation& d) {
-  return energy_kernel(Kernel::potential_energy, "V", d.eq.potential_energy, d);
+  return energy_kernel(Kernel::potential_energy, "V", d.eq.energies().potential, d);
 }
 
 KernelCode nonconservative_power_kernel(const Derivation& d) {
-  return energy_kernel(Kernel::nonconservative_power, "P", d.eq.nonconservative_power, d);
+  return energy_kernel(Kernel::nonconservative_power, "P", d.eq.energies().nonconservative_power, d);
 }
 
-/// h = M u: on a rigid tree by the recursion (Equations::generalized_momentum,
+/// h = M u: on a rigid tree by the recursion (the context's generalized_momentum,
 /// O(n)) or from M's entries (O(n^2)), whichever counts fewer operations; the
 /// note gives the other's count.
 KernelCode generalized_momentum_kernel(const Derivation& d) {
   std::vector<Assignment> from_m, recursive;
   for (int r = 0; r < d.n(); ++r) {
     GiNaC::ex h = 0;
-    for (int s = 0; s < d.n(); ++s) h += d.eq.mass_matrix[r * d.n() + s] * d.vars.u[s];
+    for (int s = 0; s < d.n(); ++s) h += d.eq.mass_matrix()[r * d.n() + s] * d.vars.u[s];
     const std::string target = "h[" + str(r) + "]";
     from_m.push_back({target, d.graph.add(h)});
-    if (!d.eq.generalized_momentum.empty())
-      recursive.push_back({target, d.graph.add(d.eq.generalized_momentum[r])});
+    if (!d.eq.generalized_momentum().empty())
+      recursive.push_back({target, d.graph.add(d.eq.generalized_momentum()[r])});
   }
   if (recursive.empty()) return printed(Kernel::generalized_momentum, d, from_m);
   const long by_m = count_operations(d.graph, from_m), by_recursion = count_operations(d.graph, recursive);
@@ -519,8 +522,8 @@ KernelCode generalized_momentum_kernel(const Derivation& d) {
 
 /// The loop forces among the outputs: lambda of the dynamics at zero inputs.
 std::string reaction_outputs(const Derivation& d) {
-  if (d.eq.reaction_outputs.empty()) return "";
-  const std::size_t ntau = d.eq.input_names.size();
+  if (d.eq.outputs().reactions.empty()) return "";
+  const std::size_t ntau = d.eq.coordinates().input_names.size();
   std::string s =
       "  // Loop forces: lambda of the dynamics at these inputs of zero (NaN where it cannot be solved).\n"
       "  " +
@@ -528,15 +531,15 @@ std::string reaction_outputs(const Derivation& d) {
       " no_inputs[" + str(static_cast<long>(ntau > 0 ? ntau : 1)) +
       "] = {};\n"
       "  const bool solved = constrained_dynamics(p, t, q, u, no_inputs, reaction_udot, lambda) == 0;\n";
-  for (const auto& [index, row] : d.eq.reaction_outputs)
+  for (const auto& [index, row] : d.eq.outputs().reactions)
     s += "  y[" + str(index) + "] = solved ? lambda[" + str(row) + "] : NAN;\n";
   return s;
 }
 
 KernelCode outputs_kernel(const Derivation& d) {
   std::vector<Assignment> outputs;
-  for (std::size_t i = 0; i < d.eq.outputs.size(); ++i)
-    outputs.push_back({"y[" + str(static_cast<long>(i)) + "]", d.graph.add(d.eq.outputs[i])});
+  for (std::size_t i = 0; i < d.eq.outputs().values.size(); ++i)
+    outputs.push_back({"y[" + str(static_cast<long>(i)) + "]", d.graph.add(d.eq.outputs().values[i])});
   KernelCode code = printed(Kernel::outputs, d, outputs);
   code.body += reaction_outputs(d);
   return code;
@@ -576,7 +579,7 @@ std::vector<Assignment> jacobian_entries(ExpressionGraph& graph, const std::vect
 /// graph's shared intermediates.
 KernelCode forcing_jacobian_kernel(const Derivation& d) {
   std::vector<int> forcing;
-  for (int i = 0; i < d.n(); ++i) forcing.push_back(d.graph.add(d.eq.forcing[i]));
+  for (int i = 0; i < d.n(); ++i) forcing.push_back(d.graph.add(d.eq.forcing()[i]));
   std::string fill;
   std::vector<Assignment> entries =
       jacobian_entries(d.graph, forcing, input_nodes(d.graph, d.vars.q), "dfdq", "NU * NQ", fill);
@@ -595,7 +598,7 @@ KernelCode mass_matrix_product_jacobian_kernel(const Derivation& d) {
     std::vector<int> terms;
     for (int s = 0; s < d.n(); ++s)
       terms.push_back(d.graph.product(
-          {d.graph.add(d.eq.mass_matrix[r * d.n() + s]), d.graph.input("a[" + str(s) + "]")}));
+          {d.graph.add(d.eq.mass_matrix()[r * d.n() + s]), d.graph.input("a[" + str(s) + "]")}));
     products.push_back(d.graph.sum(std::move(terms)));
   }
   std::string fill;
@@ -608,13 +611,13 @@ KernelCode mass_matrix_product_jacobian_kernel(const Derivation& d) {
 
 /// d(C(q)^T lambda)/dq: the rows sum_c C_cr lambda_c, lambda the kernel's argument.
 KernelCode constraint_force_jacobian_kernel(const Derivation& d) {
-  const int nc = d.eq.loops.size();
+  const int nc = d.eq.loops().size();
   std::vector<int> forces;
   for (int r = 0; r < d.n(); ++r) {
     std::vector<int> terms;
     for (int c = 0; c < nc; ++c)
       terms.push_back(d.graph.product(
-          {d.graph.add(d.eq.loops.jacobian[c * d.n() + r]), d.graph.input("lambda[" + str(c) + "]")}));
+          {d.graph.add(d.eq.loops().jacobian[c * d.n() + r]), d.graph.input("lambda[" + str(c) + "]")}));
     forces.push_back(d.graph.sum(std::move(terms)));
   }
   std::string fill;
@@ -629,24 +632,24 @@ KernelCode constraint_force_jacobian_kernel(const Derivation& d) {
 GiNaC::ex unforced(const Derivation& d, int r) {
   GiNaC::exmap no_inputs;
   for (const GiNaC::symbol& tau : d.vars.tau) no_inputs[tau] = 0;
-  return d.eq.forcing[r].subs(no_inputs);
+  return d.eq.forcing()[r].subs(no_inputs);
 }
 
 /// tau = M udot - f(tau = 0): on a rigid tree Newton and Euler's recursion
-/// (Equations::inverse_dynamics); M udot - f formed from M and f is
+/// (the context's inverse_dynamics); M udot - f formed from M and f is
 /// counted too, for the header (and is the body with flexible bodies).
 KernelCode inverse_dynamics_kernel(const Derivation& d) {
   std::vector<Assignment> recursive, formed;
   for (int r = 0; r < d.n(); ++r) {
     const GiNaC::ex f = unforced(d, r);
     GiNaC::ex m_udot = 0;
-    for (int s = 0; s < d.n(); ++s) m_udot += d.eq.mass_matrix[r * d.n() + s] * d.vars.udot[s];
+    for (int s = 0; s < d.n(); ++s) m_udot += d.eq.mass_matrix()[r * d.n() + s] * d.vars.udot[s];
     const std::string target = "tau[" + str(r) + "]";
     formed.push_back({target, d.graph.add(m_udot - f)});
-    if (!d.eq.inverse_dynamics.empty()) {
+    if (!d.eq.inverse_dynamics().inertial.empty()) {
       GiNaC::exmap no_inputs;
       for (const GiNaC::symbol& tau : d.vars.tau) no_inputs[tau] = 0;
-      recursive.push_back({target, d.graph.add(d.eq.inverse_dynamics[r].subs(no_inputs))});
+      recursive.push_back({target, d.graph.add(d.eq.inverse_dynamics().inertial[r].subs(no_inputs))});
     }
   }
   if (recursive.empty()) {
@@ -664,11 +667,12 @@ KernelCode inverse_dynamics_kernel(const Derivation& d) {
 /// the gravity potential in the graph (q_dot = u).
 KernelCode gravity_kernel(const Derivation& d) {
   std::vector<Assignment> g;
-  if (!d.eq.gravity_forces.empty()) {
-    for (int r = 0; r < d.n(); ++r) g.push_back({"g[" + str(r) + "]", d.graph.add(d.eq.gravity_forces[r])});
+  if (!d.eq.inverse_dynamics().gravity.empty()) {
+    for (int r = 0; r < d.n(); ++r)
+      g.push_back({"g[" + str(r) + "]", d.graph.add(d.eq.inverse_dynamics().gravity[r])});
     return printed(Kernel::gravity, d, g);
   }
-  const int potential = d.graph.add(d.eq.gravity_potential);
+  const int potential = d.graph.add(d.eq.energies().gravity_potential);
   for (int r = 0; r < d.n(); ++r)
     g.push_back({"g[" + str(r) + "]", GraphDerivative(d.graph, d.graph.add(d.vars.q[r])).of(potential)});
   return printed(Kernel::gravity, d, g);
@@ -678,7 +682,7 @@ KernelCode gravity_kernel(const Derivation& d) {
 std::vector<std::vector<int>> mass_matrix_derivatives(const Derivation& d) {
   const int n = d.n();
   std::vector<int> entries;
-  for (int k = 0; k < n * n; ++k) entries.push_back(d.graph.add(d.eq.mass_matrix[k]));
+  for (int k = 0; k < n * n; ++k) entries.push_back(d.graph.add(d.eq.mass_matrix()[k]));
   std::vector<std::vector<int>> dm(n);
   for (int k = 0; k < n; ++k) {
     GraphDerivative derivative(d.graph, d.graph.add(d.vars.q[k]));
@@ -719,7 +723,7 @@ KernelCode coriolis_matrix_kernel(const Derivation& d) {
 /// The outputs of position (independent of u) as nodes; 0 for the others.
 std::vector<int> position_outputs(const Derivation& d) {
   std::vector<int> rows;
-  for (const GiNaC::ex& y : d.eq.outputs) rows.push_back(d.graph.add(y));
+  for (const GiNaC::ex& y : d.eq.outputs().values) rows.push_back(d.graph.add(y));
   for (const GiNaC::symbol& u : d.vars.u) {
     GraphDerivative derivative(d.graph, d.graph.add(u));
     for (int& row : rows)
@@ -790,7 +794,7 @@ KernelCode output_jacobian_rate_kernel(const Derivation& d) {
 /// derived here, the rest are the Jacobian kernels.
 KernelCode linearize_kernel(const Derivation& d) {
   std::vector<int> forcing;
-  for (int i = 0; i < d.n(); ++i) forcing.push_back(d.graph.add(d.eq.forcing[i]));
+  for (int i = 0; i < d.n(); ++i) forcing.push_back(d.graph.add(d.eq.forcing()[i]));
   const int ntau = static_cast<int>(d.vars.tau.size());
   std::string text =
       "  constexpr int NX = 2 * NU;\n"
@@ -863,19 +867,18 @@ static_assert(sizeof(kDerive) / sizeof(Derive) == runtime::kernel_count, "one de
 /// controller kernels the Jacobians (linearize calls them), no loops and no
 /// prescribed speeds (the pipeline refuses those).
 void check_options(const Derivation& d, bool jacobians, bool controller) {
-  if (jacobians && d.eq.nq != d.eq.nu)
+  if (jacobians && d.eq.nq() != d.eq.nu())
     throw std::logic_error("the Jacobian kernels need q_dot = u (nq == nu)");
-  if (controller && (!jacobians || d.loops() || !d.eq.prescribed.empty()))
+  if (controller && (!jacobians || d.loops() || !d.eq.coordinates().prescribed.empty()))
     throw std::logic_error("the controller kernels need the Jacobians, no loops and no prescribed speeds");
 }
 
 }  // namespace
 
-std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Equations& eq,
-                                       const symbolic::Variables& vars, ExpressionGraph& graph,
+std::vector<KernelCode> derive_kernels(kane::DerivationContext& products, ExpressionGraph& graph,
                                        bool jacobians, bool controller, const ScalarType& scalar,
                                        DynamicsMethod dynamics, DynamicsChoice* choice, int split_threshold) {
-  Derivation d{model, eq, vars, graph, scalar, {}, {}, {}, split_threshold};
+  Derivation d{products.model(), products, products.variables(), graph, scalar, {}, {}, {}, split_threshold};
   d.dynamics = dynamics;
   check_options(d, jacobians, controller);
   split_speeds(d);
@@ -889,9 +892,9 @@ std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Eq
   return kernels;
 }
 
-long composite_operations(const model::Model& model, const kane::Equations& eq,
-                          const symbolic::Variables& vars, ExpressionGraph& graph, const ScalarType& scalar) {
-  Derivation d{model, eq, vars, graph, scalar, {}, {}, {}};
+long composite_operations(kane::DerivationContext& products, ExpressionGraph& graph,
+                          const ScalarType& scalar) {
+  Derivation d{products.model(), products, products.variables(), graph, scalar, {}, {}, {}};
   split_speeds(d);
   print_prescribed_accelerations(d);
   return d.loops() ? constrained_dynamics_kernel(d).operations : composite_dynamics_operations(d);

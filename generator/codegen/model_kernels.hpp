@@ -27,14 +27,15 @@ struct DynamicsChoice {
   long composite_operations = 0, recursive_operations = -1;
 };
 
-/// In kernel-table order; the Jacobian kernels only with `jacobians`, the
-/// quadratic controller kernels only with `controller` (which needs
-/// `jacobians`); the bodies in the floating-point type `scalar`; `dynamics`:
-/// forward_dynamics's method (recursive needs Equations::recursive_accelerations,
-/// else std::logic_error), reported in `choice`; `split_threshold`: kernels of
-/// more statements are split into functions (kernel_splitter.hpp; 0: never).
-std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Equations& equations,
-                                       const symbolic::Variables& vars, ExpressionGraph& graph,
+/// In kernel-table order, each kernel's derive function asking `products`
+/// for what it needs (so only those products are derived); the Jacobian
+/// kernels only with `jacobians`, the quadratic controller kernels only with
+/// `controller` (which needs `jacobians`); the bodies in the floating-point
+/// type `scalar`; `dynamics`: forward_dynamics's method (recursive needs
+/// kane::Recursion::accelerations, else std::logic_error), reported in
+/// `choice`; `split_threshold`: kernels of more statements are split into
+/// functions (kernel_splitter.hpp; 0: never). `graph` is of the products' program.
+std::vector<KernelCode> derive_kernels(kane::DerivationContext& products, ExpressionGraph& graph,
                                        bool jacobians = false, bool controller = false,
                                        const ScalarType& scalar = ScalarType(),
                                        DynamicsMethod dynamics = DynamicsMethod::automatic,
@@ -43,8 +44,8 @@ std::vector<KernelCode> derive_kernels(const model::Model& model, const kane::Eq
 /// DynamicsChoice::composite_operations as derive_kernels reports it, from
 /// counts alone (the dynamics is not printed): to compare two derivations
 /// before emitting one.
-long composite_operations(const model::Model& model, const kane::Equations& equations,
-                          const symbolic::Variables& vars, ExpressionGraph& graph, const ScalarType& scalar);
+long composite_operations(kane::DerivationContext& products, ExpressionGraph& graph,
+                          const ScalarType& scalar);
 
 /// The code of `kernel` in `kernels`; throws std::logic_error if it is missing.
 const KernelCode& find_kernel(const std::vector<KernelCode>& kernels, Kernel kernel);

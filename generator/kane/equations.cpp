@@ -2,7 +2,9 @@
 #include "kane/equations.hpp"
 
 #include <algorithm>
+#include <array>
 #include <map>
+#include <optional>
 #include <set>
 #include <stdexcept>
 
@@ -100,8 +102,7 @@ void add_node_subtree(FlexibleTerms& p, const kinematics::BodyState& child, cons
   }
 }
 
-/// What the steps of one derivation share: the inputs, the tree's
-/// kinematics and the equations being filled.
+/// What the steps that need the tree share: the inputs and the tree's kinematics.
 struct Derivation {
   const model::Model& model;
   const symbolic::Variables& vars;
@@ -110,7 +111,6 @@ struct Derivation {
   const kinematics::TreeKinematics& tree;
   MassMatrixMethod method;
   Vec3 gravity;
-  Equations& eq;
 };
 
 /// Per tree state (TreeKinematics::bodies order): the body's inertia and
@@ -121,6 +121,27 @@ struct BodySums {
   std::vector<Wrench> wrench;
   std::vector<Wrench> applied;  ///< of `wrench`, the applied part alone (the recursion's)
   std::map<std::size_t, FlexibleTerms> elastic;
+};
+
+/// Product::bodies: each body's own inertia and wrench (before the
+/// composites), and the energies of the bodies and springs.
+struct BodyProducts {
+  BodySums own;
+  Energies energies;
+};
+
+/// Product::mass_matrix: M, the bodies' share of f, and M's pairs of world
+/// axes and momenta.
+struct MassProducts {
+  std::vector<ex> mass_matrix, body_forcing;
+  WorldMass world_mass;
+};
+
+/// Product::joint_forces: the joints' own terms, each list in the order its
+/// terms join f, V and the nonconservative power.
+struct JointForces {
+  std::vector<std::vector<ex>> forcing;  ///< per speed
+  std::vector<ex> potential, power;
 };
 
 /// The joints on nodes of flexible parents, by joint index.
@@ -160,7 +181,7 @@ std::map<int, kinematics::NodeAttachment> node_attachments(const model::Model& m
 /// State i's rigid body, in its own axes: its inertia about its origin, and
 /// the applied-plus-inertia wrench about its origin (-m a_c with gravity
 /// inside a_c, point forces off nodes, -I alpha - w x I w); its energies.
-void add_rigid_body(Derivation& d, BodySums& sums, std::size_t i) {
+void add_rigid_body(Derivation& d, BodySums& sums, Energies& e, std::size_t i) {
   Program& program = d.program;
   const symbolic::Variables& vars = d.vars;
   const kinematics::BodyState& b = d.tree.bodies()[i];
@@ -190,9 +211,9 @@ void add_rigid_body(Derivation& d, BodySums& sums, std::size_t i) {
     applied = {applied.moment + cross(at, f), applied.force + f};
     // A world-fixed force has a potential; one turning with the body does work.
     if (pf.frame == model::ForceFrame::world)
-      d.eq.potential_energy -= dot(given, d.tree.world_point(b, at));
+      e.potential -= dot(given, d.tree.world_point(b, at));
     else
-      d.eq.nonconservative_power += dot(f, b.velocity + cross(b.omega, at));
+      e.nonconservative_power += dot(f, b.velocity + cross(b.omega, at));
   }
   force = named(program, force);
   sums.wrench[i] = {named(program, torque + cross(com, force)), force};
@@ -205,16 +226,16 @@ void add_rigid_body(Derivation& d, BodySums& sums, std::size_t i) {
       inertia.second[3 * r + c] =
           central[3 * r + c] + mass * ((r == c ? dot(com, com) : ex(0)) - com[r] * com[c]);
 
-  d.eq.kinetic_energy += (mass * dot(com_velocity, com_velocity) + dot(b.omega, spin)) / 2;
+  e.kinetic += (mass * dot(com_velocity, com_velocity) + dot(b.omega, spin)) / 2;
   const ex weight_potential = -mass * dot(d.gravity, d.tree.world_point(b, com));
-  d.eq.potential_energy += weight_potential;
-  d.eq.gravity_potential += weight_potential;
+  e.potential += weight_potential;
+  e.gravity_potential += weight_potential;
 }
 
 /// State i's flexible body (after add_rigid_body for its link): the deformed
 /// body's inertia and wrench join the link's, with the point forces on its
 /// nodes; its elastic terms are kept for the mass matrix and the forcing.
-void add_flexible_body(Derivation& d, BodySums& sums, std::size_t i) {
+void add_flexible_body(Derivation& d, BodySums& sums, Energies& e, std::size_t i) {
   Program& program = d.program;
   const symbolic::Variables& vars = d.vars;
   const kinematics::BodyState& b = d.tree.bodies()[i];
@@ -237,11 +258,11 @@ void add_flexible_body(Derivation& d, BodySums& sums, std::size_t i) {
     terms.moment = terms.moment + cross(at, f);
     for (int k = 0; k < count; ++k) terms.elastic_forcing[k] += dot(node.partial[k], f);
     if (pf.frame == model::ForceFrame::world) {
-      d.eq.potential_energy -= dot(given, d.tree.world_point(b, at));
+      e.potential -= dot(given, d.tree.world_point(b, at));
     } else {
       Vec3 velocity = b.velocity + cross(b.omega, at);
       for (int k = 0; k < count; ++k) velocity = velocity + eta_dot[k] * node.partial[k];
-      d.eq.nonconservative_power += dot(f, velocity);
+      e.nonconservative_power += dot(f, velocity);
     }
   }
   Wrench& wrench = sums.wrench[i];
@@ -251,17 +272,17 @@ void add_flexible_body(Derivation& d, BodySums& sums, std::size_t i) {
   inertia.mass += terms.mass;
   inertia.moment = inertia.moment + terms.first_moment;
   for (int k = 0; k < 9; ++k) inertia.second[k] += terms.second_moment[k];
-  d.eq.kinetic_energy += terms.kinetic_energy;
-  d.eq.nonconservative_power += terms.damping_power;
+  e.kinetic += terms.kinetic_energy;
+  e.nonconservative_power += terms.damping_power;
   const ex weight_potential = -dot(d.gravity, terms.mass * b.origin + mul(b.rotation, terms.first_moment));
-  d.eq.potential_energy += terms.strain_energy + weight_potential;
-  d.eq.gravity_potential += weight_potential;
+  e.potential += terms.strain_energy + weight_potential;
+  e.gravity_potential += weight_potential;
   sums.elastic.emplace(i, std::move(terms));
 }
 
 /// Springs: their forces at the ends join the bodies' wrenches (so they
 /// also enter the pull of a subtree on a beam node), their energy V.
-void add_springs(Derivation& d, BodySums& sums) {
+void add_springs(Derivation& d, BodySums& sums, Energies& e) {
   for (const model::Spring& spring : d.model.springs) {
     const SpringLoads s = spring_loads(spring, d.tree, d.vars, d.program);
     for (const PointLoad& load : s.loads) {
@@ -270,8 +291,8 @@ void add_springs(Derivation& d, BodySums& sums) {
         w->moment = w->moment + cross(load.at, load.force);
       }
     }
-    d.eq.potential_energy += s.energy;
-    d.eq.nonconservative_power += s.damping_power;
+    e.potential += s.energy;
+    e.nonconservative_power += s.damping_power;
   }
 }
 
@@ -318,7 +339,7 @@ ex project(const kinematics::JointFrame& frame, int c, const Vec3& moment, const
 /// MassRows writes M's rows and columns from such momenta.
 class MassRows {
  public:
-  explicit MassRows(Derivation& d) : d_(d), n_(d.eq.nu) {
+  MassRows(Derivation& d, MassProducts& out) : d_(d), out_(out), n_(static_cast<int>(d.vars.u.size())) {
     if (d.method == MassMatrixMethod::world_projection) world_axes();
   }
 
@@ -337,7 +358,7 @@ class MassRows {
   };
 
   void set(int r, int s, const ex& value) {
-    d_.eq.mass_matrix[s * n_ + r] = d_.eq.mass_matrix[r * n_ + s] = value;
+    out_.mass_matrix[s * n_ + r] = out_.mass_matrix[r * n_ + s] = value;
   }
 
   void world_axes() {
@@ -348,9 +369,9 @@ class MassRows {
         // The column of S at the world origin: (a, o x a) for a turn, (0, a) for a slide.
         const Vec3 linear = frame.model.turns() ? named(d_.program, cross(b.origin, a)) : a;
         const WorldAxis& w = world_axes_[frame.speed + c] = {frame.model.angular_velocity(a, 1), linear};
-        d_.eq.world_mass.axis.resize(n_);
-        d_.eq.world_mass.axis[frame.speed + c] = {w.angular[0], w.angular[1], w.angular[2],
-                                                  w.linear[0],  w.linear[1],  w.linear[2]};
+        out_.world_mass.axis.resize(n_);
+        out_.world_mass.axis[frame.speed + c] = {w.angular[0], w.angular[1], w.angular[2],
+                                                 w.linear[0],  w.linear[1],  w.linear[2]};
       }
     }
   }
@@ -361,7 +382,7 @@ class MassRows {
     const kinematics::BodyState& b = d_.tree.bodies()[i];
     const Vec3 p_world = named(d_.program, mul(b.rotation, linear));
     const Vec3 l_world = named(d_.program, mul(b.rotation, angular) + cross(b.origin, p_world));
-    Equations::WorldMass& world = d_.eq.world_mass;
+    WorldMass& world = out_.world_mass;
     world.momentum.resize(n_);
     world.momentum[s] = {l_world[0], l_world[1], l_world[2], p_world[0], p_world[1], p_world[2]};
     for (int k : b.path) {
@@ -398,19 +419,20 @@ class MassRows {
   }
 
   Derivation& d_;
+  MassProducts& out_;
   const int n_;
   std::map<int, WorldAxis> world_axes_;  ///< by speed
 };
 
 /// The joint speeds' rows: the forcing from the subtree's wrench, M from the
 /// momentum of the subtree turning (sliding) with u_s = 1.
-void joint_rows(Derivation& d, const BodySums& sums, MassRows& rows) {
+void joint_rows(Derivation& d, const BodySums& sums, MassRows& rows, MassProducts& out) {
   const auto& states = d.tree.bodies();
   for (std::size_t i = 0; i < states.size(); ++i) {
     const kinematics::JointFrame& joint = d.tree.joints()[states[i].joint];
     for (int column = 0; column < joint.speeds(); ++column) {
       const int s = joint.speed + column;
-      d.eq.forcing[s] = project(joint, column, sums.wrench[i].moment, sums.wrench[i].force);
+      out.body_forcing[s] = project(joint, column, sums.wrench[i].moment, sums.wrench[i].force);
 
       // The momentum of the subtree with u_s = 1. Linear part named first: the
       // order GCC gave when both were arguments of one call, now fixed.
@@ -425,15 +447,15 @@ void joint_rows(Derivation& d, const BodySums& sums, MassRows& rows) {
 }
 
 /// The elastic speeds' rows: their own block, and their coupling with the joints on the path.
-void elastic_rows(Derivation& d, const BodySums& sums, MassRows& rows) {
-  const int n = d.eq.nu;
+void elastic_rows(Derivation& d, const BodySums& sums, MassRows& rows, MassProducts& out) {
+  const int n = static_cast<int>(d.vars.u.size());
   for (const auto& [i, terms] : sums.elastic) {
     const int body = d.tree.bodies()[i].body;
     const int first = d.vars.elastic_first[body], count = d.vars.elastic_count[body];
     for (int k = 0; k < count; ++k) {
       const int r = first + k;
-      d.eq.forcing[r] = terms.elastic_forcing[k];
-      for (int l = 0; l < count; ++l) d.eq.mass_matrix[r * n + first + l] = terms.elastic_mass[k * count + l];
+      out.body_forcing[r] = terms.elastic_forcing[k];
+      for (int l = 0; l < count; ++l) out.mass_matrix[r * n + first + l] = terms.elastic_mass[k * count + l];
       rows.spread(r, i, terms.angular_momentum[k], terms.linear_momentum[k]);
     }
   }
@@ -518,11 +540,10 @@ std::vector<TreeBody> tree_bodies(const Derivation& d, const BodySums& own) {
 /// Rigid trees: M u_dot - f (u_dot = Variables::udot, without the joints'
 /// own forces) and the gravity g(q) = dV_gravity/dq by Newton and Euler's
 /// recursion, without M, in the working frames (kane/working_newton_euler.*).
-void newton_euler(Derivation& d, const BodySums& own) {
+InverseDynamics newton_euler(Derivation& d, const BodySums& own) {
   const NewtonEuler ne = working_newton_euler(d.tree, tree_bodies(d, own), as_ex(d.vars.u),
                                               as_ex(d.vars.udot), d.gravity, d.program);
-  d.eq.inverse_dynamics = ne.inertial;
-  d.eq.gravity_forces = ne.gravity;
+  return {ne.inertial, ne.gravity};
 }
 
 /// Rigid trees: the generalized momentum h = M u by Newton and Euler's recursion in body frames
@@ -530,7 +551,7 @@ void newton_euler(Derivation& d, const BodySums& own) {
 /// and its origin's velocity w_i = E_i w_p + a_k u_k, v_i = E_i (v_p + w_p x r_i)
 /// (+ a_k u_k if prismatic); its momentum about its origin (K w + h x v, m v + w x h);
 /// inward, the subtree sums projected on each joint: O(n), where M u is O(n^2).
-void momentum_recursion(Derivation& d, const BodySums& own) {
+std::vector<ex> momentum_recursion(Derivation& d, const BodySums& own) {
   const auto& states = d.tree.bodies();
   const std::size_t count = states.size();
   const RateMotion motion = motion_of_rates(d, d.vars.u);
@@ -538,76 +559,106 @@ void momentum_recursion(Derivation& d, const BodySums& own) {
   for (std::size_t i = 0; i < count; ++i)
     momentum[i] = momentum_of(own.inertia[i], motion.angular[i], motion.linear[i]);
   sum_into_parents(d, momentum);
-  d.eq.generalized_momentum.assign(d.eq.nu, 0);
+  std::vector<ex> generalized(d.vars.u.size(), 0);
   for (std::size_t i = 0; i < count; ++i) {
     const kinematics::JointFrame& joint = d.tree.joints()[states[i].joint];
     for (int c = 0; c < joint.speeds(); ++c)
-      d.eq.generalized_momentum[joint.speed + c] = project(joint, c, momentum[i].moment, momentum[i].force);
+      generalized[joint.speed + c] = project(joint, c, momentum[i].moment, momentum[i].force);
   }
+  return generalized;
 }
 
 /// Why the articulated-body recursion does not apply, or "" if it does:
 /// it covers open trees, rigid or flexible, whose every speed is solved for.
-std::string recursive_unavailable(const Derivation& d) {
-  if (d.eq.loops.size() > 0)
-    return "it has closed loops (their constraint forces need the saddle-point solve)";
-  if (!d.eq.prescribed.empty())
-    return "it has prescribed motions (their accelerations are given, not solved for)";
+std::string recursive_unavailable(const Derivation& d, bool loops, bool prescribed) {
+  if (loops) return "it has closed loops (their constraint forces need the saddle-point solve)";
+  if (prescribed) return "it has prescribed motions (their accelerations are given, not solved for)";
   if (!d.vars.quaternion_w.empty())
     return "it has a spherical or free joint (the recursion solves joints of one speed)";
   return "";
 }
 
+/// What the articulated-body recursion reads besides the tree: the bodies'
+/// own inertias and wrenches (before the composites), f and its bodies'
+/// share (the joints' own forces are the difference), the coordinates' names.
+struct RecursionInputs {
+  const BodySums& own;
+  const std::vector<ex>& forcing;
+  const std::vector<ex>& body_forcing;
+  const std::vector<std::string>& coordinate_names;
+};
+
 /// u_dot by the articulated-body recursion over the bodies' own inertias and
-/// wrenches (`own`, before the composites); the joints' own forces are f less
-/// the bodies' share (`body_forcing`).
-void recursive_dynamics(Derivation& d, const BodySums& own, const std::vector<ex>& body_forcing) {
-  d.eq.recursive_unavailable = recursive_unavailable(d);
-  if (!d.eq.recursive_unavailable.empty()) return;
-  const std::vector<TreeBody> bodies = tree_bodies(d, own);
-  std::vector<ex> joint_forces(d.eq.nu);
-  for (int r = 0; r < d.eq.nu; ++r) joint_forces[r] = d.eq.forcing[r] - body_forcing[r];
+/// wrenches; the joints' own forces are f less the bodies' share.
+Recursion recursive_dynamics(Derivation& d, const RecursionInputs& in) {
+  Recursion out;
+  const std::vector<TreeBody> bodies = tree_bodies(d, in.own);
+  const std::size_t nu = d.vars.u.size();
+  std::vector<ex> joint_forces(nu);
+  for (std::size_t r = 0; r < nu; ++r) joint_forces[r] = in.forcing[r] - in.body_forcing[r];
   RecursiveDynamics r = articulated_body_dynamics(d.tree, bodies, joint_forces, as_ex(d.vars.u), d.program);
   if (r.zero_pivot >= 0) {
-    d.eq.recursive_unavailable = "elastic coordinate '" + d.eq.coordinate_names[r.zero_pivot] +
-                                 "' moves no inertia in any state (the recursion divides by it)";
+    out.unavailable = "elastic coordinate '" + in.coordinate_names[r.zero_pivot] +
+                      "' moves no inertia in any state (the recursion divides by it)";
     for (std::size_t k = 0; k < d.model.joints.size(); ++k)
       if (d.tree.joints()[k].speed == r.zero_pivot) {
-        d.eq.recursive_unavailable = "joint '" + d.model.joints[k].name +
-                                     "' moves no inertia about or along its axis in any state (the "
-                                     "recursion divides by it)";
-        d.eq.recursive_unavailable_place = d.model.joints[k].where;
+        out.unavailable = "joint '" + d.model.joints[k].name +
+                          "' moves no inertia about or along its axis in any state (the "
+                          "recursion divides by it)";
+        out.unavailable_place = d.model.joints[k].where;
       }
-    return;
+    return out;
   }
-  d.eq.recursive_accelerations = std::move(r.accelerations);
-  d.eq.recursive_pivots = std::move(r.pivots);
-  d.eq.recursive_pivot_order = std::move(r.pivot_order);
+  out.accelerations = std::move(r.accelerations);
+  out.pivots = std::move(r.pivots);
+  out.pivot_order = std::move(r.pivot_order);
+  return out;
 }
 
+/// What the steps that need no kinematics read.
+struct Inputs {
+  const model::Model& model;
+  const symbolic::Variables& vars;
+  const FlexibleBodies& flexible;
+};
+
 /// The joint's own forces on its speed r: spring, damper, actuator, efforts; the spring's energy.
-void add_joint_forces(Derivation& d, const model::Joint& joint, int r) {
+void add_joint_forces(const Inputs& d, JointForces& out, const model::Joint& joint, int r) {
   const symbolic::Variables& vars = d.vars;
   const ex stiffness = vars.scalar(joint.spring_stiffness);
   const ex stretch = vars.q[r] - vars.scalar(joint.spring_rest);
-  d.eq.forcing[r] += -stiffness * stretch - vars.scalar(joint.damping) * vars.u[r];
+  std::vector<ex>& forcing = out.forcing[r];
+  forcing.push_back(-stiffness * stretch - vars.scalar(joint.damping) * vars.u[r]);
   ex nonconservative = -vars.scalar(joint.damping) * vars.u[r];
   if (joint.actuated) {
-    d.eq.forcing[r] += vars.tau[r];
+    forcing.push_back(vars.tau[r]);
     nonconservative += vars.tau[r];
   }
   for (const model::JointEffort& effort : d.model.joint_efforts)
     if (effort.joint == joint.name) {
       const ex value = joint_effort_value(effort, vars);
-      d.eq.forcing[r] += value;
+      forcing.push_back(value);
       nonconservative += value;
     }
-  d.eq.potential_energy += stiffness * stretch * stretch / 2;
-  d.eq.nonconservative_power += nonconservative * vars.u[r];
+  out.potential.push_back(stiffness * stretch * stretch / 2);
+  out.power.push_back(nonconservative * vars.u[r]);
+}
+
+/// Every joint's own forces, joint by joint, speed by speed.
+JointForces joint_forces(const Inputs& d) {
+  JointForces out;
+  out.forcing.resize(d.vars.u.size());
+  for (std::size_t k = 0; k < d.model.joints.size(); ++k) {
+    const int r = d.vars.first_speed[k];
+    if (r < 0) continue;
+    const int speeds = model::joint_type_info(d.model.joints[k].type).speeds;
+    for (int c = 0; c < speeds; ++c) add_joint_forces(d, out, d.model.joints[k], r + c);
+  }
+  return out;
 }
 
 /// A prescribed joint's accelerations piece by piece, and the initial state its motion gives.
-void add_prescribed_speed(Derivation& d, const model::Joint& joint, int r) {
+void add_prescribed_speed(const Inputs& d, Coordinates& out, const model::Joint& joint, int r) {
   const symbolic::Variables& vars = d.vars;
   PrescribedSpeed prescribed;
   prescribed.speed = r;
@@ -618,13 +669,12 @@ void add_prescribed_speed(Derivation& d, const model::Joint& joint, int r) {
     if (p == 0) {  // the initial state: in the parameters, and at their defaults
       prescribed.position0 = motion.subs(vars.t == 0);
       prescribed.speed0 = motion.diff(vars.t).subs(vars.t == 0);
-      d.eq.q0.push_back(vars.at_defaults(motion, 0.0));
-      d.eq.u0.push_back(vars.at_defaults(motion.diff(vars.t), 0.0));
+      out.q0.push_back(vars.at_defaults(motion, 0.0));
+      out.u0.push_back(vars.at_defaults(motion.diff(vars.t), 0.0));
     }
   }
-  d.eq.prescribed.push_back(std::move(prescribed));
+  out.prescribed.push_back(std::move(prescribed));
 }
-
 /// The bodies in `below` and every body below them in the tree, in model order.
 std::vector<std::string> subtree_bodies(const model::Model& model, std::set<std::string> below) {
   for (bool grew = true; grew;) {
@@ -657,8 +707,7 @@ std::vector<std::string> elastically_moved_bodies(const model::Model& model, con
 /// indices) with q_dot = 1/2 q (0, u), the inputs (moments about the child
 /// axes), names and initial state; the quaternion's w comes after every
 /// other coordinate (quaternion_scalars).
-void spherical_coordinates(Derivation& d, const model::Joint& joint, int r, int w_index) {
-  Equations& eq = d.eq;
+void spherical_coordinates(const Inputs& d, Coordinates& out, const model::Joint& joint, int r, int w_index) {
   const symbolic::Variables& vars = d.vars;
   const Vec3 v{vars.q[r], vars.q[r + 1], vars.q[r + 2]}, u{vars.u[r], vars.u[r + 1], vars.u[r + 2]};
   const Vec3 rate = GiNaC::ex(1) / 2 * (vars.q[w_index] * u + cross(v, u));
@@ -666,59 +715,57 @@ void spherical_coordinates(Derivation& d, const model::Joint& joint, int r, int 
   const std::vector<double> q0 = joint.step_q0.empty() ? std::vector<double>{1, 0, 0, 0} : joint.step_q0;
   for (int c = 0; c < 3; ++c) {
     const std::string axis(1, "xyz"[c]);
-    add_joint_forces(d, joint, r + c);
-    eq.coordinate_rates.push_back(rate[c]);
-    eq.coordinate_names.push_back(joint.name + "_q" + axis);
-    eq.coordinate_joints.push_back(joint.name);
-    eq.moved_bodies.push_back(subtree_bodies(d.model, {joint.child}));
-    eq.speed_names.push_back(joint.name + "_w" + axis);
-    eq.input_names.push_back(joint.name + "_m" + axis);
-    eq.q0.push_back(q0[1 + c]);
-    eq.u0.push_back(joint.step_u0.empty() ? 0.0 : joint.step_u0[c]);
+    out.rates.push_back(rate[c]);
+    out.coordinate_names.push_back(joint.name + "_q" + axis);
+    out.coordinate_joints.push_back(joint.name);
+    out.moved_bodies.push_back(subtree_bodies(d.model, {joint.child}));
+    out.speed_names.push_back(joint.name + "_w" + axis);
+    out.input_names.push_back(joint.name + "_m" + axis);
+    out.q0.push_back(q0[1 + c]);
+    out.u0.push_back(joint.step_u0.empty() ? 0.0 : joint.step_u0[c]);
   }
 }
 
 /// The spherical joints' quaternion w, after every coordinate that has a
 /// speed: w_dot = -1/2 (x, y, z) . u.
-void quaternion_scalars(Derivation& d) {
+void quaternion_scalars(const Inputs& d, Coordinates& out) {
   for (const auto& [k, w_index] : d.vars.quaternion_w) {
     const model::Joint& joint = d.model.joints[k];
-    const int r = d.tree.joints()[k].speed;
+    const int r = d.vars.first_speed[k];
     const symbolic::Variables& vars = d.vars;
-    if (static_cast<int>(d.eq.coordinate_rates.size()) != w_index)
-      throw std::logic_error("derive_equations: a quaternion's w out of its place in q");
-    d.eq.coordinate_rates.push_back(
+    if (static_cast<int>(out.rates.size()) != w_index)
+      throw std::logic_error("kane::DerivationContext: a quaternion's w out of its place in q");
+    out.rates.push_back(
         -(vars.q[r] * vars.u[r] + vars.q[r + 1] * vars.u[r + 1] + vars.q[r + 2] * vars.u[r + 2]) / 2);
-    d.eq.coordinate_names.push_back(joint.name + "_qw");
-    d.eq.coordinate_joints.push_back(joint.name);
-    d.eq.moved_bodies.push_back(subtree_bodies(d.model, {joint.child}));
-    d.eq.q0.push_back(joint.step_q0.empty() ? 1.0 : joint.step_q0[0]);
+    out.coordinate_names.push_back(joint.name + "_qw");
+    out.coordinate_joints.push_back(joint.name);
+    out.moved_bodies.push_back(subtree_bodies(d.model, {joint.child}));
+    out.q0.push_back(joint.step_q0.empty() ? 1.0 : joint.step_q0[0]);
   }
 }
 
-/// The joint coordinates: forces, rates, names and initial state.
-void joint_coordinates(Derivation& d) {
-  Equations& eq = d.eq;
+/// The joint coordinates: rates, names and initial state.
+void joint_coordinates(const Inputs& d, Coordinates& out) {
   for (std::size_t k = 0; k < d.model.joints.size(); ++k) {
     const model::Joint& joint = d.model.joints[k];
-    const int r = d.tree.joints()[k].speed;
+    const int r = d.vars.first_speed[k];
     if (r < 0) continue;
-    if (d.tree.joints()[k].model.spherical()) {
-      spherical_coordinates(d, joint, r, d.tree.joints()[k].quaternion_w);
+    const auto w = d.vars.quaternion_w.find(static_cast<int>(k));
+    if (w != d.vars.quaternion_w.end()) {
+      spherical_coordinates(d, out, joint, r, w->second);
       continue;
     }
-    add_joint_forces(d, joint, r);
-    eq.coordinate_rates.push_back(d.vars.u[r]);
-    eq.coordinate_names.push_back(joint.name);
-    eq.coordinate_joints.push_back(joint.name);
-    eq.moved_bodies.push_back(subtree_bodies(d.model, {joint.child}));
-    eq.speed_names.push_back(joint.name + "_dot");
-    eq.input_names.push_back(joint.name + "_tau");
+    out.rates.push_back(d.vars.u[r]);
+    out.coordinate_names.push_back(joint.name);
+    out.coordinate_joints.push_back(joint.name);
+    out.moved_bodies.push_back(subtree_bodies(d.model, {joint.child}));
+    out.speed_names.push_back(joint.name + "_dot");
+    out.input_names.push_back(joint.name + "_tau");
     if (joint.is_prescribed()) {
-      add_prescribed_speed(d, joint, r);
+      add_prescribed_speed(d, out, joint, r);
     } else {
-      eq.q0.push_back(joint.q0);
-      eq.u0.push_back(joint.u0);
+      out.q0.push_back(joint.q0);
+      out.u0.push_back(joint.u0);
     }
   }
 }
@@ -742,136 +789,295 @@ void require_known_initial_names(const model::Body& body, const std::vector<std:
 
 /// The elastic coordinates, after the joints': rates, names, the initial
 /// state (the model's values, else rest).
-void elastic_coordinates(Derivation& d) {
+void elastic_coordinates(const Inputs& d, Coordinates& out) {
   const model::Model& model = d.model;
-  Equations& eq = d.eq;
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     if (!model.bodies[b].flexible) continue;
     const model::ElasticPart& beam = model.bodies[b].elastic;
     const std::vector<std::string>& names = d.flexible.at(static_cast<int>(b)).reduced.names;
     require_known_initial_names(model.bodies[b], names);
     for (int k = 0; k < d.vars.elastic_count[b]; ++k) {
-      eq.coordinate_rates.push_back(d.vars.u[d.vars.elastic_first[b] + k]);
-      eq.coordinate_names.push_back(model.bodies[b].name + "." + names[k]);
-      eq.coordinate_joints.push_back("");
-      eq.moved_bodies.push_back(elastically_moved_bodies(model, model.bodies[b].name));
-      eq.speed_names.push_back(model.bodies[b].name + "." + names[k] + "_dot");
-      eq.q0.push_back(elastic_initial(beam.initial_q, names[k]));
-      eq.u0.push_back(elastic_initial(beam.initial_u, names[k]));
+      out.rates.push_back(d.vars.u[d.vars.elastic_first[b] + k]);
+      out.coordinate_names.push_back(model.bodies[b].name + "." + names[k]);
+      out.coordinate_joints.push_back("");
+      out.moved_bodies.push_back(elastically_moved_bodies(model, model.bodies[b].name));
+      out.speed_names.push_back(model.bodies[b].name + "." + names[k] + "_dot");
+      out.q0.push_back(elastic_initial(beam.initial_q, names[k]));
+      out.u0.push_back(elastic_initial(beam.initial_u, names[k]));
     }
   }
 }
 
 /// Per coordinate: free, independent (kept by assembly) or prescribed.
-void coordinate_roles(Derivation& d) {
-  d.eq.coordinate_role.assign(d.eq.nq, 0);
+void coordinate_roles(const Inputs& d, Coordinates& out) {
+  out.roles.assign(d.vars.q.size(), 0);
   for (std::size_t k = 0; k < d.model.joints.size(); ++k) {
-    const kinematics::JointFrame& frame = d.tree.joints()[k];
     const model::Joint& joint = d.model.joints[k];
-    for (int c = 0; c < frame.speeds(); ++c)
-      d.eq.coordinate_role[frame.speed + c] = joint.is_prescribed() ? 2 : joint.independent ? 1 : 0;
+    const int speeds = model::joint_type_info(joint.type).speeds;
+    for (int c = 0; c < speeds; ++c)
+      out.roles[d.vars.first_speed[k] + c] = joint.is_prescribed() ? 2 : joint.independent ? 1 : 0;
   }
 }
 
-/// The named outputs, each expanded into its columns.
-void expand_outputs(Derivation& d) {
+/// Product::coordinates.
+Coordinates coordinates_of(const Inputs& d) {
+  Coordinates out;
+  joint_coordinates(d, out);
+  elastic_coordinates(d, out);
+  quaternion_scalars(d, out);
+  coordinate_roles(d, out);
+  return out;
+}
+
+/// The named outputs' values, each expanded into its columns; `loops`
+/// gives the constraint rows where an output is a loop's reaction.
+template <class Loops>
+Outputs expand_outputs(Derivation& d, Loops loops) {
   const model::Model& model = d.model;
   const symbolic::Variables& vars = d.vars;
-  Program& program = d.program;
-  const FlexibleBodies& flexible = d.flexible;
   const kinematics::TreeKinematics& tree = d.tree;
-  Equations& eq = d.eq;
+  Outputs eq;
   for (const model::Output& out : model.outputs) {
     if (out.node >= 0) {
       const int body = tree.bodies()[tree.state_of(out.body)].body;
       const int first = vars.elastic_first[body];
       const std::vector<ex> eta(vars.q.begin() + first, vars.q.begin() + first + vars.elastic_count[body]);
-      const NodeOutputs node = node_outputs(model.bodies[body], flexible.at(body), out, eta, program);
-      eq.outputs.insert(eq.outputs.end(), node.values.begin(), node.values.end());
+      const NodeOutputs node = node_outputs(model.bodies[body], d.flexible.at(body), out, eta, d.program);
+      eq.values.insert(eq.values.end(), node.values.begin(), node.values.end());
       continue;
     }
     if (out.kind == model::OutputKind::point_position) {
       const int state = tree.state_of(out.body);
       Vec3 p = vec(vars, out.point);
       if (state >= 0) p = tree.world_point(tree.bodies()[state], p);
-      eq.outputs.insert(eq.outputs.end(), p.begin(), p.end());
+      eq.values.insert(eq.values.end(), p.begin(), p.end());
       continue;
     }
     if (out.kind == model::OutputKind::reaction) {
-      for (int c = 0; c < eq.loops.size(); ++c)
-        if (eq.loops.loops[c] == out.loop) {
-          eq.reaction_outputs.emplace_back(static_cast<int>(eq.outputs.size()), c);
-          eq.outputs.push_back(0);  // filled from lambda by the emitted code
+      const LoopConstraints& constraints = loops();
+      for (int c = 0; c < constraints.size(); ++c)
+        if (constraints.loops[c] == out.loop) {
+          eq.reactions.emplace_back(static_cast<int>(eq.values.size()), c);
+          eq.values.push_back(0);  // filled from lambda by the emitted code
         }
       continue;
     }
     int r = -1;
     for (std::size_t k = 0; k < model.joints.size(); ++k)
       if (model.joints[k].name == out.joint) r = tree.joints()[k].speed;
-    eq.outputs.push_back(r < 0                                             ? ex(0)
-                         : out.kind == model::OutputKind::joint_coordinate ? ex(vars.q[r])
-                                                                           : ex(vars.u[r]));
+    eq.values.push_back(r < 0                                             ? ex(0)
+                        : out.kind == model::OutputKind::joint_coordinate ? ex(vars.q[r])
+                                                                          : ex(vars.u[r]));
   }
   // The values above follow the columns the model's outputs expand into, which name them.
-  for (const model::OutputColumn& column : model::output_columns(model))
-    eq.output_names.push_back(column.name);
-  if (eq.output_names.size() != eq.outputs.size())
-    throw std::logic_error("derive_equations: the outputs' values do not match their columns");
+  for (const model::OutputColumn& column : model::output_columns(model)) eq.names.push_back(column.name);
+  if (eq.names.size() != eq.values.size())
+    throw std::logic_error("kane::DerivationContext: the outputs' values do not match their columns");
+  return eq;
 }
 
 }  // namespace
 
-Equations derive_equations(const model::Model& model, const symbolic::Variables& vars,
-                           symbolic::Program& program, MassMatrixMethod method,
-                           const FlexibleBodies& flexible) {
-  const std::map<int, kinematics::NodeAttachment> attachments = node_attachments(model, vars, flexible);
-  // The world-axes sum of M does not know the nodes' partial velocities.
-  if (!attachments.empty()) method = MassMatrixMethod::body_frames;
-  const Vec3 gravity = vec(vars, model.gravity);
-  // The ground accelerates at -g: every rest acceleration then carries gravity.
-  const kinematics::TreeKinematics tree(model, vars, program, zero_vec() - gravity, attachments);
-  Equations eq;
-  eq.nq = static_cast<int>(vars.q.size());
-  eq.nu = static_cast<int>(vars.u.size());
-  eq.mass_matrix.assign(eq.nu * eq.nu, 0);
-  eq.forcing.assign(eq.nu, 0);
-  eq.kinetic_energy = eq.potential_energy = eq.gravity_potential = eq.nonconservative_power = 0;
-  Derivation d{model, vars, program, flexible, tree, method, gravity, eq};
+/// The inputs, and each product once derived.
+struct DerivationContext::State {
+  State(const model::Model& m, const symbolic::Variables& v, Program& p, const FlexibleBodies& f,
+        MassMatrixMethod how)
+      : model(m), vars(v), program(p), flexible(f), method(how), gravity(vec(v, m.gravity)) {}
 
-  const std::size_t count = tree.bodies().size();
-  BodySums sums{
-      std::vector<SpatialInertia>(count), std::vector<Wrench>(count), std::vector<Wrench>(count), {}};
-  for (std::size_t i = 0; i < count; ++i) {
-    add_rigid_body(d, sums, i);
-    if (model.bodies[tree.bodies()[i].body].flexible) add_flexible_body(d, sums, i);
+  const model::Model& model;
+  const symbolic::Variables& vars;
+  Program& program;
+  const FlexibleBodies& flexible;
+  MassMatrixMethod method;
+  Vec3 gravity;
+  std::array<int, static_cast<std::size_t>(Product::count)> derived{};
+  std::map<int, kinematics::NodeAttachment> attachments;
+  std::optional<kinematics::TreeKinematics> tree;
+  std::optional<BodyProducts> bodies;
+  std::optional<MassProducts> mass;
+  std::optional<Coordinates> coordinates;
+  std::optional<JointForces> joint_forces;
+  std::optional<std::vector<ex>> forcing;
+  std::optional<Energies> energies;
+  std::optional<LoopConstraints> loops;
+  std::optional<InverseDynamics> inverse;
+  std::optional<std::vector<ex>> momentum;
+  std::optional<Recursion> recursion;
+  std::optional<Outputs> outputs;
+
+  /// The product in `slot`, derived by `derive` on the first request.
+  template <class T, class Derive>
+  const T& memo(std::optional<T>& slot, Product product, Derive derive) {
+    if (!slot) {
+      slot.emplace(derive());
+      ++derived[static_cast<std::size_t>(product)];
+    }
+    return *slot;
   }
-  add_springs(d, sums);
-  const BodySums own = sums;  // before the composites
-  composite_bodies(d, sums);
-  MassRows rows(d);
-  joint_rows(d, sums, rows);
-  elastic_rows(d, sums, rows);
-  // The elastic blocks are not pairs of axes and momenta.
-  if (!flexible.empty()) eq.world_mass = {};
 
-  const std::vector<ex> body_forcing = eq.forcing;
-  joint_coordinates(d);
-  elastic_coordinates(d);
-  quaternion_scalars(d);
-  if (flexible.empty()) {
-    newton_euler(d, own);
-    momentum_recursion(d, own);
+  Inputs inputs() const { return {model, vars, flexible}; }
+
+  /// The steps' view, the tree's kinematics derived on first use.
+  Derivation derivation() {
+    if (!tree) {
+      attachments = node_attachments(model, vars, flexible);
+      // The world-axes sum of M does not know the nodes' partial velocities.
+      if (!attachments.empty()) method = MassMatrixMethod::body_frames;
+      // The ground accelerates at -g: every rest acceleration then carries gravity.
+      tree.emplace(model, vars, program, zero_vec() - gravity, attachments);
+      ++derived[static_cast<std::size_t>(Product::kinematics)];
+    }
+    return {model, vars, program, flexible, *tree, method, gravity};
+  }
+};
+
+namespace {
+
+using State = DerivationContext::State;
+
+/// Product::bodies: each body's own inertia and wrench, springs included;
+/// their energies.
+const BodyProducts& bodies(State& s) {
+  return s.memo(s.bodies, Product::bodies, [&s] {
+    Derivation d = s.derivation();
+    const std::size_t count = d.tree.bodies().size();
+    BodyProducts out{
+        {std::vector<SpatialInertia>(count), std::vector<Wrench>(count), std::vector<Wrench>(count), {}}, {}};
+    for (std::size_t i = 0; i < count; ++i) {
+      add_rigid_body(d, out.own, out.energies, i);
+      if (d.model.bodies[d.tree.bodies()[i].body].flexible) add_flexible_body(d, out.own, out.energies, i);
+    }
+    add_springs(d, out.own, out.energies);
+    return out;
+  });
+}
+
+/// Product::mass_matrix: the composite bodies and subtree wrenches, then M's
+/// rows and the bodies' share of f.
+const MassProducts& mass(State& s) {
+  return s.memo(s.mass, Product::mass_matrix, [&s] {
+    BodySums sums = bodies(s).own;
+    Derivation d = s.derivation();
+    const std::size_t nu = s.vars.u.size();
+    MassProducts out{std::vector<ex>(nu * nu, 0), std::vector<ex>(nu, 0), {}};
+    composite_bodies(d, sums);
+    MassRows rows(d, out);
+    joint_rows(d, sums, rows, out);
+    elastic_rows(d, sums, rows, out);
+    // The elastic blocks are not pairs of axes and momenta.
+    if (!s.flexible.empty()) out.world_mass = {};
+    return out;
+  });
+}
+
+const JointForces& joint_forces(State& s) {
+  return s.memo(s.joint_forces, Product::joint_forces, [&s] { return joint_forces(s.inputs()); });
+}
+
+const std::vector<ex>& forcing(State& s) {
+  return s.memo(s.forcing, Product::forcing, [&s] {
+    std::vector<ex> f = mass(s).body_forcing;
+    const JointForces& joints = joint_forces(s);
+    for (std::size_t r = 0; r < f.size(); ++r)
+      for (const ex& term : joints.forcing[r]) f[r] += term;
+    return f;
+  });
+}
+
+const Coordinates& coordinates(State& s) {
+  return s.memo(s.coordinates, Product::coordinates, [&s] { return coordinates_of(s.inputs()); });
+}
+
+const LoopConstraints& loops(State& s) {
+  return s.memo(s.loops, Product::loops, [&s] {
+    Derivation d = s.derivation();
+    return derive_loop_constraints(s.model, s.vars, s.program, d.tree, s.flexible);
+  });
+}
+
+/// T and V of the bodies, springs and joints; the nonconservative power.
+const Energies& energies(State& s) {
+  return s.memo(s.energies, Product::energies, [&s] {
+    Energies e = bodies(s).energies;
+    const JointForces& joints = joint_forces(s);
+    for (const ex& term : joints.potential) e.potential += term;
+    for (const ex& term : joints.power) e.nonconservative_power += term;
+    GiNaC::exmap no_inputs;
+    for (const GiNaC::symbol& tau : s.vars.tau) no_inputs[tau] = 0;
+    e.nonconservative =
+        !e.nonconservative_power.subs(no_inputs).is_zero() || !coordinates(s).prescribed.empty();
+    return e;
+  });
+}
+
+}  // namespace
+
+DerivationContext::DerivationContext(const model::Model& model, const symbolic::Variables& vars,
+                                     symbolic::Program& program, MassMatrixMethod method,
+                                     const FlexibleBodies& flexible)
+    : state_(std::make_unique<State>(model, vars, program, flexible, method)) {}
+
+DerivationContext::~DerivationContext() = default;
+
+const model::Model& DerivationContext::model() const { return state_->model; }
+const symbolic::Variables& DerivationContext::variables() const { return state_->vars; }
+int DerivationContext::nq() const { return static_cast<int>(state_->vars.q.size()); }
+int DerivationContext::nu() const { return static_cast<int>(state_->vars.u.size()); }
+bool DerivationContext::has_loops() const { return !state_->model.loops.empty(); }
+
+const Coordinates& DerivationContext::coordinates() { return kane::coordinates(*state_); }
+const std::vector<ex>& DerivationContext::mass_matrix() { return mass(*state_).mass_matrix; }
+const WorldMass& DerivationContext::world_mass() { return mass(*state_).world_mass; }
+const std::vector<ex>& DerivationContext::forcing() { return kane::forcing(*state_); }
+const std::vector<ex>& DerivationContext::body_forcing() { return mass(*state_).body_forcing; }
+const Energies& DerivationContext::energies() { return kane::energies(*state_); }
+const LoopConstraints& DerivationContext::loops() { return kane::loops(*state_); }
+
+const InverseDynamics& DerivationContext::inverse_dynamics() {
+  State& s = *state_;
+  return s.memo(s.inverse, Product::inverse_dynamics, [this, &s] {
+    InverseDynamics out;
+    if (!s.flexible.empty()) return out;
+    Derivation d = s.derivation();
+    out = newton_euler(d, bodies(s).own);
     // The joints' own forces (springs, dampers, inputs, efforts) join f after the bodies'.
-    for (int r = 0; r < eq.nu; ++r) eq.inverse_dynamics[r] -= eq.forcing[r] - body_forcing[r];
-  }
-  eq.loops = derive_loop_constraints(model, vars, program, tree, flexible);
-  recursive_dynamics(d, own, body_forcing);
-  coordinate_roles(d);
-  expand_outputs(d);
-  GiNaC::exmap no_inputs;
-  for (const GiNaC::symbol& tau : vars.tau) no_inputs[tau] = 0;
-  eq.nonconservative = !eq.nonconservative_power.subs(no_inputs).is_zero() || !eq.prescribed.empty();
-  return eq;
+    const std::vector<ex>& f = forcing();
+    const std::vector<ex>& body = body_forcing();
+    for (std::size_t r = 0; r < out.inertial.size(); ++r) out.inertial[r] -= f[r] - body[r];
+    return out;
+  });
+}
+
+const std::vector<ex>& DerivationContext::generalized_momentum() {
+  State& s = *state_;
+  return s.memo(s.momentum, Product::generalized_momentum, [&s] {
+    if (!s.flexible.empty()) return std::vector<ex>();
+    Derivation d = s.derivation();
+    return momentum_recursion(d, bodies(s).own);
+  });
+}
+
+const Recursion& DerivationContext::recursion() {
+  State& s = *state_;
+  return s.memo(s.recursion, Product::recursion, [this, &s] {
+    Derivation d = s.derivation();
+    Recursion out;
+    out.unavailable = recursive_unavailable(d, has_loops(), !coordinates().prescribed.empty());
+    if (!out.unavailable.empty()) return out;
+    return recursive_dynamics(d, {bodies(s).own, forcing(), body_forcing(), coordinates().coordinate_names});
+  });
+}
+
+const Outputs& DerivationContext::outputs() {
+  State& s = *state_;
+  return s.memo(s.outputs, Product::outputs, [this, &s] {
+    Derivation d = s.derivation();
+    return expand_outputs(d, [this]() -> const LoopConstraints& { return loops(); });
+  });
+}
+
+int DerivationContext::derivations(Product product) const {
+  return state_->derived[static_cast<std::size_t>(product)];
 }
 
 }  // namespace kanegen::kane

@@ -11,11 +11,20 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "numeric/instance.hpp"
 
 namespace kanegen::numeric {
+
+/// The names of the generated kernels' coordinates (nq = nu + balls): the
+/// numeric path's, then each ball's quaternion w, `<joint>_qw`.
+inline std::vector<std::string> kernel_coordinate_names(const Instance& m) {
+  std::vector<std::string> names = m.coordinate_names;
+  for (int k : m.ball_joints) names.push_back(m.joints[k].name + "_qw");
+  return names;
+}
 
 /// The generated kernels' q (nq = nu + balls) of the numeric state q (nu),
 /// with every ball at its base (phi = 0 is required).

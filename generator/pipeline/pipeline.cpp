@@ -128,10 +128,12 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
     flexible.emplace(static_cast<int>(b), std::move(beam));
   }
 
-  // Derive with each way of summing M and keep the one whose composite
-  // forward_dynamics is shorter (the recursion does not use M), by counting
-  // alone: only the equations kept are printed, Jacobians included, on the
-  // graph their count filled. The Program lives on the heap: the graph refers to it.
+  // A derivation context with each way of summing M; keep the one whose
+  // composite forward_dynamics is shorter (the recursion does not use M), by
+  // counting alone: that derives M, f and the loops only. The kernels are then
+  // derived from the context kept, each asking it for what it needs, and
+  // printed on the graph their count filled. The Program lives on the heap:
+  // the context and the graph refer to it.
   const symbolic::Variables vars(model, elastic_counts);
   const codegen::EmitOptions emit_options{generate_options.jacobians || generate_options.controller,
                                           generate_options.controller, generate_options.precision,
@@ -140,10 +142,10 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
   long fewest = 0;
   std::unique_ptr<symbolic::Program> chosen_program;
   std::unique_ptr<codegen::ExpressionGraph> chosen_graph;
-  kane::Equations chosen;
+  std::unique_ptr<kane::DerivationContext> chosen;
   for (kane::MassMatrixMethod method :
        {kane::MassMatrixMethod::body_frames, kane::MassMatrixMethod::world_projection}) {
-    // A joint on a beam node makes derive_equations sum in body frames
+    // A joint on a beam node makes the context sum in body frames
     // anyway: the second derivation would be the first again.
     if (method == kane::MassMatrixMethod::world_projection &&
         std::any_of(model.joints.begin(), model.joints.end(),
@@ -151,27 +153,31 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
       continue;
     start = std::chrono::steady_clock::now();
     auto program = std::make_unique<symbolic::Program>();
-    kane::Equations equations = kane::derive_equations(model, vars, *program, method, flexible);
+    auto products = std::make_unique<kane::DerivationContext>(model, vars, *program, method, flexible);
+    // What the count asks for, asked first to time the derivation apart.
+    products->mass_matrix();
+    products->forcing();
+    if (products->has_loops()) products->loops();
     out.seconds.derive += seconds_since(start);
-    if (generate_options.dynamics == codegen::DynamicsMethod::recursive &&
-        !equations.recursive_unavailable.empty())
-      throw model::ModelError(
-          model.source_file, equations.recursive_unavailable_place,
-          "--dynamics recursive cannot solve this model: " + equations.recursive_unavailable,
-          "use --dynamics composite, or auto (the default)");
     start = std::chrono::steady_clock::now();
+    if (generate_options.dynamics == codegen::DynamicsMethod::recursive &&
+        !products->recursion().unavailable.empty())
+      throw model::ModelError(
+          model.source_file, products->recursion().unavailable_place,
+          "--dynamics recursive cannot solve this model: " + products->recursion().unavailable,
+          "use --dynamics composite, or auto (the default)");
     auto graph = std::make_unique<codegen::ExpressionGraph>(vars, *program);
-    const long operations = codegen::composite_operations(model, equations, vars, *graph, scalar);
+    const long operations = codegen::composite_operations(*products, *graph, scalar);
     out.seconds.choose += seconds_since(start);
     if (!chosen_program || operations < fewest) {
       fewest = operations;
       chosen_graph = std::move(graph);
+      chosen = std::move(products);
       chosen_program = std::move(program);
-      chosen = std::move(equations);
     }
   }
   start = std::chrono::steady_clock::now();
-  codegen::EmittedModel emitted = codegen::emit_model(model, chosen, vars, *chosen_graph, hash, emit_options);
+  codegen::EmittedModel emitted = codegen::emit_model(*chosen, *chosen_graph, hash, emit_options);
   (emit_options.jacobians ? out.seconds.jacobians : out.seconds.emit) += seconds_since(start);
 
   out.name = model.name;
@@ -179,8 +185,8 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
   out.operations = std::move(emitted.operations);
   out.dynamics = emitted.dynamics;
   out.intermediates = chosen_program->size();
-  out.nq = chosen.nq;
-  out.nu = chosen.nu;
+  out.nq = chosen->nq();
+  out.nu = chosen->nu();
   return out;
 }
 

@@ -15,7 +15,9 @@
 namespace kanegen::pipeline {
 
 struct StageTimes {
-  double load = 0, derive = 0, emit = 0;  ///< seconds
+  /// seconds: derive: M, f and the loops of each way of summing M; emit: the
+  /// other products the kernels ask for (of the way kept), and the kernels printed
+  double load = 0, derive = 0, emit = 0;
   double choose = 0;     ///< seconds: counting each derivation's composite forward_dynamics, to keep one
   double jacobians = 0;  ///< seconds: emitting with the Jacobian kernels (0 without them: then in emit)
 };

@@ -83,8 +83,7 @@ Link link_runner(const model::Model& model, const numeric::Instance& instance, c
   Link link;
   link.coordinates = instance.coordinate_names;
   // The kernels' have the quaternions' w after every coordinate with a speed (numeric/spherical.hpp).
-  std::vector<std::string> kernel_coordinates = link.coordinates;
-  for (int k : instance.ball_joints) kernel_coordinates.push_back(instance.joints[k].name + "_qw");
+  const std::vector<std::string> kernel_coordinates = numeric::kernel_coordinate_names(instance);
   if (info["coordinates"].get<std::vector<std::string>>() != kernel_coordinates)
     throw mismatch("coordinates " + info["coordinates"].dump() + ", the model's are " +
                    json(kernel_coordinates).dump() +

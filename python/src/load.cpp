@@ -3,8 +3,6 @@
 // exported table; the parameters; the lengths of the kernels' arguments.
 #include <dlfcn.h>
 
-#include <cctype>
-#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -109,38 +107,7 @@ void set_parameter_value(const LoadedModel& model, std::vector<double>& storage,
 }
 
 int argument_length(const LoadedModel& model, const char* size, std::pair<int, int>* shape) {
-  const runtime::ModelTable& t = model.table;
-  int rows = 1, columns = 1;  // the leading factors up to the first name, and the others
-  bool named = false;
-  for (const char* at = size;;) {
-    const char* end = std::strchr(at, '*');
-    const std::string factor(at, end ? static_cast<std::size_t>(end - at) : std::strlen(at));
-    const bool number = std::isdigit(static_cast<unsigned char>(factor[0])) != 0;
-    int value = 0;
-    if (number)
-      value = std::stoi(factor);
-    else if (factor == "NQ")
-      value = t.nq;
-    else if (factor == "NU")
-      value = t.nu;
-    else if (factor == "NTAU")
-      value = t.ntau;
-    else if (factor == "NY")
-      value = t.ny;
-    else if (factor == "NC")
-      value = t.nc;
-    else if (factor == "NP")
-      value = t.np;
-    else
-      throw std::logic_error(std::string("kernel argument size ") + size + ": unknown " + factor);
-    (named ? columns : rows) *= value;
-    named = named || !number;
-    if (!end) break;
-    at = end + 1;
-  }
-  const bool matrix = std::strchr(size, '*') != nullptr;
-  if (shape) *shape = matrix ? std::make_pair(rows, columns) : std::make_pair(rows * columns, 0);
-  return rows * columns;
+  return runtime::kernel_argument_length(model.table, size, shape);
 }
 
 }  // namespace kanegen::python

@@ -2,12 +2,14 @@
 #include "batch.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "kanegen/runtime/kernel_thunks.hpp"
 #include "kanegen/runtime/text.hpp"
 
 namespace kanegen::runtime {
@@ -15,12 +17,13 @@ namespace {
 
 // ---------------------------------------------------------------- request
 
-/// A value of the flat request object: a number, an array of numbers, a
-/// string or a boolean (all the protocol needs; nesting is an error).
+/// A value of the flat request object: a number, an array of numbers, an
+/// array of names, a string or a boolean (all the protocol needs; nesting is an error).
 struct Value {
-  enum Kind { number, array, string, boolean } kind = number;
+  enum Kind { number, array, names, string, boolean } kind = number;
   double x = 0;
   std::vector<double> xs;
+  std::vector<std::string> words;
   std::string text;
   bool flag = false;
 };
@@ -105,9 +108,13 @@ class RequestParser {
         ++at_;
         return v;
       }
+      if (peek() == '"') v.kind = Value::names;
       for (;;) {
         peek();
-        v.xs.push_back(number());
+        if (v.kind == Value::names)
+          v.words.push_back(string());
+        else
+          v.xs.push_back(number());
         if (peek() == ',') {
           ++at_;
           continue;
@@ -146,7 +153,50 @@ struct Request {
   std::vector<double> inverse_dynamics_udot;
   /// The kernels of --controller.
   bool controller = false;
+  /// Kernels asked for by name (kernels.def), and their input arrays other
+  /// than q, u and tau ("input_<argument>").
+  std::vector<Kernel> kernels;
+  std::map<std::string, std::vector<double>> inputs;
 };
+
+/// A kernel "kernels" can name: one the table binds, taking only arrays and scalars.
+bool callable(const KernelSpec& spec) {
+  if (spec.binding == KernelBinding::unbound || spec.params == ParamsAccess::write) return false;
+  for (std::size_t i = 0; i < spec.argument_count; ++i)
+    if (spec.arguments[i].role == ArgumentRole::text || spec.arguments[i].role == ArgumentRole::index)
+      return false;
+  return true;
+}
+
+Kernel callable_kernel(const std::string& name) {
+  std::string known;
+  for (const KernelSpec& spec : kernel_specs) {
+    if (!callable(spec)) continue;
+    if (name == spec.name) return spec.kernel;
+    known += (known.empty() ? "" : ", ") + std::string(spec.name);
+  }
+  throw std::invalid_argument("\"kernels\": no kernel \"" + name + "\" to call; known: " + known);
+}
+
+/// "kernels": [names] and the "input_<argument>" arrays they take besides q, u and tau.
+void parse_kernels(const std::map<std::string, Value>& m, Request& r) {
+  if (const auto k = m.find("kernels"); k != m.end()) {
+    if (k->second.kind != Value::names && !(k->second.kind == Value::array && k->second.xs.empty()))
+      throw std::invalid_argument("\"kernels\" must be an array of kernel names");
+    for (const std::string& name : k->second.words) {
+      const Kernel kernel = callable_kernel(name);
+      if (std::find(r.kernels.begin(), r.kernels.end(), kernel) != r.kernels.end())
+        throw std::invalid_argument("\"kernels\": \"" + name + "\" named twice");
+      r.kernels.push_back(kernel);
+    }
+  }
+  for (const auto& [key, value] : m)
+    if (key.rfind("input_", 0) == 0) {
+      if (value.kind != Value::array)
+        throw std::invalid_argument("\"" + key + "\" must be an array of numbers");
+      r.inputs[key.substr(6)] = value.xs;
+    }
+}
 
 std::vector<double> numbers(const std::map<std::string, Value>& m, const char* key, int n, bool required) {
   const auto found = m.find(key);
@@ -188,12 +238,14 @@ Request parse_request(const std::string& line, const ModelInfo& info) {
                                         "jacobian_a",
                                         "jacobian_lambda",
                                         "inverse_dynamics_udot",
-                                        "controller"};
-    if (std::none_of(std::begin(known), std::end(known), [&](const char* k) { return key == k; }))
+                                        "controller",
+                                        "kernels"};
+    if (std::none_of(std::begin(known), std::end(known), [&](const char* k) { return key == k; }) &&
+        key.rfind("input_", 0) != 0)
       throw std::invalid_argument(
           "unknown key \"" + key +
           "\"; known: t, q, u, tau, p, eval, kinetic_energy_hessian, jacobians, jacobian_a, jacobian_lambda, "
-          "inverse_dynamics_udot, controller");
+          "inverse_dynamics_udot, controller, kernels, input_<argument>");
   }
   Request r;
   if (const auto t = m.find("t"); t != m.end()) {
@@ -223,6 +275,7 @@ Request parse_request(const std::string& line, const ModelInfo& info) {
     if (c->second.kind != Value::boolean) throw std::invalid_argument("\"controller\" must be true or false");
     r.controller = c->second.flag;
   }
+  parse_kernels(m, r);
   return r;
 }
 
@@ -315,6 +368,93 @@ void add_controller(const Model& model, const Request& r, const std::vector<doub
   field("linearize_status", std::to_string(status));
 }
 
+/// The values of a kernel's input `argument` of `n` numbers: the line's
+/// state for q, u and tau, else its "input_<argument>".
+std::vector<double> kernel_input(const Request& r, const KernelSpec& spec, const char* argument, int n) {
+  const std::string name = argument;
+  const std::vector<double>* given = name == "q"     ? &r.q
+                                     : name == "u"   ? &r.u
+                                     : name == "tau" ? &r.tau
+                                                     : nullptr;
+  if (!given) {
+    const auto found = r.inputs.find(name);
+    if (found == r.inputs.end())
+      throw std::invalid_argument(std::string("\"kernels\": ") + spec.name + " needs \"input_" + name + "\"");
+    given = &found->second;
+  }
+  if (static_cast<int>(given->size()) != n)
+    throw std::invalid_argument(std::string("\"kernels\": ") + spec.name + "'s " + name + " needs " +
+                                std::to_string(n) + " value(s), got " + std::to_string(given->size()));
+  std::vector<double> values = *given;
+  values.resize(static_cast<size_t>(std::max(n, 1)));
+  return values;
+}
+
+/// Which models have a kernel of this presence (kernels.def), as a fix.
+const char* presence_hint(KernelPresence presence) {
+  switch (presence) {
+    case KernelPresence::always:
+      break;
+    case KernelPresence::with_loops:
+      return "only models with closed loops have it";
+    case KernelPresence::with_jacobians:
+      return "generate the model with --jacobians";
+    case KernelPresence::with_loops_and_jacobians:
+      return "only models with closed loops generated with --jacobians have it";
+    case KernelPresence::with_controller:
+      return "generate the model with --controller";
+  }
+  return "regenerate the model with this kanegen";
+}
+
+/// One kernel called through its spec: {"<output>": values, ..., "returns": x}
+/// (a matrix as its rows; "returns" unless the kernel returns nothing).
+std::string call_kernel(const Model& model, const Request& r, Kernel kernel) {
+  const KernelSpec& spec = kernel_spec(kernel);
+  const KernelEntry& entry = kernel_entries[static_cast<std::size_t>(kernel)];
+  if (!entry.present(model.table()))
+    throw std::invalid_argument(std::string("\"kernels\": the model has no ") + spec.name + " kernel; " +
+                                presence_hint(spec.presence));
+  std::vector<std::vector<double>> arrays(spec.argument_count);
+  std::vector<std::pair<int, int>> shapes(spec.argument_count);
+  std::vector<double> scalars(spec.argument_count);
+  std::array<void*, 1 + 8> slots{};  // Params, and at most 8 arguments (kernel_spec.hpp)
+  const std::size_t first = spec.params == ParamsAccess::none ? 0 : 1;
+  if (first) slots[0] = const_cast<void*>(model.parameter_storage());
+  for (std::size_t i = 0; i < spec.argument_count; ++i) {
+    const KernelArgumentSpec& a = spec.arguments[i];
+    const int n = kernel_argument_length(model.table(), a.size, &shapes[i]);
+    if (a.role == ArgumentRole::scalar) {
+      scalars[i] = std::string(a.name) == "t" ? r.t : kernel_input(r, spec, a.name, 1)[0];
+      slots[first + i] = &scalars[i];
+      continue;
+    }
+    arrays[i] = a.role == ArgumentRole::in ? kernel_input(r, spec, a.name, n)
+                                           : std::vector<double>(static_cast<size_t>(std::max(n, 1)));
+    slots[first + i] = arrays[i].data();
+  }
+  const double result = entry.call(model.table(), slots.data());
+  std::string out = "{";
+  for (std::size_t i = 0; i < spec.argument_count; ++i) {
+    if (spec.arguments[i].role != ArgumentRole::out) continue;
+    const auto [rows, columns] = shapes[i];
+    out += (out.size() > 1 ? ",\"" : "\"") + std::string(spec.arguments[i].name) +
+           "\":" + (columns > 0 ? rows_json(arrays[i], rows, columns) : numbers_json(arrays[i].data(), rows));
+  }
+  if (std::string(spec.returns) != "void")
+    out += (out.size() > 1 ? "," : "") + std::string("\"returns\":") + json_number(result);
+  return out + "}";
+}
+
+/// "kernels": each kernel named, by its spec, as {"<kernel>": call_kernel(...), ...}.
+std::string kernels_json(const Model& model, const Request& r) {
+  std::string out = "{";
+  for (Kernel kernel : r.kernels)
+    out += (out.size() > 1 ? ",\"" : "\"") + std::string(kernel_spec(kernel).name) +
+           "\":" + call_kernel(model, r, kernel);
+  return out + "}";
+}
+
 std::string respond(Model& model, const Request& r, const std::vector<double>& defaults) {
   const ModelInfo& info = model.info();
   for (int k = 0; k < info.np; ++k)
@@ -385,6 +525,7 @@ std::string respond(Model& model, const Request& r, const std::vector<double>& d
     field("inverse_dynamics", numbers_json(tau_id.data(), n));
   }
   if (r.controller) add_controller(model, r, q, u, tau, field);
+  if (!r.kernels.empty()) field("kernels", kernels_json(model, r));
   return out + "}\n";
 }
 

@@ -177,19 +177,19 @@ Comparison compare(const std::string& path, std::mt19937& rng, double elastic_sc
   }
   const kanegen::symbolic::Variables vars(model, elastic_counts);
   kanegen::symbolic::Program program;
-  const kanegen::kane::Equations eq = kanegen::kane::derive_equations(
-      model, vars, program, kanegen::kane::MassMatrixMethod::body_frames, flexible);
-  INFO(eq.recursive_unavailable);
-  REQUIRE(eq.recursive_unavailable.empty());
-  const int n = eq.nu;
-  REQUIRE(static_cast<int>(eq.recursive_accelerations.size()) == n);
+  kanegen::kane::DerivationContext eq(model, vars, program, kanegen::kane::MassMatrixMethod::body_frames,
+                                      flexible);
+  INFO(eq.recursion().unavailable);
+  REQUIRE(eq.recursion().unavailable.empty());
+  const int n = eq.nu();
+  REQUIRE(static_cast<int>(eq.recursion().accelerations.size()) == n);
   ExpressionGraph graph(vars, program);
   std::vector<int> mass, forcing, recursive;
-  for (const GiNaC::ex& e : eq.mass_matrix) mass.push_back(graph.add(e));
-  for (const GiNaC::ex& e : eq.forcing) forcing.push_back(graph.add(e));
-  for (const GiNaC::ex& e : eq.recursive_accelerations) recursive.push_back(graph.add(e));
+  for (const GiNaC::ex& e : eq.mass_matrix()) mass.push_back(graph.add(e));
+  for (const GiNaC::ex& e : eq.forcing()) forcing.push_back(graph.add(e));
+  for (const GiNaC::ex& e : eq.recursion().accelerations) recursive.push_back(graph.add(e));
   std::vector<int> inverse;
-  for (const GiNaC::ex& e : eq.inverse_dynamics) inverse.push_back(graph.add(e));
+  for (const GiNaC::ex& e : eq.inverse_dynamics().inertial) inverse.push_back(graph.add(e));
 
   Comparison c;
   c.nu = n;

@@ -2,7 +2,8 @@
 # The code generator's parts on their own: the helper code that generated
 # models include verbatim (templates/solve_saddle.hpp), compiled and solved
 # against Eigen, the kernel table's printer, generalized_momentum, the
-# expression graph's derivatives (the Jacobian kernels'), the emission order of
+# expression graph's derivatives (the Jacobian kernels'), the lazy derivation
+# context (kane::DerivationContext), the emission order of
 # statements, and the counts of the forward_dynamics that is counted but not
 # printed.
 find_package(Eigen3 REQUIRED NO_MODULE)
@@ -12,6 +13,7 @@ add_executable(test_codegen ${CMAKE_CURRENT_LIST_DIR}/test_solve_saddle.cpp
                             ${CMAKE_CURRENT_LIST_DIR}/test_moved_bodies.cpp
                             ${CMAKE_CURRENT_LIST_DIR}/test_graph_derivative.cpp
                             ${CMAKE_CURRENT_LIST_DIR}/test_recursive_dynamics.cpp
+                            ${CMAKE_CURRENT_LIST_DIR}/test_derivation_context.cpp
                             ${CMAKE_CURRENT_LIST_DIR}/test_unrolled_saddle.cpp
                             ${CMAKE_CURRENT_LIST_DIR}/test_dynamics_choice.cpp
                             ${CMAKE_CURRENT_LIST_DIR}/test_split_kernels.cpp

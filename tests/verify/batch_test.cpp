@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdio>
 #include <kanegen/runtime/driver.hpp>
+#include <kanegen/runtime/kernel_thunks.hpp>
+#include <kanegen/runtime/model.hpp>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -90,6 +92,61 @@ TEST_CASE("batch gives gravity, nonconservative_power and inverse_dynamics; cont
   CHECK(o.code == 1);
 }
 
+TEST_CASE("batch calls the kernels named in \"kernels\" through their spec", "[batch]") {
+  // The simple pendulum: M = m l^2, f = -m g l sin q + tau, T = m l^2 u^2 / 2.
+  const double q = 0.3, u = -1.2, tau = 0.5, m = 1.5, l = 0.8, g = 9.0, a = 2.0;
+  const Outcome o = batch(
+      "{\"q\": [0.3], \"u\": [-1.2], \"tau\": [0.5], \"p\": [1.5, 0.8, 9.0], \"eval\": \"udot\", "
+      "\"kernels\": [\"mass_matrix\", \"forcing\", \"kinetic_energy\", \"forward_dynamics\", "
+      "\"inverse_dynamics\"], \"input_udot\": [2.0]}\n");
+  REQUIRE(o.code == 0);
+  REQUIRE(o.replies.size() == 1);
+  const json& k = o.replies[0]["kernels"];
+  CHECK(k.size() == 5);
+  CHECK(k["mass_matrix"]["M"][0][0].get<double>() == Approx(m * l * l));  // NU*NU: rows of NU
+  CHECK(k["forcing"]["f"][0].get<double>() == Approx(-m * g * l * std::sin(q) + tau));
+  CHECK(k["kinetic_energy"]["returns"].get<double>() == Approx(0.5 * m * l * l * u * u));
+  CHECK(k["forward_dynamics"]["udot"][0].get<double>() ==
+        Approx((-m * g * l * std::sin(q) + tau) / (m * l * l)));
+  CHECK(k["forward_dynamics"]["returns"].get<double>() == 0.0);
+  CHECK(k["inverse_dynamics"]["tau"][0].get<double>() == Approx(m * l * l * a + m * g * l * std::sin(q)));
+  CHECK_FALSE(k["mass_matrix"].contains("returns"));  // void
+}
+
+TEST_CASE("batch \"kernels\" calls every kernel of the spec the model has, by its spec alone", "[batch]") {
+  // Nothing here names a kernel: a kernel added to kernels.def is covered too.
+  const kanegen::runtime::Model model =
+      kanegen::runtime::make_model<kanegen_models::simple_pendulum::System>();
+  std::string names;
+  std::vector<const kanegen::runtime::KernelSpec*> called;
+  for (const kanegen::runtime::KernelSpec& spec : kanegen::runtime::kernel_specs) {
+    bool arrays_and_scalars = spec.params != kanegen::runtime::ParamsAccess::write;
+    for (std::size_t i = 0; i < spec.argument_count; ++i)
+      arrays_and_scalars =
+          arrays_and_scalars && (spec.arguments[i].role != kanegen::runtime::ArgumentRole::text &&
+                                 spec.arguments[i].role != kanegen::runtime::ArgumentRole::index);
+    if (!arrays_and_scalars || !model.has(spec.kernel)) continue;
+    names += std::string(names.empty() ? "" : ", ") + "\"" + spec.name + "\"";
+    called.push_back(&spec);
+  }
+  REQUIRE(called.size() >= 10);
+  const Outcome o = batch("{\"q\": [0.3], \"u\": [1], \"eval\": \"energy\", \"kernels\": [" + names +
+                          "], \"input_udot\": [0.5], \"input_a\": [1], \"input_lambda\": []}\n");
+  REQUIRE(o.code == 0);
+  const json& k = o.replies.at(0)["kernels"];
+  CHECK(k.size() == called.size());
+  for (const kanegen::runtime::KernelSpec* spec : called) {
+    INFO(spec->name);
+    REQUIRE(k.contains(spec->name));
+    for (std::size_t i = 0; i < spec->argument_count; ++i)
+      if (spec->arguments[i].role == kanegen::runtime::ArgumentRole::out) {
+        const int n = kanegen::runtime::kernel_argument_length(model.table(), spec->arguments[i].size);
+        CHECK(k[spec->name][spec->arguments[i].name].flatten().size() == static_cast<std::size_t>(n));
+      }
+    CHECK(k[spec->name].contains("returns") == (std::string(spec->returns) != "void"));
+  }
+}
+
 TEST_CASE("batch selections: udot only, energy only", "[batch]") {
   const Outcome o = batch(
       "{\"q\": [0.3], \"u\": [1], \"eval\": \"udot\"}\n\n{\"q\": [0.3], \"u\": [1], \"eval\": \"energy\"}\n");
@@ -116,6 +173,13 @@ TEST_CASE("batch: a bad line gives an error answer, the others are still answere
       // Jacobians of a model generated without them (and without the fixed vector a)
       "{\"q\": [0.3], \"u\": [1], \"jacobians\": true, \"jacobian_a\": [1]}",
       "{\"q\": [0.3], \"u\": [1], \"jacobians\": true}",
+      // kernels: an unknown name, one the model lacks, a missing or short input, not names
+      "{\"q\": [0.3], \"u\": [1], \"kernels\": [\"mass_matrixx\"]}",
+      "{\"q\": [0.3], \"u\": [1], \"kernels\": [\"linearize\"]}",
+      "{\"q\": [0.3], \"u\": [1], \"kernels\": [\"inverse_dynamics\"]}",
+      "{\"q\": [0.3], \"u\": [1], \"kernels\": [\"inverse_dynamics\"], \"input_udot\": []}",
+      "{\"q\": [0.3], \"u\": [1], \"kernels\": [1]}",
+      "{\"q\": [0.3], \"u\": [1], \"kernels\": [\"forcing\", \"forcing\"]}",
   };
   for (const char* line : bad) {
     INFO(line);

@@ -101,6 +101,10 @@ class Model {
   bool has_controller() const;
   /// Whether the table holds `kernel` (false for a kernel it cannot hold).
   bool has(Kernel kernel) const;
+  /// The table, and the Params storage the methods bind: for a caller that
+  /// calls a kernel by its spec (kernel_thunks.hpp; the runner's batch command).
+  const ModelTable& table() const { return table_; }
+  const void* parameter_storage() const { return params(); }
 
  private:
   const void* params() const { return parameters_.data(); }
