@@ -99,6 +99,11 @@ def check_missing_three(kanegen, csv_path, model, work):
     check(r.returncode == 1 and "KANEGEN_THREE_JS=" in r.stderr and "three.cjs" in r.stderr,
           "a missing three.js is refused: %r" % r.stderr)
     check(not os.path.exists(out), "nothing written without three.js")
+    r = subprocess.run([kanegen, "simulate", model, "--t-end", "0.1", "--animate", out], capture_output=True,
+                       text=True, env=env)
+    check(r.returncode == 1 and "KANEGEN_THREE_JS=" in r.stderr and "kanegen: generating" not in r.stderr,
+          "simulate --animate (html) without three.js is refused before the run: %r" % r.stderr)
+    check(not os.path.exists(out), "nothing written by simulate --animate without three.js")
 
 
 def check_arm(kanegen, model, work):
