@@ -15,6 +15,9 @@ payload of models/spatial_arm2.json against its point output. Tolerance:
 the run; float32 keeps about 6e-8 L, so this is loose by two orders only to
 allow a few roundings in the page's matrix products.
 
+URDF <visual> shapes (tests/data/models/animate_visuals.urdf) against
+positions computed by hand (visuals_reference.py), their names as text.
+
 Also: hostile names (tests/data/models/hostile_names.urdf, and CSV columns
 that try to end the page's <script>) come back as text, byte for byte, and
 run nothing; playback of models/flexible_arm10.json over 10 s draws at least
@@ -210,6 +213,40 @@ def check_free_body(kanegen, model, work):
     print("free_body: origins at most %.3g m off (tolerance %.3g m)" % (worst, 1e-5 * reach))
 
 
+def check_visuals(kanegen, source, work):
+    """URDF <visual> shapes as drawn (three.js world matrices, float32) against visuals_reference.py; the
+    visuals' names and the mesh's file name, which try to end the page's script, stay text."""
+    import visuals_reference as ref
+    model = os.path.join(source, ref.MODEL)
+    csv_path = os.path.join(work, "visuals.csv")
+    with open(csv_path, "w") as f:
+        f.write(ref.csv_text())
+    out = os.path.join(work, "visuals_html")
+    run(kanegen, "animate", csv_path, model, "-o", out, "--format", "html", "--quiet")
+    page = os.path.join(out, "animate_visuals.html")
+    with open(page, encoding="utf-8") as f:
+        text = f.read().lower()
+    check(text.count("</script") == 3 and "hand.stl" not in text,
+          "the page ends 3 scripts, no visual name ends one, the mesh's file is not in it: %d" %
+          text.count("</script"))
+    result = probe(page, times="page", scales=[1], shapes=["arm", "hand"])
+    if not result:
+        return
+    check(len(result["at"]) == 3, "visuals: 3 frames read, got %d" % len(result["at"]))
+    tol = 1e-5 * 0.6  # the hand's sphere reaches 0.55 m from the origin
+    worst = 0.0
+    for at, (t, q1, q2) in zip(result["at"], ref.ROWS):
+        check(at["t"] == t, "visuals: the page's frame at t=%r is the CSV's row t=%r" % (at["t"], t))
+        arm = [(s["kind"], s["points"]) for s in at["shapes"]["arm"]]
+        hand = [(s["kind"], s["points"]) for s in at["shapes"]["hand"]]
+        worst = max(worst, ref.compare(arm, hand, q1, q2, tol, check))
+    names = [s["name"] for s in result["at"][0]["shapes"]["arm"] + result["at"][0]["shapes"]["hand"]]
+    check(names == ["</script><script>window.pwned=1</script>", "<!-- tube & 'x' \"", "ball", ""],
+          "the visuals' names come back as text, byte for byte: %r" % names)
+    check(result["names"]["scripts"] == 3 and not result["names"]["pwned"], "no script from a visual's name")
+    print("visuals: shapes at most %.3g m off the hand-computed positions (tolerance %.3g m)" % (worst, tol))
+
+
 def hostile_run(source, work):
     """hostile_names.urdf and a 3-row CSV of it whose extra columns try to end the page's script."""
     model = os.path.join(source, "tests/data/models/hostile_names.urdf")
@@ -300,6 +337,7 @@ def main():
     check_spatial(a.kanegen, os.path.join(a.source, "models/spatial_arm2.json"), a.work)
     check_free_body(a.kanegen, os.path.join(a.source, "tests/consistency/data/free_body.json"), a.work)
     check_hostile(a.kanegen, a.source, a.work)
+    check_visuals(a.kanegen, a.source, a.work)
     check_fps(a.kanegen, a.source, a.work)
     if failures:
         print("%d failure(s)" % len(failures))

@@ -26,6 +26,8 @@ except ImportError:
     sys.exit(77)
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
 TOL = 1e-9
 failures = []
 
@@ -197,6 +199,35 @@ def check_refusals(kanegen, source, work):
     check(not os.path.exists(out) or not os.listdir(out), "nothing written for refused input")
 
 
+def check_visuals(kanegen, source, work):
+    """URDF <visual> shapes: box, cylinder, sphere and a mesh's inertia box, against visuals_reference.py."""
+    import visuals_reference as ref
+    model = os.path.join(source, ref.MODEL)
+    csv_path = os.path.join(work, "visuals.csv")
+    with open(csv_path, "w") as f:
+        f.write(ref.csv_text())
+    out = os.path.join(work, "visuals_vtk")
+    r = subprocess.run([kanegen, "animate", csv_path, model, "-o", out, "--quiet"], capture_output=True, text=True)
+    check(r.returncode == 0, "animate of animate_visuals.urdf: %r" % r.stderr)
+    check("link 'hand': a <visual> mesh ('package://hand/</script>hand.stl') is drawn as the box of the link's "
+          "mass and inertia" in r.stderr, "the mesh is said to be drawn as the inertia box: %r" % r.stderr)
+    frames = frames_of(os.path.join(out, "animate_visuals.pvd"))
+    check(len(frames) == 3, "3 frames, got %d" % len(frames))
+    worst = 0.0
+    for (t, path), (_, q1, q2) in zip(frames, ref.ROWS):
+        g = read_vtu(path)
+        shape = [g["points"][(g["body"] == b) & (g["kind"] == 1)].tolist() for b in (0, 1)]
+        arm = [("box", shape[0][:8]), ("cylinder", shape[0][8:])]
+        hand = [("sphere", shape[1][:ref.SPHERE_POINTS]), ("inertia", shape[1][ref.SPHERE_POINTS:])]
+        worst = max(worst, ref.compare(arm, hand, q1, q2, TOL, check))
+        for b, expected in ((0, {12: 1, 9: ref.SIDES, 7: 2}), (1, {12: 1, 9: ref.SIDES * (ref.RINGS - 1),
+                                                                   5: 2 * ref.SIDES})):
+            types = [c for c, body in zip(g["cells"], g["cell_body"]) if body == b and c != 1]
+            counts = {c: types.count(c) for c in set(types)}
+            check(counts == expected, "t=%g: body %d's shape cells %s, expected %s" % (t, b, counts, expected))
+    print("visuals: shapes at most %.3g m off the hand-computed positions (tolerance %g m)" % (worst, TOL))
+
+
 def same_files(a, b):
     """The names of the files in a and b, and whether each is the same bytes in both."""
     names = sorted(os.listdir(a))
@@ -263,6 +294,7 @@ def main():
     check_free_body(a.kanegen, os.path.join(a.source, "tests/consistency/data/free_body.json"), a.work)
     check_mesh(a.kanegen, os.path.join(a.source, "models/plate_hub.json"), a.work)
     check_simulate_animate(a.kanegen, a.source, a.work)
+    check_visuals(a.kanegen, a.source, a.work)
     if failures:
         print("%d failure(s)" % len(failures))
         return 1

@@ -7,7 +7,7 @@ probe reads what it draws through its window.kanegen API (the three.js
 groups' world matrices). check_html.py says what to read and compares.
 
 probe(page, times=[t...] or "page" (every frame's time), scales=[s...],
-bodies=[name...], beams=[name...], boxes=[name...] (a rigid part's drawn
+bodies=[name...], beams=[name...], shapes=[name...] (a rigid part's drawn
 corners), columns=[plotted column...], screenshot=PNG path, play_seconds=S,
 controls=a beam whose nodes the magnification moves) returns a dict:
 errors (console errors, uncaught exceptions, requests that are not file: or
@@ -70,13 +70,13 @@ def _errors(driver):
 
 
 _READ = """
-const [t, scale, bodies, beams, boxes] = arguments, k = window.kanegen;
+const [t, scale, bodies, beams, shapes] = arguments, k = window.kanegen;
 k.setScale(scale);
 k.setTime(t);
-const out = { t: k.time(), scale, bodies: {}, nodes: {}, boxes: {} };
+const out = { t: k.time(), scale, bodies: {}, nodes: {}, shapes: {} };
 for (const name of bodies) out.bodies[name] = k.bodyPosition(name);
 for (const name of beams) out.nodes[name] = k.nodePositions(name);
-for (const name of boxes) out.boxes[name] = k.shapePoints(name);
+for (const name of shapes) out.shapes[name] = k.shapes(name);
 return out;
 """
 
@@ -156,7 +156,7 @@ def probe(page, **plan):
         if times == "page":
             times = driver.execute_script("return window.kanegen.times()")
         result["at"] = [driver.execute_script(_READ, t, s, plan.get("bodies", []), plan.get("beams", []),
-                                              plan.get("boxes", []))
+                                              plan.get("shapes", []))
                         for s in plan.get("scales", []) for t in times]
         if plan.get("columns"):  # the plotted columns, picked as a user would
             driver.execute_script(_PICK_COLUMNS, plan["columns"])
