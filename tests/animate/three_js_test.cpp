@@ -4,6 +4,8 @@
 // and the refusal of a file that is not such a build.
 #include "animate/three_js.hpp"
 
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <filesystem>
@@ -27,7 +29,9 @@ namespace {
 
 /// three_js_text with KANEGEN_THREE_JS set to a file holding text.
 std::string text_of(const std::string& text) {
-  const auto path = std::filesystem::temp_directory_path() / "kanegen_three_js_test.js";
+  // One file per process: ctest runs the test cases side by side.
+  const auto path =
+      std::filesystem::temp_directory_path() / ("kanegen_three_js_test." + std::to_string(getpid()) + ".js");
   std::ofstream(path, std::ios::binary) << text;
   setenv("KANEGEN_THREE_JS", path.c_str(), 1);
   try {
