@@ -14,7 +14,7 @@ packages=(
   pybind11-dev python3-dev python3-numpy python3-pytest
   gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
   python3-vtk9
-  nodejs chromium
+  nodejs chromium chromium-driver python3-selenium libjs-three
 )
 # libsundials-dev: CVODE, the runtime's adaptive implicit integrator
 # (--integrator implicit); libomp-dev: clang's OpenMP, which SUNDIALS's CMake
@@ -34,12 +34,16 @@ packages=(
 # 97 MB downloaded; 90 s to install here. python3-vtk9: VTK's Python
 # bindings, with which tests/animate reads back what `kanegen animate`
 # writes (VTK's own reader, not ours); 47 MB installed, with its libraries.
-# nodejs, npm and chromium: `kanegen animate --format html` inlines three.js,
-# which `npm ci` puts in viewer/node_modules (the version viewer/package-lock.json
-# pins; CMake finds it there and installs it with kanegen), and its test
-# (tests/animate/check_html.py) opens the page in headless chromium driven by
-# playwright-core from the same folder. npm is installed only if no npm came
-# with nodejs: NodeSource's nodejs carries its own and conflicts with Debian's.
+# nodejs and npm: `kanegen animate --format html` inlines three.js, which
+# `npm ci` puts in viewer/node_modules (the version viewer/package-lock.json
+# pins; CMake finds it there and installs it with kanegen); npm is installed
+# only if no npm came with nodejs: NodeSource's nodejs carries its own and
+# conflicts with Debian's. libjs-three: Debian's three.js (r111), which
+# kanegen inlines instead where npm's is missing (a machine that reaches
+# Debian's archive but not the npm registry). chromium, chromium-driver and
+# python3-selenium: the browser test (tests/animate/check_html.py) opens the
+# pages in headless chromium driven through WebDriver. Installed:
+# libjs-three 10 MB, chromium-driver 25 MB, python3-selenium 0.6 MB.
 # kanegen fmu needs no package of its own (its ZIP writer and FMI declarations
 # are kanegen's); tests/fmu builds each FMU's sources/ with g++ and clang++
 # (listed above) and reads the FMUs back with python3's zipfile and xml.etree.
@@ -52,10 +56,10 @@ apt-get update -q
 apt-get install -y -q --no-install-recommends "${packages[@]}"
 command -v npm >/dev/null || apt-get install -y -q --no-install-recommends npm
 # A machine that reaches Debian's archive but not the npm registry (or not
-# its certificate) still builds and tests everything else: --format vtk, and
-# the browser test skips with the reason (.ci/run says so too).
+# its certificate) builds and tests everything too: --format html then
+# inlines Debian's libjs-three.
 if ! (cd "$(dirname "$0")/../viewer" && npm ci --no-audit --no-fund); then
-  echo "install-deps.sh: warning: npm ci in viewer/ failed (is the npm registry reachable, and its" \
-    "certificate trusted?); kanegen animate --format html and its browser test need viewer/node_modules:" \
-    "run \`npm ci\` in viewer/ where the registry is reachable" >&2
+  echo "install-deps.sh: note: npm ci in viewer/ failed (is the npm registry reachable, and its" \
+    "certificate trusted?); kanegen animate --format html inlines Debian's three.js r111 (libjs-three)" \
+    "instead of npm's r185" >&2
 fi

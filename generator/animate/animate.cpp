@@ -10,6 +10,7 @@
 #include "animate/html_page.hpp"
 #include "animate/result_table.hpp"
 #include "animate/scene.hpp"
+#include "animate/shapes.hpp"
 #include "animate/three_js.hpp"
 #include "animate/viewer_data.hpp"
 #include "animate/vtk_writer.hpp"
@@ -111,7 +112,7 @@ std::vector<int> coordinate_columns(const ResultTable& table, const numeric::Ins
 /// The VTK series: a .vtu per frame, then the .pvd that lists them.
 std::string write_vtk(const AnimateOptions& o, const std::string& name, const numeric::Instance& instance,
                       const ResultTable& table, const std::vector<int>& columns, const fs::path& dir) {
-  const SceneBuilder builder(instance, o.scale);
+  const SceneBuilder builder(instance, o.scale, body_shapes(instance, o.model));
   const std::vector<std::size_t> rows = chosen_rows(table.rows.size(), o.frames);
   std::vector<std::pair<double, std::string>> frames;
   std::vector<double> q(columns.size());
@@ -134,7 +135,13 @@ std::string write_vtk(const AnimateOptions& o, const std::string& name, const nu
 std::string write_html(const AnimateOptions& o, const std::string& three, const std::string& name,
                        const numeric::Instance& instance, const ResultTable& table,
                        const std::vector<int>& columns, const fs::path& dir) {
-  ViewerRun run{name, &instance, &table, chosen_rows(table.rows.size(), o.frames), columns, o.scale};
+  ViewerRun run{name,
+                &instance,
+                &table,
+                chosen_rows(table.rows.size(), o.frames),
+                columns,
+                o.scale,
+                body_shapes(instance, o.model)};
   if (o.verbose) std::fprintf(stderr, "kanegen: animate: %zu frames into one page\n", run.rows.size());
   const fs::path html = dir / (name + ".html");
   write_whole(html, viewer_page(three, viewer_json(run)));

@@ -93,10 +93,10 @@ bool vtk_cell_of(const std::string& calculix_type, CellType* type) {
   return false;
 }
 
-SceneBuilder::SceneBuilder(const numeric::Instance& instance, double scale)
-    : instance_(instance), scale_(scale), boxes_(instance.bodies.size()) {
-  for (std::size_t b = 0; b < instance.bodies.size(); ++b)
-    boxes_[b].corners = equivalent_box(instance.bodies[b], &boxes_[b].drawn);
+SceneBuilder::SceneBuilder(const numeric::Instance& instance, double scale,
+                           std::vector<std::vector<Shape>> shapes)
+    : instance_(instance), scale_(scale), shapes_(std::move(shapes)) {
+  shapes_.resize(instance.bodies.size());
 }
 
 void SceneBuilder::add_rigid(Scene& scene, int body, const Pose<double>& pose) const {
@@ -107,12 +107,26 @@ void SceneBuilder::add_rigid(Scene& scene, int body, const Pose<double>& pose) c
   if (joint.motion == numeric::Motion::rotation || joint.motion == numeric::Motion::translation)
     scene.joint_axis[origin] = numeric::mul(pose.rotation, joint.axis);
   scene.cells.push_back({CellType::vertex, {origin}, body});
-  const Box& box = boxes_[body];
-  if (!box.drawn) return;
-  Scene::Cell cell{CellType::hexahedron, {}, body};
-  for (const auto& corner : box.corners)
-    cell.points.push_back(add_point(scene, world_point(pose, corner), body, PointKind::box_corner));
-  scene.cells.push_back(std::move(cell));
+  for (const Shape& shape : shapes_[body]) {
+    const std::int32_t first = static_cast<std::int32_t>(scene.points.size());
+    for (const auto& p : shape.points) add_point(scene, world_point(pose, p), body, PointKind::shape_point);
+    if (shape.hexahedron) {
+      scene.cells.push_back(
+          {CellType::hexahedron,
+           {first, first + 1, first + 2, first + 3, first + 4, first + 5, first + 6, first + 7},
+           body});
+      continue;
+    }
+    for (const std::vector<int>& face : shape.faces) {
+      Scene::Cell cell{face.size() == 3   ? CellType::triangle
+                       : face.size() == 4 ? CellType::quad
+                                          : CellType::polygon,
+                       {},
+                       body};
+      for (int p : face) cell.points.push_back(first + p);
+      scene.cells.push_back(std::move(cell));
+    }
+  }
 }
 
 void SceneBuilder::add_elastic(Scene& scene, int body, const Pose<double>& pose,

@@ -4,9 +4,10 @@
 // (numeric/poses.hpp) at the frame's coordinates:
 //  - each body's frame origin, a vertex carrying the world direction of the
 //    axis of the joint that moves it (a glyph in ParaView);
-//  - each rigid part with mass as the box of equal mass and principal moments
-//    (sides sqrt(6 (I_j + I_k - I_i) / m) along its principal axes, about
-//    its centre of mass);
+//  - each rigid part as its shapes (animate/shapes.hpp): a URDF link's
+//    <visual> boxes, cylinders and spheres, else, with mass, the box of equal
+//    mass and principal moments (sides sqrt(6 (I_j + I_k - I_i) / m) along
+//    its principal axes, about its centre of mass);
 //  - each beam as a polyline through its displaced nodes;
 //  - each mesh body as its elements, deformed.
 // Elastic displacements are drawn magnified by `scale` and carried unscaled
@@ -18,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "animate/shapes.hpp"
 #include "numeric/instance.hpp"
 #include "numeric/poses.hpp"
 
@@ -27,15 +29,17 @@ namespace kanegen::animate {
 enum class CellType : std::uint8_t {
   vertex = 1,
   poly_line = 4,
+  triangle = 5,
+  polygon = 7,
   quad = 9,
   hexahedron = 12,
   quadratic_quad = 23,
   quadratic_hexahedron = 25,
 };
 
-/// What a point is: a body frame's origin, a corner of a rigid body's
-/// box, or a node of a beam or a mesh.
-enum class PointKind : std::int32_t { frame_origin = 0, box_corner = 1, elastic_node = 2 };
+/// What a point is: a body frame's origin, a point of a rigid part's shape
+/// (a box's corner, a cylinder's rim, a sphere's), or a node of a beam or a mesh.
+enum class PointKind : std::int32_t { frame_origin = 0, shape_point = 1, elastic_node = 2 };
 
 struct Scene {
   std::vector<std::array<double, 3>> points;        ///< world
@@ -74,25 +78,22 @@ bool vtk_cell_of(const std::string& calculix_type, CellType* type);
 
 class SceneBuilder {
  public:
-  /// `scale` magnifies the elastic displacements drawn.
-  SceneBuilder(const numeric::Instance& instance, double scale);
+  /// `scale` magnifies the elastic displacements drawn; `shapes`, per body, its rigid part's
+  /// (body_shapes).
+  SceneBuilder(const numeric::Instance& instance, double scale, std::vector<std::vector<Shape>> shapes);
 
   /// The scene at the kernels' coordinates q (as a run's CSV has them: a
   /// spherical joint's quaternion, numeric/spherical.hpp).
   Scene at(const std::vector<double>& kernel_q) const;
 
  private:
-  struct Box {
-    bool drawn = false;
-    std::array<std::array<double, 3>, 8> corners{};  ///< body frame, VTK hexahedron order
-  };
   void add_rigid(Scene& scene, int body, const numeric::Pose<double>& pose) const;
   void add_elastic(Scene& scene, int body, const numeric::Pose<double>& pose,
                    const std::vector<numeric::Vec<double>>& moves) const;
 
   const numeric::Instance& instance_;
   double scale_;
-  std::vector<Box> boxes_;  ///< per body
+  std::vector<std::vector<Shape>> shapes_;  ///< per body
 };
 
 }  // namespace kanegen::animate

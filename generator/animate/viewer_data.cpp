@@ -70,8 +70,7 @@ void add_pose(Frames& frames, const numeric::Pose<double>& pose, Eigen::Quaterni
     frames.poses.push_back(static_cast<float>(x));
 }
 
-Frames frames_of(const ViewerRun& run, const std::vector<std::array<std::array<double, 3>, 8>>& boxes,
-                 const std::vector<bool>& drawn) {
+Frames frames_of(const ViewerRun& run) {
   const numeric::Instance& instance = *run.instance;
   Frames frames;
   std::vector<Eigen::Quaterniond> last(instance.bodies.size(), Eigen::Quaterniond::Identity());
@@ -86,8 +85,9 @@ Frames frames_of(const ViewerRun& run, const std::vector<std::array<std::array<d
       const auto world = [&](const Vec<double>& p) {
         return numeric::add(pose.origin, numeric::mul(pose.rotation, p));
       };
-      if (drawn[b])
-        for (const auto& corner : boxes[b]) frames.bounds.add(world(corner));
+      if (b < run.shapes.size())
+        for (const Shape& shape : run.shapes[b])
+          for (const auto& p : shape.points) frames.bounds.add(world(p));
       for (std::size_t n = 0; n < states.node_moves[b].size(); ++n) {
         const Vec<double>& move = states.node_moves[b][n];
         for (double x : move) frames.moves.push_back(static_cast<float>(x));
@@ -125,8 +125,18 @@ const char* motion_name(numeric::Motion motion) {
   return "fixed";
 }
 
-std::string body_json(const numeric::Instance& instance, std::size_t b,
-                      const std::array<std::array<double, 3>, 8>& box, bool drawn, int first_node) {
+/// A rigid part's shape: its kind, name (untrusted: a JSON string safe in a <script>), points (body
+/// frame) and faces (a hexahedron's too: the page draws a box's 12 edges from its 8 points).
+std::string shape_json(const Shape& shape) {
+  std::string faces = "[";
+  for (std::size_t f = 0; f < shape.faces.size(); ++f) faces += (f ? "," : "") + number_list(shape.faces[f]);
+  return "{\"kind\":\"" + shape.kind + "\",\"name\":" + script_json_string(shape.name) +
+         ",\"points\":" + point_list(shape.points) + ",\"faces\":" + faces +
+         "],\"hexahedron\":" + (shape.hexahedron ? "true" : "false") + "}";
+}
+
+std::string body_json(const numeric::Instance& instance, std::size_t b, const std::vector<Shape>& shapes,
+                      int first_node) {
   const numeric::BodyData& body = instance.bodies[b];
   static const numeric::JointData none{};  // a body no joint carries: drawn where it is, no glyph
   const numeric::JointData& joint = body.joint >= 0 ? instance.joints[body.joint] : none;
@@ -134,8 +144,9 @@ std::string body_json(const numeric::Instance& instance, std::size_t b,
                   ",\"joint\":" + script_json_string(joint.name) + ",\"motion\":\"" +
                   motion_name(joint.motion) + "\"" + ",\"axis\":" + point_list({joint.axis}) +
                   ",\"mass\":" + short_number(body.mass);
-  s += ",\"box\":" +
-       (drawn ? point_list(std::vector<Vec<double>>(box.begin(), box.end())) : std::string("null"));
+  s += ",\"shapes\":[";
+  for (std::size_t k = 0; k < shapes.size(); ++k) s += (k ? "," : "") + shape_json(shapes[k]);
+  s += "]";
   s += ",\"elastic\":" + (body.elastic ? elastic_json(*body.elastic, first_node) : std::string("null"));
   return s + "}";
 }
@@ -165,14 +176,7 @@ std::string float32_base64(const std::vector<float>& values) {
 
 std::string viewer_json(const ViewerRun& run) {
   const numeric::Instance& instance = *run.instance;
-  std::vector<std::array<std::array<double, 3>, 8>> boxes(instance.bodies.size());
-  std::vector<bool> drawn(instance.bodies.size());
-  for (std::size_t b = 0; b < instance.bodies.size(); ++b) {
-    bool d = false;
-    boxes[b] = equivalent_box(instance.bodies[b], &d);
-    drawn[b] = d;
-  }
-  const Frames frames = frames_of(run, boxes, drawn);
+  const Frames frames = frames_of(run);
   std::string times = "[";
   for (std::size_t f = 0; f < run.rows.size(); ++f)
     times += (f ? "," : "") + runtime::format_double(run.table->rows[run.rows[f]][0]);
@@ -183,7 +187,8 @@ std::string viewer_json(const ViewerRun& run) {
   s += ",\"bodies\":[";
   int first_node = 0;
   for (std::size_t b = 0; b < instance.bodies.size(); ++b) {
-    s += (b ? "," : "") + body_json(instance, b, boxes[b], drawn[b], first_node);
+    static const std::vector<Shape> none;
+    s += (b ? "," : "") + body_json(instance, b, b < run.shapes.size() ? run.shapes[b] : none, first_node);
     if (instance.bodies[b].elastic) first_node += static_cast<int>(instance.bodies[b].elastic->nodes.size());
   }
   s += "],\"nodes\":" + std::to_string(first_node) + "," + columns_json(run);

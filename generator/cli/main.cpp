@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "animate/animate.hpp"
+#include "animate/three_js.hpp"
 #include "cli/modes.hpp"
 #include "cli/plot.hpp"
 #include "cli/preflight.hpp"
@@ -235,7 +236,8 @@ struct SimulateCommand {
   CLI::App* command = nullptr;
   RunOptions run;
   ForwardedOptions forwarded;
-  std::string plot;  ///< --plot FIG.png
+  std::string plot;                          ///< --plot FIG.png
+  kanegen::animate::AnimateOptions animate;  ///< --animate DIR (its output_dir) and --animate-*
 };
 
 void add_simulate(CLI::App& app, SimulateCommand& c) {
@@ -249,12 +251,36 @@ void add_simulate(CLI::App& app, SimulateCommand& c) {
       ->add_option("--plot", c.plot,
                    "also draw the result, every column against t, into FIG.png (kanegen plot)")
       ->type_name("FIG.png");
+  kanegen::animate::AnimateOptions& a = c.animate;
+  a.format = "html";
+  CLI::Option* animate =
+      c.command->add_option("--animate", a.output_dir,
+                            "also draw the run frame by frame into DIR (kanegen animate): DIR/MODEL.html, or "
+                            "DIR/MODEL.pvd and its frames with --animate-format vtk");
+  animate->type_name("DIR");
+  c.command
+      ->add_option("--animate-format", a.format,
+                   "what --animate writes: html, one page for the browser, or vtk, a ParaView series")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"vtk", "html"}))
+      ->needs(animate);
+  c.command->add_option("--animate-scale", a.scale, "--animate: magnification of the elastic displacements")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e12))
+      ->needs(animate);
+  c.command
+      ->add_option("--animate-frames", a.frames, "--animate: at most this many frames, spread over the run")
+      ->capture_default_str()
+      ->check(CLI::Range(2, 1000000))
+      ->needs(animate);
 }
 
-/// The CSV of a `simulate --plot` run without -o: a temporary file next to
-/// the plot, copied to stdout afterwards (as without --plot) and removed.
-std::string temporary_csv(const std::string& png) {
-  const std::filesystem::path p(png);
+/// The CSV of a `simulate --plot` or `--animate` run without -o: a temporary
+/// file next to the plot (or in the animation's directory), copied to stdout
+/// afterwards (as without them) and removed.
+std::string temporary_csv(const SimulateCommand& c) {
+  const std::filesystem::path p =
+      c.plot.empty() ? std::filesystem::path(c.animate.output_dir) / "run" : std::filesystem::path(c.plot);
   return ((p.has_parent_path() ? p.parent_path() : std::filesystem::path(".")) /
           ("." + p.filename().string() + ".csv.tmp." + std::to_string(getpid())))
       .string();
@@ -269,28 +295,50 @@ void pass_to_stdout(const std::string& csv) {
   std::cout << text.str() << std::flush;
 }
 
-int simulate_and_plot(const SimulateCommand& c, const std::string& runner, std::vector<std::string> args) {
-  const auto given = c.forwarded.values.find("--output");
-  const bool to_file = given != c.forwarded.values.end() && !given->second.empty() &&
-                       given->second[0] != "-" && !given->second[0].empty();
-  const std::string csv = to_file ? given->second[0] : temporary_csv(c.plot);
-  if (!to_file) {
-    args.erase(std::remove(args.begin(), args.end(), "-"), args.end());
-    args.erase(std::remove(args.begin(), args.end(), "--output"), args.end());
-    args.insert(args.end(), {"--output", csv});
-    kanegen::cli::create_output_directory(c.plot);
-  }
-  int status = kanegen::runner::run_program(runner, args);
-  if (status == 0) {
+/// --plot and --animate, from the run's CSV.
+int draw(const SimulateCommand& c, const std::string& csv) {
+  int status = 0;
+  if (!c.plot.empty()) {
     kanegen::cli::PlotOptions p;
     p.csv = csv;
     p.output = c.plot;
     p.title = std::filesystem::path(c.run.model).filename().string();
     p.verbose = !c.run.quiet;
+    status = kanegen::cli::plot(p);
+  }
+  if (status == 0 && !c.animate.output_dir.empty()) {
+    kanegen::animate::AnimateOptions a = c.animate;
+    a.result = csv;
+    a.model = c.run.model;
+    a.load = build_options(c.run).load;
+    if (const auto sets = c.forwarded.values.find("--set"); sets != c.forwarded.values.end())
+      a.sets = sets->second;
+    a.verbose = !c.run.quiet;
+    const std::string written = kanegen::animate::animate(a);
+    if (a.verbose)
+      std::fprintf(stderr, "kanegen: wrote %s (open it in %s)\n", written.c_str(),
+                   a.format == "html" ? "a web browser" : "ParaView");
+  }
+  return status;
+}
+
+int simulate_and_draw(const SimulateCommand& c, const std::string& runner, std::vector<std::string> args) {
+  const auto given = c.forwarded.values.find("--output");
+  const bool to_file = given != c.forwarded.values.end() && !given->second.empty() &&
+                       given->second[0] != "-" && !given->second[0].empty();
+  const std::string csv = to_file ? given->second[0] : temporary_csv(c);
+  if (!to_file) {
+    args.erase(std::remove(args.begin(), args.end(), "-"), args.end());
+    args.erase(std::remove(args.begin(), args.end(), "--output"), args.end());
+    args.insert(args.end(), {"--output", csv});
+    kanegen::cli::create_output_directory(csv);
+  }
+  int status = kanegen::runner::run_program(runner, args);
+  if (status == 0) {
     try {
-      status = kanegen::cli::plot(p);
+      status = draw(c, csv);
     } catch (...) {
-      if (!to_file) pass_to_stdout(csv);  // the result is kept even when its plot fails
+      if (!to_file) pass_to_stdout(csv);  // the result is kept even when its plot or animation fails
       throw;
     }
   }
@@ -317,10 +365,14 @@ int run_simulate(const SimulateCommand& c) {
     kanegen::cli::check_output_file(c.plot);
     kanegen::cli::gnuplot_or_throw();  // before the build and the run, not after
   }
+  if (!c.animate.output_dir.empty()) {  // the same for --animate: where it writes, and (html) three.js
+    kanegen::cli::check_output_directory(c.animate.output_dir);
+    if (c.animate.format == "html") kanegen::animate::three_js_text();
+  }
   const std::string runner = kanegen::runner::build_runner(c.run.model, b);
   if (const auto o = c.forwarded.values.find("--output"); o != c.forwarded.values.end())
     for (const std::string& output : o->second) kanegen::cli::create_output_directory(output);
-  if (!c.plot.empty()) return simulate_and_plot(c, runner, args);
+  if (!c.plot.empty() || !c.animate.output_dir.empty()) return simulate_and_draw(c, runner, args);
   return kanegen::runner::run_program(runner, args);
 }
 

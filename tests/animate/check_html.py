@@ -2,8 +2,9 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 """kanegen animate --format html, opened in headless Chromium.
 
-The page is loaded from file:// by playwright-core (npm, viewer/) driving
-Debian's chromium, and read through its window.kanegen API, which takes
+The page is loaded from file:// in Debian's chromium, driven through
+WebDriver (Debian's chromium-driver and python3-selenium: probe_page.py),
+and read through its window.kanegen API, which takes
 positions from the three.js groups' world matrices (float32). The reference
 is what check_vtk.py compares with: the generated kernels' outputs that
 `kanegen simulate` wrote for the same rows (frame origins against point
@@ -14,14 +15,20 @@ payload of models/spatial_arm2.json against its point output. Tolerance:
 the run; float32 keeps about 6e-8 L, so this is loose by two orders only to
 allow a few roundings in the page's matrix products.
 
+URDF <visual> shapes (tests/data/models/animate_visuals.urdf) against
+positions computed by hand (visuals_reference.py), their names as text.
+
 Also: hostile names (tests/data/models/hostile_names.urdf, and CSV columns
 that try to end the page's <script>) come back as text, byte for byte, and
 run nothing; playback of models/flexible_arm10.json over 10 s draws at least
 30 frames a second (requestAnimationFrame count over 3 s of playback); a
 missing three.js is an error that says how to get it, with nothing written.
 
-Skips (exit 77) when node, chromium or viewer/node_modules are missing,
-unless KANEGEN_REQUIRE_BROWSER is set (.ci/run sets it): then it fails.
+The three.js in the pages is the one kanegen finds: npm's (r185) where
+viewer/node_modules has it, else Debian's libjs-three (r111); the test says
+which. Skips (exit 77) when chromium, chromium-driver, python3-selenium or
+any three.js is missing, unless KANEGEN_REQUIRE_BROWSER is set (.ci/run sets
+it): then it fails.
 """
 import argparse
 import csv
@@ -32,6 +39,9 @@ import shutil
 import subprocess
 import sys
 import xml.etree.ElementTree as ET
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import probe_page  # noqa: E402
 
 MIN_FPS = 30
 failures = []
@@ -47,31 +57,26 @@ def run(*args, env=None):
     subprocess.run([str(a) for a in args], check=True, env=env)
 
 
-def browser_missing(viewer):
-    missing = []
-    if not shutil.which("node"):
-        missing.append("node (Debian's nodejs)")
-    if not os.path.exists("/usr/bin/chromium"):
-        missing.append("/usr/bin/chromium (Debian's chromium)")
-    for package in ("playwright-core", "three"):
-        if not os.path.isdir(os.path.join(viewer, "node_modules", package)):
-            missing.append("viewer/node_modules/%s (npm ci in viewer/)" % package)
-    return missing
+def browser_missing(kanegen, source, work):
+    """What the test needs and this machine lacks: the WebDriver path, and a three.js for kanegen to inline."""
+    out = probe_page.missing()
+    model, csv_path = hostile_run(source, work)[:2]
+    r = subprocess.run([kanegen, "animate", csv_path, model, "-o", os.path.join(work, "three_check"), "--format",
+                        "html", "--quiet"], capture_output=True, text=True)
+    if r.returncode != 0 and "three.js is not found" in r.stderr:
+        out.append("a three.js for kanegen to inline (%s)" % r.stderr.strip())
+    else:  # anything else is this test's to fail on
+        check(r.returncode == 0, "kanegen animate --format html of hostile_names.urdf: %r" % r.stderr)
+    return out
 
 
-def probe(viewer, work, page, **plan):
-    """What the page shows, read by probe_page.js."""
-    plan.update(page=page, viewer=viewer, chromium="/usr/bin/chromium")
-    plan_path = os.path.join(work, os.path.basename(page) + ".plan.json")
-    with open(plan_path, "w") as f:
-        json.dump(plan, f)
-    here = os.path.dirname(os.path.abspath(__file__))
-    r = subprocess.run(["node", os.path.join(here, "probe_page.js"), plan_path], capture_output=True, text=True,
-                       timeout=120)
-    if r.returncode != 0:
-        check(False, "%s: the browser probe failed: %s" % (page, r.stderr.strip()))
+def probe(page, **plan):
+    """What the page shows, read in headless chromium (probe_page.py)."""
+    try:
+        result = probe_page.probe(page, **plan)
+    except Exception as e:  # noqa: BLE001 (a failing browser is a failure of this test, with its reason)
+        check(False, "%s: the browser probe failed: %s" % (page, e))
         return None
-    result = json.loads(r.stdout)
     check(not result["errors"], "%s: errors in the page: %s" % (page, result["errors"]))
     return result
 
@@ -99,9 +104,14 @@ def check_missing_three(kanegen, csv_path, model, work):
     check(r.returncode == 1 and "KANEGEN_THREE_JS=" in r.stderr and "three.cjs" in r.stderr,
           "a missing three.js is refused: %r" % r.stderr)
     check(not os.path.exists(out), "nothing written without three.js")
+    r = subprocess.run([kanegen, "simulate", model, "--t-end", "0.1", "--animate", out], capture_output=True,
+                       text=True, env=env)
+    check(r.returncode == 1 and "KANEGEN_THREE_JS=" in r.stderr and "kanegen: generating" not in r.stderr,
+          "simulate --animate (html) without three.js is refused before the run: %r" % r.stderr)
+    check(not os.path.exists(out), "nothing written by simulate --animate without three.js")
 
 
-def check_arm(kanegen, viewer, model, work):
+def check_arm(kanegen, model, work):
     csv_path = os.path.join(work, "arm.csv")
     run(kanegen, "simulate", model, "--t-end", "0.3", "-o", csv_path, "--quiet")
     header, rows = read_csv(csv_path)
@@ -111,10 +121,11 @@ def check_arm(kanegen, viewer, model, work):
         "--quiet")
     page = os.path.join(out, "animate_arm.html")
     check(os.listdir(out) == ["animate_arm.html"], "one file, the page: %s" % os.listdir(out))
-    result = probe(viewer, work, page, times="page", scales=[10, 1], bodies=["hub", "motor", "link2"],
+    result = probe(page, times="page", scales=[10, 1], bodies=["hub", "motor", "link2"],
                    beams=["link2"], play_seconds=1, controls="link2")
     if not result:
         return
+    print("three.js r%s, inlined by kanegen, draws the pages" % result["three"])
     by_time = {row[0]: row for row in rows}
     reach = max(distance(point(header, row, name), [0, 0, 0]) for row in rows
                 for name in ("hub_origin", "motor_origin", "link2_origin"))
@@ -158,14 +169,14 @@ def check_arm_frame(header, row, at, tol):
     return worst
 
 
-def check_spatial(kanegen, viewer, model, work):
+def check_spatial(kanegen, model, work):
     """models/spatial_arm2.json: turns about z, then about y on a flexible link's tip node, in 3-D."""
     csv_path = os.path.join(work, "spatial.csv")
     run(kanegen, "simulate", model, "--t-end", "0.5", "-o", csv_path, "--quiet")
     header, rows = read_csv(csv_path)
     out = os.path.join(work, "spatial_html")
     run(kanegen, "animate", csv_path, model, "-o", out, "--format", "html", "--frames", "3", "--quiet")
-    result = probe(viewer, work, os.path.join(out, "spatial_arm2.html"), times="page", scales=[1],
+    result = probe(os.path.join(out, "spatial_arm2.html"), times="page", scales=[1],
                    bodies=["payload"])
     if not result:
         return
@@ -180,7 +191,7 @@ def check_spatial(kanegen, viewer, model, work):
     print("spatial_arm2: payload at most %.3g m off (tolerance %.3g m)" % (worst, 1e-5 * reach))
 
 
-def check_free_body(kanegen, viewer, model, work):
+def check_free_body(kanegen, model, work):
     """A box on a free joint carrying an arm on a spherical one: both turned by quaternions."""
     csv_path = os.path.join(work, "free_body.csv")
     run(kanegen, "simulate", model, "--t-end", "0.5", "-o", csv_path, "--quiet", "--u0", "base_wx=3",
@@ -188,7 +199,7 @@ def check_free_body(kanegen, viewer, model, work):
     header, rows = read_csv(csv_path)
     out = os.path.join(work, "free_body_html")
     run(kanegen, "animate", csv_path, model, "-o", out, "--format", "html", "--frames", "3", "--quiet")
-    result = probe(viewer, work, os.path.join(out, "free_body.html"), times="page", scales=[1],
+    result = probe(os.path.join(out, "free_body.html"), times="page", scales=[1],
                    bodies=["box", "arm"])
     if not result:
         return
@@ -204,8 +215,42 @@ def check_free_body(kanegen, viewer, model, work):
     print("free_body: origins at most %.3g m off (tolerance %.3g m)" % (worst, 1e-5 * reach))
 
 
-def check_hostile(kanegen, viewer, source, work):
-    """Names that try to end the page's script or open a comment stay text."""
+def check_visuals(kanegen, source, work):
+    """URDF <visual> shapes as drawn (three.js world matrices, float32) against visuals_reference.py; the
+    visuals' names and the mesh's file name, which try to end the page's script, stay text."""
+    import visuals_reference as ref
+    model = os.path.join(source, ref.MODEL)
+    csv_path = os.path.join(work, "visuals.csv")
+    with open(csv_path, "w") as f:
+        f.write(ref.csv_text())
+    out = os.path.join(work, "visuals_html")
+    run(kanegen, "animate", csv_path, model, "-o", out, "--format", "html", "--quiet")
+    page = os.path.join(out, "animate_visuals.html")
+    with open(page, encoding="utf-8") as f:
+        text = f.read().lower()
+    check(text.count("</script") == 3 and "hand.stl" not in text,
+          "the page ends 3 scripts, no visual name ends one, the mesh's file is not in it: %d" %
+          text.count("</script"))
+    result = probe(page, times="page", scales=[1], shapes=["arm", "hand"])
+    if not result:
+        return
+    check(len(result["at"]) == 3, "visuals: 3 frames read, got %d" % len(result["at"]))
+    tol = 1e-5 * 0.6  # the hand's sphere reaches 0.55 m from the origin
+    worst = 0.0
+    for at, (t, q1, q2) in zip(result["at"], ref.ROWS):
+        check(at["t"] == t, "visuals: the page's frame at t=%r is the CSV's row t=%r" % (at["t"], t))
+        arm = [(s["kind"], s["points"]) for s in at["shapes"]["arm"]]
+        hand = [(s["kind"], s["points"]) for s in at["shapes"]["hand"]]
+        worst = max(worst, ref.compare(arm, hand, q1, q2, tol, check))
+    names = [s["name"] for s in result["at"][0]["shapes"]["arm"] + result["at"][0]["shapes"]["hand"]]
+    check(names == ["</script><script>window.pwned=1</script>", "<!-- tube & 'x' \"", "ball", ""],
+          "the visuals' names come back as text, byte for byte: %r" % names)
+    check(result["names"]["scripts"] == 3 and not result["names"]["pwned"], "no script from a visual's name")
+    print("visuals: shapes at most %.3g m off the hand-computed positions (tolerance %.3g m)" % (worst, tol))
+
+
+def hostile_run(source, work):
+    """hostile_names.urdf and a 3-row CSV of it whose extra columns try to end the page's script."""
     model = os.path.join(source, "tests/data/models/hostile_names.urdf")
     robot = ET.parse(model).getroot()
     joints = [j.get("name") for j in robot.iter("joint")]
@@ -216,6 +261,12 @@ def check_hostile(kanegen, viewer, source, work):
         f.write(",".join(["t"] + joints + [j + "_dot" for j in joints] + extra) + "\n")
         for k in range(3):
             f.write(",".join(["%g" % (0.1 * k)] + ["%g" % (0.2 * k)] * (2 * len(joints) + len(extra))) + "\n")
+    return model, csv_path, joints, links, extra
+
+
+def check_hostile(kanegen, source, work):
+    """Names that try to end the page's script or open a comment stay text."""
+    model, csv_path, joints, links, extra = hostile_run(source, work)
     out = os.path.join(work, "hostile_html")
     run(kanegen, "animate", csv_path, model, "-o", out, "--format", "html", "--quiet")
     page = [os.path.join(out, p) for p in os.listdir(out)]
@@ -223,7 +274,7 @@ def check_hostile(kanegen, viewer, source, work):
     with open(page[0], encoding="utf-8") as f:
         text = f.read().lower()
     check(text.count("</script") == 3, "the page ends 3 scripts, and no name ends one: %d" % text.count("</script"))
-    result = probe(viewer, work, page[0], times=[0.1], scales=[1], bodies=links)
+    result = probe(page[0], times=[0.1], scales=[1], bodies=links)
     if not result:
         return
     names = result["names"]
@@ -235,7 +286,7 @@ def check_hostile(kanegen, viewer, source, work):
     check(names["title"] == names["model"] + " - kanegen animate", "the title is the model's name: %r" % names)
 
 
-def check_fps(kanegen, viewer, source, work):
+def check_fps(kanegen, source, work):
     """models/flexible_arm10.json over 10 s: 10 flexible links (4 modes each), 200 frames.
 
     The fps depend on what is drawn, not on the values, and generating,
@@ -257,7 +308,7 @@ def check_fps(kanegen, viewer, source, work):
             f.write(",".join("%.9g" % v for v in [t] + values + [0.0] * len(q)) + "\n")
     out = os.path.join(work, "arm10_html")
     run(kanegen, "animate", csv_path, model, "-o", out, "--format", "html", "--scale", "20", "--quiet")
-    result = probe(viewer, work, os.path.join(out, "flexible_arm10.html"), play_seconds=3)
+    result = probe(os.path.join(out, "flexible_arm10.html"), play_seconds=3)
     if not result:
         return
     played = result["played"]
@@ -274,8 +325,9 @@ def main():
     p.add_argument("--source", required=True)
     p.add_argument("--work", required=True)
     a = p.parse_args()
-    viewer = os.path.abspath(os.path.join(a.source, "viewer"))
-    missing = browser_missing(viewer)
+    shutil.rmtree(a.work, ignore_errors=True)  # a stale page would pass for a new one
+    os.makedirs(a.work)
+    missing = browser_missing(a.kanegen, a.source, a.work)
     if missing:
         message = "the browser test needs " + ", ".join(missing) + " (scripts/install-deps.sh installs them)"
         if os.environ.get("KANEGEN_REQUIRE_BROWSER"):
@@ -283,13 +335,12 @@ def main():
             return 1
         print("SKIP: " + message)
         return 77
-    shutil.rmtree(a.work, ignore_errors=True)  # a stale page would pass for a new one
-    os.makedirs(a.work)
-    check_arm(a.kanegen, viewer, os.path.join(a.source, "tests/data/models/animate_arm.json"), a.work)
-    check_spatial(a.kanegen, viewer, os.path.join(a.source, "models/spatial_arm2.json"), a.work)
-    check_free_body(a.kanegen, viewer, os.path.join(a.source, "tests/consistency/data/free_body.json"), a.work)
-    check_hostile(a.kanegen, viewer, a.source, a.work)
-    check_fps(a.kanegen, viewer, a.source, a.work)
+    check_arm(a.kanegen, os.path.join(a.source, "tests/data/models/animate_arm.json"), a.work)
+    check_spatial(a.kanegen, os.path.join(a.source, "models/spatial_arm2.json"), a.work)
+    check_free_body(a.kanegen, os.path.join(a.source, "tests/consistency/data/free_body.json"), a.work)
+    check_hostile(a.kanegen, a.source, a.work)
+    check_visuals(a.kanegen, a.source, a.work)
+    check_fps(a.kanegen, a.source, a.work)
     if failures:
         print("%d failure(s)" % len(failures))
         return 1

@@ -26,6 +26,8 @@ except ImportError:
     sys.exit(77)
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
 TOL = 1e-9
 failures = []
 
@@ -197,6 +199,88 @@ def check_refusals(kanegen, source, work):
     check(not os.path.exists(out) or not os.listdir(out), "nothing written for refused input")
 
 
+def check_visuals(kanegen, source, work):
+    """URDF <visual> shapes: box, cylinder, sphere and a mesh's inertia box, against visuals_reference.py."""
+    import visuals_reference as ref
+    model = os.path.join(source, ref.MODEL)
+    csv_path = os.path.join(work, "visuals.csv")
+    with open(csv_path, "w") as f:
+        f.write(ref.csv_text())
+    out = os.path.join(work, "visuals_vtk")
+    r = subprocess.run([kanegen, "animate", csv_path, model, "-o", out, "--quiet"], capture_output=True, text=True)
+    check(r.returncode == 0, "animate of animate_visuals.urdf: %r" % r.stderr)
+    check("link 'hand': a <visual> mesh ('package://hand/</script>hand.stl') is drawn as the box of the link's "
+          "mass and inertia" in r.stderr, "the mesh is said to be drawn as the inertia box: %r" % r.stderr)
+    frames = frames_of(os.path.join(out, "animate_visuals.pvd"))
+    check(len(frames) == 3, "3 frames, got %d" % len(frames))
+    worst = 0.0
+    for (t, path), (_, q1, q2) in zip(frames, ref.ROWS):
+        g = read_vtu(path)
+        shape = [g["points"][(g["body"] == b) & (g["kind"] == 1)].tolist() for b in (0, 1)]
+        arm = [("box", shape[0][:8]), ("cylinder", shape[0][8:])]
+        hand = [("sphere", shape[1][:ref.SPHERE_POINTS]), ("inertia", shape[1][ref.SPHERE_POINTS:])]
+        worst = max(worst, ref.compare(arm, hand, q1, q2, TOL, check))
+        for b, expected in ((0, {12: 1, 9: ref.SIDES, 7: 2}), (1, {12: 1, 9: ref.SIDES * (ref.RINGS - 1),
+                                                                   5: 2 * ref.SIDES})):
+            types = [c for c, body in zip(g["cells"], g["cell_body"]) if body == b and c != 1]
+            counts = {c: types.count(c) for c in set(types)}
+            check(counts == expected, "t=%g: body %d's shape cells %s, expected %s" % (t, b, counts, expected))
+    print("visuals: shapes at most %.3g m off the hand-computed positions (tolerance %g m)" % (worst, TOL))
+
+
+def same_files(a, b):
+    """The names of the files in a and b, and whether each is the same bytes in both."""
+    names = sorted(os.listdir(a))
+    if names != sorted(os.listdir(b)):
+        return False
+    for name in names:
+        with open(os.path.join(a, name), "rb") as f, open(os.path.join(b, name), "rb") as g:
+            if f.read() != g.read():
+                return False
+    return True
+
+
+def check_simulate_animate(kanegen, source, work):
+    """simulate --animate DIR: the series kanegen animate writes of the same CSV, with the run's --set values."""
+    arm = os.path.join(source, "tests/data/models/animate_arm.json")
+    csv_path, out = os.path.join(work, "sim_arm.csv"), os.path.join(work, "sim_arm_vtk")
+    run(kanegen, "simulate", arm, "--t-end", "0.3", "-o", csv_path, "--quiet", "--animate", out,
+        "--animate-format", "vtk", "--animate-frames", "3", "--animate-scale", "10")
+    alone = os.path.join(work, "sim_arm_alone")
+    run(kanegen, "animate", csv_path, arm, "-o", alone, "--frames", "3", "--scale", "10", "--quiet")
+    check(same_files(out, alone), "simulate --animate writes what animate writes of its CSV: %s, %s" %
+          (sorted(os.listdir(out)), sorted(os.listdir(alone))))
+    # double_pendulum with l1 = 2: link2's origin (the elbow) is 2 m from the shoulder at every frame, so
+    # the --set value reached the animation too (at the default l1 = 1 it would be 1 m). Without -o: the
+    # CSV still goes to stdout, and no temporary file stays in DIR.
+    pendulum = os.path.join(source, "models/double_pendulum.json")
+    out = os.path.join(work, "sim_pendulum_vtk")
+    r = subprocess.run([kanegen, "simulate", pendulum, "--t-end", "0.5", "--set", "l1=2", "--quiet", "--animate",
+                        out, "--animate-format", "vtk", "--animate-frames", "4"], capture_output=True, text=True)
+    check(r.returncode == 0 and r.stdout.startswith("t,shoulder,elbow,"), "the CSV on stdout: %r" % r.stderr)
+    check(sorted(os.listdir(out)) == ["double_pendulum.pvd"] + ["double_pendulum_%05d.vtu" % k for k in range(4)],
+          "simulate --animate without -o: the series and nothing else in DIR: %s" % os.listdir(out))
+    rows = [[float(x) for x in line.split(",")] for line in r.stdout.splitlines()[1:] if line]
+    frames = frames_of(os.path.join(out, "double_pendulum.pvd"))
+    check(len(frames) == 4 and frames[0][0] == rows[0][0] and frames[-1][0] == rows[-1][0],
+          "4 frames, the first and the last row among them: %s" % [t for t, _ in frames])
+    for t, path in frames:
+        g = read_vtu(path)
+        elbow = g["points"][(g["body"] == 1) & (g["kind"] == 0)]
+        q1 = next(row[1] for row in rows if row[0] == t)
+        expected = np.array([2 * math.cos(q1), 0.0, -2 * math.sin(q1)])  # about y: x' = (cos, 0, -sin)
+        err = np.abs(elbow[0] - expected).max() if len(elbow) == 1 else float("inf")
+        check(err < TOL, "simulate --set l1=2 --animate: t=%g: the elbow off by %.3g" % (t, err))
+    # Refused before anything is built: --animate-* without --animate, --animate onto a file.
+    r = subprocess.run([kanegen, "simulate", pendulum, "--t-end", "0.1", "--animate-frames", "3"],
+                       capture_output=True, text=True)
+    check(r.returncode != 0 and "--animate-frames requires --animate" in r.stderr, "needs --animate: %r" % r.stderr)
+    r = subprocess.run([kanegen, "simulate", pendulum, "--t-end", "0.1", "--animate", csv_path],
+                       capture_output=True, text=True)
+    check(r.returncode != 0 and csv_path in r.stderr and "kanegen: generating" not in r.stderr,
+          "--animate onto a file is refused before the build: %r" % r.stderr)
+
+
 def main():
     p = argparse.ArgumentParser()
     p.add_argument("--kanegen", required=True)
@@ -209,6 +293,8 @@ def main():
     check_refusals(a.kanegen, a.source, a.work)
     check_free_body(a.kanegen, os.path.join(a.source, "tests/consistency/data/free_body.json"), a.work)
     check_mesh(a.kanegen, os.path.join(a.source, "models/plate_hub.json"), a.work)
+    check_simulate_animate(a.kanegen, a.source, a.work)
+    check_visuals(a.kanegen, a.source, a.work)
     if failures:
         print("%d failure(s)" % len(failures))
         return 1

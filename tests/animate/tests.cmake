@@ -9,11 +9,13 @@ set_tests_properties("animate: vtk frames against the run's outputs" PROPERTIES 
                      ENVIRONMENT "KANEGEN_CACHE_DIR=${CMAKE_CURRENT_BINARY_DIR}/animate_cache")
 
 # --format html: the escaping of names and the mesh surface (Catch2), then
-# the page in headless Chromium (Debian's chromium driven by playwright-core
-# from viewer/node_modules) against the run's outputs, hostile names and the
-# frame rate (tests/animate/check_html.py). It skips without node, chromium
-# or viewer/node_modules, unless KANEGEN_REQUIRE_BROWSER is set (.ci/run).
-add_executable(test_animate ${CMAKE_CURRENT_LIST_DIR}/script_text_test.cpp ${CMAKE_CURRENT_LIST_DIR}/surface_test.cpp)
+# the page in headless Chromium (Debian's chromium driven through WebDriver:
+# chromium-driver and python3-selenium) against the run's outputs, hostile
+# names and the frame rate (tests/animate/check_html.py), with npm's three.js
+# or else Debian's libjs-three. It skips without them, unless
+# KANEGEN_REQUIRE_BROWSER is set (.ci/run).
+add_executable(test_animate ${CMAKE_CURRENT_LIST_DIR}/script_text_test.cpp ${CMAKE_CURRENT_LIST_DIR}/surface_test.cpp
+                            ${CMAKE_CURRENT_LIST_DIR}/three_js_test.cpp)
 target_compile_options(test_animate PRIVATE ${KANEGEN_WARNINGS})
 target_compile_definitions(test_animate PRIVATE KANEGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 target_link_libraries(test_animate PRIVATE kanegen_animate kanegen_model kanegen_catch_main)
