@@ -1010,7 +1010,17 @@ const Energies& energies(State& s) {
   });
 }
 
+/// Outlives every context that keeps a reference to it.
+const FlexibleBodies& no_flexible_bodies() {
+  static const FlexibleBodies none;
+  return none;
+}
+
 }  // namespace
+
+DerivationContext::DerivationContext(const model::Model& model, const symbolic::Variables& vars,
+                                     symbolic::Program& program, MassMatrixMethod method)
+    : DerivationContext(model, vars, program, method, no_flexible_bodies()) {}
 
 DerivationContext::DerivationContext(const model::Model& model, const symbolic::Variables& vars,
                                      symbolic::Program& program, MassMatrixMethod method,

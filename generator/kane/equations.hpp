@@ -139,12 +139,18 @@ enum class Product {
 /// and kept: a kernel asks for what it needs, and what no kernel asks for is
 /// never derived. The intermediates go to `program`, which must outlive the
 /// context (an expression graph of the program may be made before the
-/// products: it reads definitions as it meets them).
+/// products: it reads definitions as it meets them). The model, variables
+/// and flexible bodies are kept by reference and must outlive it too.
 class DerivationContext {
  public:
+  /// A model without flexible bodies' elastic models.
   DerivationContext(const model::Model& model, const symbolic::Variables& vars, symbolic::Program& program,
-                    MassMatrixMethod method = MassMatrixMethod::body_frames,
-                    const FlexibleBodies& flexible = {});
+                    MassMatrixMethod method = MassMatrixMethod::body_frames);
+  DerivationContext(const model::Model& model, const symbolic::Variables& vars, symbolic::Program& program,
+                    MassMatrixMethod method, const FlexibleBodies& flexible);
+  // A temporary would dangle: the context reads the bodies on each request.
+  DerivationContext(const model::Model&, const symbolic::Variables&, symbolic::Program&, MassMatrixMethod,
+                    FlexibleBodies&&) = delete;
   ~DerivationContext();
   DerivationContext(const DerivationContext&) = delete;
   DerivationContext& operator=(const DerivationContext&) = delete;
