@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "codegen/model_kernels.hpp"
 
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -8,6 +9,7 @@
 #include "codegen/cpp_printer.hpp"
 #include "codegen/cpp_text.hpp"
 #include "codegen/graph_derivative.hpp"
+#include "codegen/graph_substitution.hpp"
 #include "codegen/kernel_splitter.hpp"
 #include "codegen/unrolled_ldlt.hpp"
 #include "codegen/unrolled_saddle.hpp"
@@ -574,12 +576,55 @@ std::vector<Assignment> jacobian_entries(ExpressionGraph& graph, const std::vect
   return out;
 }
 
+/// f with the inputs 0: what the model's own forces give.
+GiNaC::ex unforced(const Derivation& d, int r) {
+  GiNaC::exmap no_inputs;
+  for (const GiNaC::symbol& tau : d.vars.tau) no_inputs[tau] = 0;
+  return d.eq.forcing()[r].subs(no_inputs);
+}
+
+/// The tree's inverse dynamics is Newton and Euler's recursion: rigid bodies only.
+bool has_recursive_inverse_dynamics(const Derivation& d) { return !d.eq.inverse_dynamics().inertial.empty(); }
+
+/// Row r of the recursive inverse dynamics, M udot - f(tau = 0), in q, u and udot.
+int inverse_dynamics_row(const Derivation& d, int r) {
+  GiNaC::exmap no_inputs;
+  for (const GiNaC::symbol& tau : d.vars.tau) no_inputs[tau] = 0;
+  return d.graph.add(d.eq.inverse_dynamics().inertial[r].subs(no_inputs));
+}
+
+/// The rows of the recursive inverse dynamics with u = 0 (none of its
+/// velocity terms) and udot replaced by `accelerations` (nodes; 0 or a
+/// kernel argument).
+std::vector<int> inverse_dynamics_at_rest(const Derivation& d, const std::vector<int>& accelerations) {
+  std::map<int, int> replaced;
+  for (int i = 0; i < d.n(); ++i) {
+    replaced[d.graph.add(d.vars.u[i])] = d.graph.constant(0.0);
+    replaced[d.graph.add(d.vars.udot[i])] = accelerations[i];
+  }
+  GraphSubstitution at_rest(d.graph, std::move(replaced));
+  std::vector<int> rows;
+  for (int r = 0; r < d.n(); ++r) rows.push_back(at_rest.of(inverse_dynamics_row(d, r)));
+  return rows;
+}
+
 /// df/dq and df/du: stiffness (elastic and geometric), damping, velocity
 /// terms, springs and the prescribed coordinates' terms, all through the
-/// graph's shared intermediates.
+/// graph's shared intermediates; on a rigid tree f = (f(tau) - f(0)) -
+/// ID(q, u, 0), the recursion's derivatives, O(n^2) (on arm7 9823
+/// operations against f's own 10700).
 KernelCode forcing_jacobian_kernel(const Derivation& d) {
   std::vector<int> forcing;
   for (int i = 0; i < d.n(); ++i) forcing.push_back(d.graph.add(d.eq.forcing()[i]));
+  if (has_recursive_inverse_dynamics(d)) {
+    std::map<int, int> no_acceleration;
+    for (int i = 0; i < d.n(); ++i) no_acceleration[d.graph.add(d.vars.udot[i])] = d.graph.constant(0.0);
+    GraphSubstitution at_rest(d.graph, std::move(no_acceleration));
+    for (int r = 0; r < d.n(); ++r)
+      forcing[r] =
+          d.graph.sum({d.graph.add(d.eq.forcing()[r] - unforced(d, r)),
+                       d.graph.product({d.graph.constant(-1.0), at_rest.of(inverse_dynamics_row(d, r))})});
+  }
   std::string fill;
   std::vector<Assignment> entries =
       jacobian_entries(d.graph, forcing, input_nodes(d.graph, d.vars.q), "dfdq", "NU * NQ", fill);
@@ -591,19 +636,37 @@ KernelCode forcing_jacobian_kernel(const Derivation& d) {
   return code;
 }
 
-/// d(M(q) a)/dq: the rows sum_s M_rs a_s, a the kernel's argument.
+/// d(M(q) a)/dq, a the kernel's argument: of the rows sum_s M_rs a_s, or on a
+/// rigid tree of M a = ID(q, 0, a) - ID(q, 0, 0) by the recursion (O(n^2)
+/// derivatives, where M's entries' grow faster), whichever has fewer
+/// operations (on arm7 M's: 1808 against 4233).
 KernelCode mass_matrix_product_jacobian_kernel(const Derivation& d) {
-  std::vector<int> products;
+  std::vector<int> a, composite;
+  for (int s = 0; s < d.n(); ++s) a.push_back(d.graph.input("a[" + str(s) + "]"));
   for (int r = 0; r < d.n(); ++r) {
     std::vector<int> terms;
     for (int s = 0; s < d.n(); ++s)
-      terms.push_back(d.graph.product(
-          {d.graph.add(d.eq.mass_matrix()[r * d.n() + s]), d.graph.input("a[" + str(s) + "]")}));
-    products.push_back(d.graph.sum(std::move(terms)));
+      terms.push_back(d.graph.product({d.graph.add(d.eq.mass_matrix()[r * d.n() + s]), a[s]}));
+    composite.push_back(d.graph.sum(std::move(terms)));
   }
   std::string fill;
-  const std::vector<Assignment> entries =
-      jacobian_entries(d.graph, products, input_nodes(d.graph, d.vars.q), "dMa_dq", "NU * NQ", fill);
+  std::vector<Assignment> entries =
+      jacobian_entries(d.graph, composite, input_nodes(d.graph, d.vars.q), "dMa_dq", "NU * NQ", fill);
+  if (has_recursive_inverse_dynamics(d)) {
+    const std::vector<int> with_a = inverse_dynamics_at_rest(d, a),
+                           without =
+                               inverse_dynamics_at_rest(d, std::vector<int>(d.n(), d.graph.constant(0.0)));
+    std::vector<int> recursive;
+    for (int r = 0; r < d.n(); ++r)
+      recursive.push_back(d.graph.sum({with_a[r], d.graph.product({d.graph.constant(-1.0), without[r]})}));
+    std::string recursive_fill;
+    std::vector<Assignment> by_recursion = jacobian_entries(
+        d.graph, recursive, input_nodes(d.graph, d.vars.q), "dMa_dq", "NU * NQ", recursive_fill);
+    if (count_operations(d.graph, by_recursion) < count_operations(d.graph, entries)) {
+      entries = std::move(by_recursion);
+      fill = std::move(recursive_fill);
+    }
+  }
   KernelCode code = printed(Kernel::mass_matrix_product_jacobian, d, entries);
   code.body = fill + code.body;
   return code;
@@ -628,13 +691,6 @@ KernelCode constraint_force_jacobian_kernel(const Derivation& d) {
   return code;
 }
 
-/// f with the inputs 0: what the model's own forces give.
-GiNaC::ex unforced(const Derivation& d, int r) {
-  GiNaC::exmap no_inputs;
-  for (const GiNaC::symbol& tau : d.vars.tau) no_inputs[tau] = 0;
-  return d.eq.forcing()[r].subs(no_inputs);
-}
-
 /// tau = M udot - f(tau = 0): on a rigid tree Newton and Euler's recursion
 /// (the context's inverse_dynamics); M udot - f formed from M and f is
 /// counted too, for the header (and is the body with flexible bodies).
@@ -646,11 +702,7 @@ KernelCode inverse_dynamics_kernel(const Derivation& d) {
     for (int s = 0; s < d.n(); ++s) m_udot += d.eq.mass_matrix()[r * d.n() + s] * d.vars.udot[s];
     const std::string target = "tau[" + str(r) + "]";
     formed.push_back({target, d.graph.add(m_udot - f)});
-    if (!d.eq.inverse_dynamics().inertial.empty()) {
-      GiNaC::exmap no_inputs;
-      for (const GiNaC::symbol& tau : d.vars.tau) no_inputs[tau] = 0;
-      recursive.push_back({target, d.graph.add(d.eq.inverse_dynamics().inertial[r].subs(no_inputs))});
-    }
+    if (has_recursive_inverse_dynamics(d)) recursive.push_back({target, inverse_dynamics_row(d, r)});
   }
   if (recursive.empty()) {
     KernelCode from_m = printed(Kernel::inverse_dynamics, d, formed);
@@ -788,32 +840,104 @@ KernelCode output_jacobian_rate_kernel(const Derivation& d) {
   return printed(Kernel::output_jacobian_rate, d, out);
 }
 
+/// linearize's end: M = L L^T in place, then A's and B's lower rows (which
+/// hold M dudot/dx and M dudot/dtau) solved column by column.
+const char* const kLinearizeSolve =
+    "  // M = L L^T in place (lower triangle), then each column of the lower rows solved.\n"
+    "  for (int j = 0; j < NU; ++j) {\n"
+    "    double pivot = M[j * NU + j];\n"
+    "    for (int k = 0; k < j; ++k) pivot -= M[j * NU + k] * M[j * NU + k];\n"
+    "    if (!(pivot > 0.0)) return j + 1;\n"
+    "    M[j * NU + j] = sqrt(pivot);\n"
+    "    for (int i = j + 1; i < NU; ++i) {\n"
+    "      double s = M[i * NU + j];\n"
+    "      for (int k = 0; k < j; ++k) s -= M[i * NU + k] * M[j * NU + k];\n"
+    "      M[i * NU + j] = s / M[j * NU + j];\n"
+    "    }\n"
+    "  }\n"
+    "  const auto solve = [&M](double* x, int stride) {\n"
+    "    for (int i = 0; i < NU; ++i) {\n"
+    "      for (int k = 0; k < i; ++k) x[i * stride] -= M[i * NU + k] * x[k * stride];\n"
+    "      x[i * stride] /= M[i * NU + i];\n"
+    "    }\n"
+    "    for (int i = NU - 1; i >= 0; --i) {\n"
+    "      for (int k = i + 1; k < NU; ++k) x[i * stride] -= M[k * NU + i] * x[k * stride];\n"
+    "      x[i * stride] /= M[i * NU + i];\n"
+    "    }\n"
+    "  };\n"
+    "  for (int c = 0; c < NX; ++c) solve(A + NU * NX + c, NX);\n"
+    "  for (int c = 0; c < NTAU; ++c) solve(B + NU * NTAU + c, NTAU);\n"
+    "  return 0;\n";
+
+/// linearize's start: udot by forward_dynamics, M, A and B zeroed but for
+/// qdot = u.
+const char* const kLinearizeStart =
+    "  constexpr int NX = 2 * NU;\n"
+    "  double udot[NU], M[NU * NU];\n"
+    "  const int status = forward_dynamics(p, t, q, u, tau, udot);\n"
+    "  if (status != 0) return status;\n"
+    "  mass_matrix(p, q, M);\n"
+    "  for (int k = 0; k < NX * NX; ++k) A[k] = 0.0;\n"
+    "  for (int k = 0; k < NX * NTAU; ++k) B[k] = 0.0;\n"
+    "  for (int i = 0; i < NU; ++i) A[i * NX + NU + i] = 1.0;  // qdot = u\n";
+
+/// Rigid trees: the residual R(q, u, udot, tau) = f(q, u, tau) - M(q) udot is 0
+/// along every motion, so M dudot/dx = dR/dx at udot = forward_dynamics; R is
+/// the generalized inputs f(tau) - f(0) less the recursive inverse dynamics
+/// (M udot - f(0), O(n)), and its derivatives in the graph are O(n^2) (as
+/// Pinocchio's ABA derivatives are made from RNEA's), where those of the
+/// composite M and f grow with n^3 and more.
+std::string recursive_linearize(const Derivation& d) {
+  std::vector<int> residual;
+  for (int r = 0; r < d.n(); ++r)
+    residual.push_back(d.graph.sum({d.graph.add(d.eq.forcing()[r] - unforced(d, r)),
+                                    d.graph.product({d.graph.constant(-1.0), inverse_dynamics_row(d, r)})}));
+  std::string fill;
+  std::vector<Assignment> entries =
+      jacobian_entries(d.graph, residual, input_nodes(d.graph, d.vars.q), "dRdq", "NU * NQ", fill);
+  const std::vector<Assignment> by_speed =
+      jacobian_entries(d.graph, residual, input_nodes(d.graph, d.vars.u), "dRdu", "NU * NU", fill);
+  entries.insert(entries.end(), by_speed.begin(), by_speed.end());
+  const bool inputs = !d.vars.tau.empty();
+  if (inputs) {
+    const std::vector<Assignment> by_input =
+        jacobian_entries(d.graph, residual, input_nodes(d.graph, d.vars.tau), "dRdtau", "NU * NTAU", fill);
+    entries.insert(entries.end(), by_input.begin(), by_input.end());
+  }
+  const PrintedKernel p = print_kernel(d.graph, entries, d.scalar);
+  std::string text = std::string(kLinearizeStart) + "  double dRdq[NU * NQ], dRdu[NU * NU]" +
+                     (inputs ? ", dRdtau[NU * NTAU]" : "") + ";\n" + fill + p.body +
+                     "  for (int i = 0; i < NU; ++i)\n"
+                     "    for (int j = 0; j < NU; ++j) {\n"
+                     "      A[(NU + i) * NX + j] = dRdq[i * NQ + j];\n"
+                     "      A[(NU + i) * NX + NU + j] = dRdu[i * NU + j];\n"
+                     "    }\n";
+  if (inputs)
+    text +=
+        "  for (int i = 0; i < NU; ++i)\n"
+        "    for (int j = 0; j < NTAU; ++j) B[(NU + i) * NTAU + j] = dRdtau[i * NTAU + j];\n";
+  return text + kLinearizeSolve;
+}
+
 /// x = (q, u), xdot = (u, udot): A = [0 I; dudot/dq dudot/du], B = [0; dudot/dtau]
 /// from M dudot/dq = df/dq - d(M a)/dq (a = udot), M dudot/du = df/du and
-/// M dudot/dtau = df/dtau, solved by a Cholesky factor of M; df/dtau is
-/// derived here, the rest are the Jacobian kernels.
+/// M dudot/dtau = df/dtau, solved by a Cholesky factor of M; on a rigid tree
+/// from the recursive inverse dynamics (recursive_linearize), otherwise
+/// df/dtau is derived here and the rest are the Jacobian kernels.
 KernelCode linearize_kernel(const Derivation& d) {
-  std::vector<int> forcing;
-  for (int i = 0; i < d.n(); ++i) forcing.push_back(d.graph.add(d.eq.forcing()[i]));
-  const int ntau = static_cast<int>(d.vars.tau.size());
-  std::string text =
-      "  constexpr int NX = 2 * NU;\n"
-      "  double udot[NU], M[NU * NU], dfdq[NU * NQ], dfdu[NU * NU], dMa_dq[NU * NQ];\n"
-      "  const int status = forward_dynamics(p, t, q, u, tau, udot);\n"
-      "  if (status != 0) return status;\n"
-      "  mass_matrix(p, q, M);\n"
-      "  forcing_jacobian(p, t, q, u, tau, dfdq, dfdu);\n"
-      "  mass_matrix_product_jacobian(p, q, udot, dMa_dq);\n"
-      "  for (int k = 0; k < NX * NX; ++k) A[k] = 0.0;\n"
-      "  for (int k = 0; k < NX * NTAU; ++k) B[k] = 0.0;\n"
-      "  for (int i = 0; i < NU; ++i) {\n"
-      "    A[i * NX + NU + i] = 1.0;  // qdot = u\n"
-      "    for (int j = 0; j < NU; ++j) {\n"
-      "      A[(NU + i) * NX + j] = dfdq[i * NQ + j] - dMa_dq[i * NQ + j];\n"
-      "      A[(NU + i) * NX + NU + j] = dfdu[i * NU + j];\n"
-      "    }\n"
-      "  }\n";
-  if (ntau > 0) {
+  if (has_recursive_inverse_dynamics(d)) return {Kernel::linearize, recursive_linearize(d), 0, ""};
+  std::string text = std::string(kLinearizeStart) +
+                     "  double dfdq[NU * NQ], dfdu[NU * NU], dMa_dq[NU * NQ];\n"
+                     "  forcing_jacobian(p, t, q, u, tau, dfdq, dfdu);\n"
+                     "  mass_matrix_product_jacobian(p, q, udot, dMa_dq);\n"
+                     "  for (int i = 0; i < NU; ++i)\n"
+                     "    for (int j = 0; j < NU; ++j) {\n"
+                     "      A[(NU + i) * NX + j] = dfdq[i * NQ + j] - dMa_dq[i * NQ + j];\n"
+                     "      A[(NU + i) * NX + NU + j] = dfdu[i * NU + j];\n"
+                     "    }\n";
+  if (!d.vars.tau.empty()) {
+    std::vector<int> forcing;
+    for (int i = 0; i < d.n(); ++i) forcing.push_back(d.graph.add(d.eq.forcing()[i]));
     std::string fill;
     const std::vector<Assignment> by_input =
         jacobian_entries(d.graph, forcing, input_nodes(d.graph, d.vars.tau), "dfdtau", "NU * NTAU", fill);
@@ -822,33 +946,7 @@ KernelCode linearize_kernel(const Derivation& d) {
             "  for (int i = 0; i < NU; ++i)\n"
             "    for (int j = 0; j < NTAU; ++j) B[(NU + i) * NTAU + j] = dfdtau[i * NTAU + j];\n";
   }
-  text +=
-      "  // M = L L^T in place (lower triangle), then each column of the lower rows solved.\n"
-      "  for (int j = 0; j < NU; ++j) {\n"
-      "    double pivot = M[j * NU + j];\n"
-      "    for (int k = 0; k < j; ++k) pivot -= M[j * NU + k] * M[j * NU + k];\n"
-      "    if (!(pivot > 0.0)) return j + 1;\n"
-      "    M[j * NU + j] = sqrt(pivot);\n"
-      "    for (int i = j + 1; i < NU; ++i) {\n"
-      "      double s = M[i * NU + j];\n"
-      "      for (int k = 0; k < j; ++k) s -= M[i * NU + k] * M[j * NU + k];\n"
-      "      M[i * NU + j] = s / M[j * NU + j];\n"
-      "    }\n"
-      "  }\n"
-      "  const auto solve = [&M](double* x, int stride) {\n"
-      "    for (int i = 0; i < NU; ++i) {\n"
-      "      for (int k = 0; k < i; ++k) x[i * stride] -= M[i * NU + k] * x[k * stride];\n"
-      "      x[i * stride] /= M[i * NU + i];\n"
-      "    }\n"
-      "    for (int i = NU - 1; i >= 0; --i) {\n"
-      "      for (int k = i + 1; k < NU; ++k) x[i * stride] -= M[k * NU + i] * x[k * stride];\n"
-      "      x[i * stride] /= M[i * NU + i];\n"
-      "    }\n"
-      "  };\n"
-      "  for (int c = 0; c < NX; ++c) solve(A + NU * NX + c, NX);\n"
-      "  for (int c = 0; c < NTAU; ++c) solve(B + NU * NTAU + c, NTAU);\n"
-      "  return 0;\n";
-  return {Kernel::linearize, text, 0, ""};
+  return {Kernel::linearize, text + kLinearizeSolve, 0, ""};
 }
 
 /// Each kernel's derivation, registered by its spec line: the function

@@ -10,6 +10,7 @@
 
 #include "codegen/expression_graph.hpp"
 #include "codegen/graph_derivative.hpp"
+#include "codegen/graph_substitution.hpp"
 #include "model/load.hpp"
 #include "symbolic/program.hpp"
 #include "symbolic/variables.hpp"
@@ -90,4 +91,37 @@ TEST_CASE("graph derivatives agree with GiNaC's, through intermediates", "[codeg
   // u[1] does not occur: its derivative is the number 0.
   GraphDerivative by_u1(graph, graph.add(vars.u[1]));
   CHECK(kanegen::codegen::is_zero(graph, by_u1.of(node)));
+}
+
+TEST_CASE(
+    "graph substitution replaces inputs inside intermediates, as GiNaC's subs of the inlined expression",
+    "[codegen][jacobians]") {
+  const kanegen::model::Model model =
+      kanegen::model::load_model(KANEGEN_SOURCE_DIR "/models/double_pendulum.json");
+  const kanegen::symbolic::Variables vars(model);
+  kanegen::symbolic::Program program;
+  const GiNaC::ex q0 = vars.q[0], q1 = vars.q[1], u0 = vars.u[0], u1 = vars.u[1];
+  const GiNaC::ex w = program.define(GiNaC::sin(q0) * u0 + GiNaC::cos(q1) * u1 * u1);
+  const GiNaC::ex e =
+      w * w * q1 + GiNaC::sqrt(2 + GiNaC::cos(w)) + u0 * GiNaC::exp(q1) - GiNaC::pow(1 + w, -2);
+  const GiNaC::ex expanded = e.subs(w == *program.definition(GiNaC::ex_to<GiNaC::symbol>(w)));
+
+  ExpressionGraph graph(vars, program);
+  const int node = graph.add(e);
+  // u0 -> 0 and u1 -> the kernel argument a[1]: w's product with u0 must vanish inside w.
+  kanegen::codegen::GraphSubstitution substituted(
+      graph, {{graph.add(u0), graph.constant(0.0)}, {graph.add(u1), graph.input("a[1]")}});
+  const int image = substituted.of(node);
+  const std::map<std::string, double> inputs{
+      {"q[0]", 0.37}, {"q[1]", -0.81}, {"u[0]", 1.3}, {"u[1]", 0.4}, {"a[1]", -1.7}};
+  const GiNaC::exmap at{{q0, 0.37}, {q1, -0.81}, {u0, 0}, {u1, -1.7}};
+  const double ginac_value = GiNaC::ex_to<GiNaC::numeric>(GiNaC::evalf(expanded.subs(at))).to_double();
+  CHECK(value(graph, image, inputs) == Approx(ginac_value).epsilon(1e-14));
+  // The original node is untouched, and a node without the inputs is its own image.
+  const GiNaC::exmap original{{q0, 0.37}, {q1, -0.81}, {u0, 1.3}, {u1, 0.4}};
+  CHECK(
+      value(graph, node, inputs) ==
+      Approx(GiNaC::ex_to<GiNaC::numeric>(GiNaC::evalf(expanded.subs(original))).to_double()).epsilon(1e-14));
+  const int only_q = graph.add(GiNaC::sin(q0) * q1);
+  CHECK(substituted.of(only_q) == only_q);
 }
