@@ -91,6 +91,14 @@ endforeach()
 add_test(NAME "verify: model planar_pendulum --dynamics recursive"
          COMMAND kanegen verify ${PROJECT_SOURCE_DIR}/tests/data/models/planar_pendulum.json --dynamics recursive)
 
+# The controller kernels of a rigid tree from the recursion (docs/controllers.md):
+# forcing_jacobian, d(M a)/dq where smaller, coriolis_matrix from the part of the
+# inverse dynamics even in u (which the chain's dampers must not reach), linearize.
+add_test(NAME "verify: model damped_chain8 --controller"
+         COMMAND kanegen verify ${PROJECT_SOURCE_DIR}/tests/data/models/damped_chain8.urdf --controller)
+set_tests_properties("verify: model damped_chain8 --controller"
+                     PROPERTIES ENVIRONMENT "KANEGEN_CACHE_DIR=${KANEGEN_VERIFY_CACHE}")
+
 # The recursive forward_dynamics (auto keeps the composite solve on this
 # small model): a slide, hinges, springs between points, efforts, a point force.
 add_test(NAME "verify: model force_elements --dynamics recursive"
