@@ -325,8 +325,9 @@ TEST_CASE("verify --controller: a wrong sign in each controller kernel fails its
   corrupt(file, "void coriolis_matrix", "\\bp\\.m2\\b", "(-$&)");
   corrupt(file, "void output_jacobian", "\\bp\\.l1\\b", "(-$&)");
   corrupt(file, "void output_jacobian_rate", "\\bp\\.l1\\b", "(-$&)");
-  corrupt(file, "int linearize", "dfdq\\[i \\* NQ \\+ j\\] - dMa_dq", "dfdq[i * NQ + j] + dMa_dq");
-  corrupt(file, "int linearize", "dfdtau\\[0\\] = 1\\.0", "dfdtau[0] = -1.0");
+  // A rigid tree's linearize: M dudot/dx = dR/dx of the residual R = f - M udot.
+  corrupt(file, "int linearize", "= dRdq\\[i \\* NQ \\+ j\\]", "= -dRdq[i * NQ + j]");
+  corrupt(file, "int linearize", "dRdtau\\[0\\] = 1\\.0", "dRdtau[0] = -1.0");
   const Result r = kanegen(verify + " --json");
   INFO(r.out << r.err);
   CHECK(r.status == 1);
