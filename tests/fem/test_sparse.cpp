@@ -9,6 +9,7 @@
 
 #include "fem/mesh_body.hpp"
 #include "fem/sparse_assembly.hpp"
+#include "fem/sparse_modal.hpp"
 #include "fem_test_support.hpp"
 
 using namespace kanegen::fem;
@@ -27,6 +28,41 @@ double sparse_dense_difference(const Eigen::MatrixXd& dense, const Eigen::Sparse
   REQUIRE(sparse.cols() == dense.cols());
   const Eigen::MatrixXd from_sparse = Eigen::MatrixXd(sparse);
   return (dense - from_sparse).cwiseAbs().maxCoeff() / dense.cwiseAbs().maxCoeff();
+}
+
+bool clustered(double a, double b) { return std::abs(b - a) <= 1e-6 * std::abs(b); }
+
+/// The sparse path's first k modes against the dense path's (modal_analysis of the
+/// dense matrices): elastic frequencies to 1e-8 relative, rigid ones (omega = 0) below
+/// 1e-4 of the first elastic one, each mode of a single frequency equal to the dense
+/// one (both canonically oriented), and the k modes spanning the same subspace.
+void compare_paths(const MeshBody& mb, const Constraint& c, int rigid, int k) {
+  const ModalBasis dense = constrained_modes(mb.body, c, -1, ModalPath::kDense);
+  // Do not cut a cluster of repeated frequencies (the square bars bend alike in y and z).
+  while (clustered(dense.eigenvalues[k - 1], dense.eigenvalues[k])) --k;
+  const ModalBasis sparse = constrained_modes(mb.body, c, k, ModalPath::kSparse);
+  REQUIRE(sparse.omega.size() == k);
+  const Eigen::MatrixXd M = c.reduce(mb.body.mass());
+  for (int i = 0; i < k; ++i) {
+    INFO("mode " << i + 1 << ": dense " << dense.omega[i] << ", sparse " << sparse.omega[i] << " rad/s");
+    if (i < rigid) {
+      CHECK(sparse.omega[i] < 1e-4 * dense.omega[rigid]);
+      continue;
+    }
+    CHECK(std::abs(sparse.omega[i] / dense.omega[i] - 1.0) < 1e-8);
+    const bool single = !clustered(dense.eigenvalues[i - 1], dense.eigenvalues[i]) &&
+                        !clustered(dense.eigenvalues[i], dense.eigenvalues[i + 1]);
+    if (single) {
+      const Eigen::VectorXd d = sparse.shapes.col(i) - dense.shapes.col(i);
+      CHECK(std::sqrt(d.dot(M * d)) < 1e-6);
+    }
+  }
+  // Same subspace: the M-inner products of two M-orthonormal bases form an orthogonal matrix.
+  const Eigen::MatrixXd G = dense.shapes.leftCols(k).transpose() * M * sparse.shapes;
+  CHECK((G.transpose() * G - Eigen::MatrixXd::Identity(k, k)).cwiseAbs().maxCoeff() < 1e-8);
+  CHECK((sparse.shapes.transpose() * M * sparse.shapes - Eigen::MatrixXd::Identity(k, k))
+            .cwiseAbs()
+            .maxCoeff() < 1e-10);
 }
 
 }  // namespace
@@ -59,4 +95,29 @@ TEST_CASE("sparse: beams in turned frames and point masses assemble the same spa
     CHECK(sparse_dense_difference(body.stiffness(), sparse_stiffness(body)) < 1e-14);
     CHECK(sparse_dense_difference(body.mass(), sparse_mass(body)) < 1e-14);
   }
+}
+
+TEST_CASE("sparse: Lanczos frequencies equal the dense path's to 1e-8, clamped and free, plate and solids",
+          "[sparse]") {
+  for (const std::string name : {"plate_cps8", "bar_c3d20", "bar_c3d8"}) {
+    InpMesh mesh;
+    const MeshBody mb = data_body(name, mesh);
+    const int rigid = mb.body.dofs_per_node() == 2 ? 3 : 6;
+    {
+      INFO(name << " clamped at ROOT");
+      compare_paths(mb, mb.clamped(mesh, "ROOT"), 0, 12);
+    }
+    {
+      INFO(name << " free (rigid modes at 0, a negative shift)");
+      compare_paths(mb, Constraint(mb.body.num_dofs(), {}), rigid, rigid + 12);
+    }
+  }
+}
+
+TEST_CASE("sparse: bad mode counts are refused", "[sparse]") {
+  InpMesh mesh;
+  const MeshBody mb = data_body("plate_cps8", mesh);
+  const Constraint c = mb.clamped(mesh, "ROOT");
+  CHECK_THROWS_AS(constrained_modes(mb.body, c, 0, ModalPath::kSparse), std::invalid_argument);
+  CHECK_THROWS_AS(constrained_modes(mb.body, c, c.num_free(), ModalPath::kSparse), std::invalid_argument);
 }
