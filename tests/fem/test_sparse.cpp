@@ -3,10 +3,13 @@
 // path, which tests/fem/test_calculix_continuum.cpp holds to CalculiX: K and M
 // entry by entry, frequencies to 1e-8 and mode shapes as subspaces.
 #include <Eigen/Sparse>
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <string>
+#include <vector>
 
+#include "fem/craig_bampton.hpp"
 #include "fem/mesh_body.hpp"
 #include "fem/sparse_assembly.hpp"
 #include "fem/sparse_modal.hpp"
@@ -120,4 +123,35 @@ TEST_CASE("sparse: bad mode counts are refused", "[sparse]") {
   const Constraint c = mb.clamped(mesh, "ROOT");
   CHECK_THROWS_AS(constrained_modes(mb.body, c, 0, ModalPath::kSparse), std::invalid_argument);
   CHECK_THROWS_AS(constrained_modes(mb.body, c, c.num_free(), ModalPath::kSparse), std::invalid_argument);
+}
+
+TEST_CASE("sparse: Craig-Bampton by sparse solves equals the dense basis (C3D20 bar, tip interface)",
+          "[sparse]") {
+  for (const std::string name : {"bar_c3d20", "plate_cps8"}) {
+    INFO(name);
+    InpMesh mesh;
+    const MeshBody mb = data_body(name, mesh);
+    std::vector<int> tip;  // the nodes of the free end's face, x = L
+    double length = 0.0;
+    for (int n = 0; n < mb.body.num_nodes(); ++n) length = std::max(length, mb.body.node_position(n).x());
+    for (int n = 0; n < mb.body.num_nodes(); ++n)
+      if (mb.body.node_position(n).x() > length * (1.0 - 1e-9)) tip.push_back(n);
+    const Constraint root = mb.clamped(mesh, "ROOT");
+    const int k = 6;
+    const CraigBamptonBasis dense = craig_bampton(mb.body, root, {tip}, k, ModalPath::kDense);
+    const CraigBamptonBasis sparse = craig_bampton(mb.body, root, {tip}, k, ModalPath::kSparse);
+    REQUIRE(sparse.constraint_modes == dense.constraint_modes);
+    REQUIRE(sparse.basis.cols() == dense.basis.cols());
+    const Eigen::MatrixXd M = mb.body.mass();
+    // The constraint modes are statics: unique, equal column by column.
+    for (int j = 0; j < dense.constraint_modes; ++j) {
+      const Eigen::VectorXd d = sparse.basis.col(j) - dense.basis.col(j);
+      CHECK(std::sqrt(d.dot(M * d)) < 1e-8);
+    }
+    for (int i = 0; i < k; ++i) CHECK(std::abs(sparse.omega[i] / dense.omega[i] - 1.0) < 1e-8);
+    // The fixed-interface modes: the same subspace.
+    const Eigen::MatrixXd D = dense.basis.rightCols(k), S = sparse.basis.rightCols(k);
+    const Eigen::MatrixXd G = D.transpose() * M * S;
+    CHECK((G.transpose() * G - Eigen::MatrixXd::Identity(k, k)).cwiseAbs().maxCoeff() < 1e-8);
+  }
 }
