@@ -5,7 +5,7 @@
 set -euo pipefail
 packages=(
   g++ clang cmake make pkg-config git python3
-  libginac-dev libeigen3-dev nlohmann-json3-dev catch2 libcli11-dev
+  libginac-dev libeigen3-dev libspectra-dev nlohmann-json3-dev catch2 libcli11-dev
   liburdfdom-dev libtinyxml2-dev libvalijson-dev
   libsundials-dev libomp-dev
   libmujoco-dev libbenchmark-dev
@@ -16,6 +16,8 @@ packages=(
   python3-vtk9
   nodejs chromium chromium-driver python3-selenium libjs-three
 )
+# libspectra-dev: Spectra (header-only), the shift-invert Lanczos eigensolver
+# of large meshes' modal reduction (generator/fem/sparse_modal.cpp).
 # libsundials-dev: CVODE, the runtime's adaptive implicit integrator
 # (--integrator implicit); libomp-dev: clang's OpenMP, which SUNDIALS's CMake
 # package looks for (its OpenMP vectors) and fails without under clang++. libclang-rt-dev: clang's sanitizer and libFuzzer runtimes (only recommended

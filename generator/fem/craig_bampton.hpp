@@ -14,6 +14,7 @@
 
 #include "fem/body.hpp"
 #include "fem/boundary.hpp"
+#include "fem/sparse_modal.hpp"
 
 namespace kanegen::fem {
 
@@ -26,8 +27,11 @@ struct CraigBamptonBasis {
 /// held: the body's dofs held at zero (a clamped face); interfaces: body
 /// nodes of each interface; k fixed-interface modes. Throws
 /// std::invalid_argument for an interface that shares held dofs or has too
-/// few nodes to move rigidly, or for k above the dofs left.
+/// few nodes to move rigidly, or for k above the dofs left. path: as
+/// constrained_modes; the sparse path also solves the statics on a sparse
+/// LDL^T of K_II (no dense num_dofs x num_dofs matrix).
 CraigBamptonBasis craig_bampton(const Body& body, const Constraint& held,
-                                const std::vector<std::vector<int>>& interfaces, int k);
+                                const std::vector<std::vector<int>>& interfaces, int k,
+                                ModalPath path = ModalPath::kAuto);
 
 }  // namespace kanegen::fem

@@ -28,7 +28,8 @@ std::vector<int> cluster_pivots(Eigen::MatrixXd v) {
   return pivots;
 }
 
-void canonicalize_cluster(const Eigen::MatrixXd& M, Eigen::Ref<Eigen::MatrixXd> v) {
+template <typename Mass>
+void canonicalize_cluster(const Mass& M, Eigen::Ref<Eigen::MatrixXd> v) {
   const std::vector<int> pivots = cluster_pivots(v);
   // W[pivots, :] = I; then M-orthonormalize in pivot order (keeps W_j = 0 at later pivots).
   Eigen::MatrixXd w = v * v(pivots, Eigen::all).inverse();
@@ -39,10 +40,8 @@ void canonicalize_cluster(const Eigen::MatrixXd& M, Eigen::Ref<Eigen::MatrixXd> 
   v = w;
 }
 
-}  // namespace
-
-void canonicalize_modes(const Eigen::MatrixXd& M, const Eigen::VectorXd& eigenvalues,
-                        Eigen::MatrixXd& shapes) {
+template <typename Mass>
+void canonicalize(const Mass& M, const Eigen::VectorXd& eigenvalues, Eigen::MatrixXd& shapes) {
   const int k = static_cast<int>(eigenvalues.size());
   if (shapes.cols() != k || shapes.rows() != M.rows())
     throw std::invalid_argument("canonicalize_modes: shapes must be n x k");
@@ -58,6 +57,18 @@ void canonicalize_modes(const Eigen::MatrixXd& M, const Eigen::VectorXd& eigenva
     canonicalize_cluster(M, shapes.middleCols(begin, end - begin));
     begin = end;
   }
+}
+
+}  // namespace
+
+void canonicalize_modes(const Eigen::MatrixXd& M, const Eigen::VectorXd& eigenvalues,
+                        Eigen::MatrixXd& shapes) {
+  canonicalize(M, eigenvalues, shapes);
+}
+
+void canonicalize_modes(const Eigen::SparseMatrix<double>& M, const Eigen::VectorXd& eigenvalues,
+                        Eigen::MatrixXd& shapes) {
+  canonicalize(M, eigenvalues, shapes);
 }
 
 ModalBasis modal_analysis(const Eigen::MatrixXd& M, const Eigen::MatrixXd& K, int k) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
 
 namespace kanegen::fem {
 
@@ -30,6 +31,9 @@ ModalBasis modal_analysis(const Eigen::MatrixXd& M, const Eigen::MatrixXd& K, in
 /// vanishes at the pivots after j and is positive at pivot j. For a single mode
 /// this is: largest-magnitude component positive.
 void canonicalize_modes(const Eigen::MatrixXd& M, const Eigen::VectorXd& eigenvalues,
+                        Eigen::MatrixXd& shapes);
+/// The same with a sparse M (fem/sparse_modal.hpp).
+void canonicalize_modes(const Eigen::SparseMatrix<double>& M, const Eigen::VectorXd& eigenvalues,
                         Eigen::MatrixXd& shapes);
 
 }  // namespace kanegen::fem

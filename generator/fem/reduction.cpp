@@ -4,6 +4,8 @@
 #include <stdexcept>
 
 #include "fem/modal.hpp"
+#include "fem/sparse_assembly.hpp"
+#include "fem/sparse_modal.hpp"
 
 namespace kanegen::fem {
 
@@ -29,8 +31,13 @@ const char* kind_name(DofKind kind) {
 
 ReducedBody reduce_with(const Body& body, Eigen::MatrixXd basis, std::vector<std::string> names) {
   ReducedBody r;
-  r.mass = basis.transpose() * body.mass() * basis;
-  r.stiffness = basis.transpose() * body.stiffness() * basis;
+  if (use_sparse_path(body.num_dofs(), ModalPath::kAuto)) {  // no dense num_dofs x num_dofs matrix
+    r.mass = basis.transpose() * (sparse_mass(body) * basis);
+    r.stiffness = basis.transpose() * (sparse_stiffness(body) * basis);
+  } else {
+    r.mass = basis.transpose() * body.mass() * basis;
+    r.stiffness = basis.transpose() * body.stiffness() * basis;
+  }
   r.invariants = transform(body_invariants(body), basis);
   if (is_beam_chain(body)) {
     const GeometricStiffnessBasis full = geometric_stiffness_basis(body);
@@ -57,8 +64,7 @@ ReducedBody reduce_nodal(const Body& body, const Constraint& constraint) {
 ReducedBody reduce_modal(const Body& body, const Constraint& constraint, int modes) {
   if (constraint.num_dofs() != body.num_dofs()) throw std::invalid_argument("reduce_modal: constraint size");
   if (modes < 1 || modes > constraint.num_free()) throw std::invalid_argument("reduce_modal: bad mode count");
-  const ModalBasis m =
-      modal_analysis(constraint.reduce(body.mass()), constraint.reduce(body.stiffness()), modes);
+  const ModalBasis m = constrained_modes(body, constraint, modes);  // dense or sparse by size
   std::vector<std::string> names;
   for (int i = 1; i <= modes; ++i) names.push_back("mode" + std::to_string(i));
   ReducedBody r = reduce_with(body, constraint.expand(m.shapes), std::move(names));
