@@ -118,7 +118,7 @@ TEST_CASE("the license files exist and THIRD_PARTY.md names every dependency", "
   const std::string third = kanegen_test::slurp(kRoot / "THIRD_PARTY.md");
   for (const char* dependency :
        {"GiNaC", "CLN", "Eigen", "nlohmann-json", "Catch2", "urdfdom", "TinyXML-2", "CLI11", "valijson",
-        "MuJoCo", "Google Benchmark", "SUNDIALS (CVODE)", "three.js", "Selenium"}) {
+        "MuJoCo", "Google Benchmark", "SUNDIALS (CVODE)", "three.js", "Selenium", "pybind11", "NumPy"}) {
     INFO(dependency);
     CHECK(third.find(std::string("| ") + dependency + " |") != std::string::npos);
   }
