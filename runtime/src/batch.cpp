@@ -18,10 +18,11 @@ namespace {
 
 // ---------------------------------------------------------------- request
 
-/// A value of the flat request object: a number, an array of numbers or an
-/// array of names (all the protocol needs; nesting is an error).
+/// A value of the flat request object: a number, an array of numbers, an
+/// array of names, or a string or boolean (read so that a key the protocol
+/// does not know, such as an old "eval", is named as unknown; nesting is an error).
 struct Value {
-  enum Kind { number, array, names } kind = number;
+  enum Kind { number, array, names, other } kind = number;
   double x = 0;
   std::vector<double> xs;
   std::vector<std::string> words;
@@ -88,9 +89,21 @@ class RequestParser {
     }
     return x;
   }
+  bool word(const char* w) {
+    const size_t n = std::char_traits<char>::length(w);
+    if (s_.compare(at_, n, w) != 0) return false;
+    at_ += n;
+    return true;
+  }
   Value value() {
     Value v;
-    if (peek() == '[') {
+    const char c = peek();
+    if (c == '"') {
+      v.kind = Value::other;
+      string();
+    } else if (word("true") || word("false")) {
+      v.kind = Value::other;
+    } else if (c == '[') {
       ++at_;
       v.kind = Value::array;
       if (peek() == ']') {

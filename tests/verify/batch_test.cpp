@@ -185,7 +185,10 @@ TEST_CASE("batch: a bad line gives an error answer, the others are still answere
         batch(std::string(line) + "\n{\"q\": [0], \"u\": [0], \"kernels\": [\"forward_dynamics\"]}\n");
     CHECK(o.code == 1);
     REQUIRE(o.replies.size() == 2);
-    CHECK(o.replies[0].contains("error"));
+    REQUIRE(o.replies[0].contains("error"));
+    if (std::string(line).find("eval") != std::string::npos ||
+        std::string(line).find("jacobians") != std::string::npos)
+      CHECK(o.replies[0]["error"].get<std::string>().rfind("unknown key", 0) == 0);  // an old field is named
     CHECK(o.replies[1]["kernels"]["forward_dynamics"]["udot"][0].get<double>() == 0.0);
   }
 }
