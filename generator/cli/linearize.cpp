@@ -27,15 +27,17 @@ class Rows {
 
   Eigen::VectorXd residual(const std::vector<double>& q, const std::vector<double>& u,
                            Eigen::MatrixXd* mass = nullptr, Eigen::MatrixXd* loops = nullptr) {
-    const json reply =
-        runner::batch_request(runner_, json{{"t", point_.t}, {"q", q}, {"u", u}, {"p", point_.p}});
-    const json& M = reply.at("mass_matrix");
-    const json& f = reply.at("forcing");
-    const std::vector<int>& s = options_.selected;
     const std::vector<double>& lambda = options_.loop_forces;
-    const int n = static_cast<int>(s.size()), nu = static_cast<int>(f.size()),
-              nc = static_cast<int>(lambda.size());
-    const json& C = nc > 0 ? reply.at("constraint_jacobian") : reply;
+    const int nc = static_cast<int>(lambda.size());
+    std::vector<std::string> kernels{"mass_matrix", "forcing"};
+    if (nc > 0) kernels.push_back("constraint_jacobian");
+    const json reply =
+        runner::call_kernels(runner_, json{{"t", point_.t}, {"q", q}, {"u", u}, {"p", point_.p}}, kernels);
+    const json& M = reply.at("mass_matrix").at("M");
+    const json& f = reply.at("forcing").at("f");
+    const std::vector<int>& s = options_.selected;
+    const int n = static_cast<int>(s.size()), nu = static_cast<int>(f.size());
+    const json& C = nc > 0 ? reply.at("constraint_jacobian").at("C") : reply;
     Eigen::VectorXd r(n);
     for (int i = 0; i < n; ++i) {
       double value = finite(f[s[i]], "forcing");

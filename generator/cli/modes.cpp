@@ -322,9 +322,12 @@ int modes(const ModesOptions& options) {
     if (!model.loops.empty()) {
       // The loop forces of the model's own constrained dynamics at the state, held at their value: their
       // geometric stiffness enters K (a load carried through a loop stiffens or softens it).
-      const json reply = runner::batch_request(
-          process, json{{"t", pb.point.t}, {"q", pb.point.q}, {"u", pb.point.u}, {"p", pb.point.p}});
-      if (!reply.at("lambda").is_array())
+      const json reply =
+          runner::call_kernels(
+              process, json{{"t", pb.point.t}, {"q", pb.point.q}, {"u", pb.point.u}, {"p", pb.point.p}},
+              {"constrained_dynamics"})
+              .at("constrained_dynamics");
+      if (reply.at("returns").get<double>() != 0)
         throw std::runtime_error(model.source_file +
                                  ": the loops are singular at the initial state (no loop forces); choose a "
                                  "state where they are independent");

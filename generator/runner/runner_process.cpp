@@ -7,6 +7,7 @@
 
 #include <csignal>
 #include <stdexcept>
+#include <thread>
 
 namespace kanegen::runner {
 
@@ -74,6 +75,28 @@ std::string RunnerProcess::exchange(const std::string& line) {
   return read_line();
 }
 
+std::vector<std::string> RunnerProcess::exchange_all(const std::vector<std::string>& lines) {
+  bool written = true;
+  std::thread writer([&] {
+    for (const std::string& line : lines)
+      if (std::fputs(line.c_str(), to_) < 0 || std::fputc('\n', to_) == EOF) {
+        written = false;
+        break;
+      }
+    if (std::fflush(to_) != 0) written = false;
+  });
+  std::vector<std::string> answers;
+  try {
+    for (std::size_t i = 0; i < lines.size(); ++i) answers.push_back(read_line());
+  } catch (...) {
+    writer.join();  // the runner has gone, so the writer's next write fails
+    throw;
+  }
+  writer.join();
+  if (!written) throw std::runtime_error(program_ + " stopped reading (see its messages above)");
+  return answers;
+}
+
 int RunnerProcess::finish() {
   if (pid_ < 0) return 0;
   if (to_) std::fclose(to_);
@@ -93,8 +116,9 @@ nlohmann::json runner_info(const std::string& runner) {
   return nlohmann::json::parse(line);
 }
 
-nlohmann::json batch_request(RunnerProcess& process, const nlohmann::json& request) {
-  const std::string answer = process.exchange(request.dump());
+namespace {
+
+nlohmann::json parse_answer(const std::string& answer) {
   nlohmann::json reply;
   try {
     reply = nlohmann::json::parse(answer);
@@ -104,6 +128,27 @@ nlohmann::json batch_request(RunnerProcess& process, const nlohmann::json& reque
   if (reply.contains("error"))
     throw std::runtime_error("the runner rejected a request: " + reply["error"].get<std::string>());
   return reply;
+}
+
+}  // namespace
+
+nlohmann::json batch_request(RunnerProcess& process, const nlohmann::json& request) {
+  return parse_answer(process.exchange(request.dump()));
+}
+
+std::vector<nlohmann::json> batch_requests(RunnerProcess& process,
+                                           const std::vector<nlohmann::json>& requests) {
+  std::vector<std::string> lines;
+  for (const nlohmann::json& r : requests) lines.push_back(r.dump());
+  std::vector<nlohmann::json> replies;
+  for (const std::string& answer : process.exchange_all(lines)) replies.push_back(parse_answer(answer));
+  return replies;
+}
+
+nlohmann::json call_kernels(RunnerProcess& process, nlohmann::json request,
+                            const std::vector<std::string>& kernels) {
+  request["kernels"] = kernels;
+  return batch_request(process, request).at("kernels");
 }
 
 }  // namespace kanegen::runner

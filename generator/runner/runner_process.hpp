@@ -25,6 +25,10 @@ class RunnerProcess {
   /// Writes one line (a newline is appended) and reads the answer line.
   /// Throws std::runtime_error if the runner has gone.
   std::string exchange(const std::string& line);
+  /// Writes the lines and reads their answers, one each: a thread writes
+  /// while this one reads, so neither side blocks on a full pipe and the
+  /// lines cost no round trip each. Throws std::runtime_error if the runner has gone.
+  std::vector<std::string> exchange_all(const std::vector<std::string>& lines);
   /// Reads one line of output (for commands that print without input).
   std::string read_line();
   /// Closes its input and waits; returns the exit status.
@@ -42,5 +46,16 @@ nlohmann::json runner_info(const std::string& runner);
 
 /// One `batch` request; throws std::runtime_error if the answer is an error.
 nlohmann::json batch_request(RunnerProcess& process, const nlohmann::json& request);
+/// `batch` requests, their answers in order (RunnerProcess::exchange_all);
+/// throws std::runtime_error if an answer is an error.
+std::vector<nlohmann::json> batch_requests(RunnerProcess& process,
+                                           const std::vector<nlohmann::json>& requests);
+
+/// The kernels named (kernels.def) called by one `batch` line at the
+/// state of `request` (t, q, u, tau, p and any "input_<argument>"): its
+/// answer's "kernels", per kernel its outputs by argument name (a matrix
+/// as its rows) and "returns" (docs/runtime.md#batch).
+nlohmann::json call_kernels(RunnerProcess& process, nlohmann::json request,
+                            const std::vector<std::string>& kernels);
 
 }  // namespace kanegen::runner

@@ -329,27 +329,24 @@ std::vector<Row> controller_rows(runner::RunnerProcess& process, const std::vect
 
   std::vector<Row> rows = empty_rows(check.tolerance);
   for (const ControllerPoint& p : points) {
-    const json reply = runner::batch_request(process, json{{"t", p.state.t},
-                                                           {"q", p.state.q},
-                                                           {"u", p.state.u},
-                                                           {"tau", p.runner_tau},
-                                                           {"p", p.runner_p},
-                                                           {"eval", "energy"},
-                                                           {"controller", true}});
+    const json reply = runner::call_kernels(
+        process,
+        json{{"t", p.state.t}, {"q", p.state.q}, {"u", p.state.u}, {"tau", p.runner_tau}, {"p", p.runner_p}},
+        {"coriolis_matrix", "output_jacobian", "output_jacobian_rate", "linearize"});
     const PointCheck point(p, check);
     Compared compared[kRows];
     const std::size_t n = check.coordinates.size(), ny = check.outputs.size(), nx = 2 * n;
-    const Vector C = sized(json_rows_flat(reply["coriolis_matrix"]), n * n, "coriolis_matrix");
+    const Vector C = sized(json_rows_flat(reply["coriolis_matrix"]["C"]), n * n, "coriolis_matrix");
     compared[kCu] = point.velocity_terms(C);
     compared[kSkew] = point.skew(C);
-    compared[kJacobian] =
-        point.output_jacobian(sized(json_rows_flat(reply["output_jacobian"]), ny * n, "output_jacobian"));
+    compared[kJacobian] = point.output_jacobian(
+        sized(json_rows_flat(reply["output_jacobian"]["J"]), ny * n, "output_jacobian"));
     compared[kRate] = point.output_jacobian_rate(
-        sized(json_numbers(reply["output_jacobian_rate"]), ny, "output_jacobian_rate"));
+        sized(json_numbers(reply["output_jacobian_rate"]["Jdot_u"]), ny, "output_jacobian_rate"));
     std::tie(compared[kA], compared[kB]) = point.linearization(
-        sized(json_rows_flat(reply["linearize_A"]), nx * nx, "linearize A"),
-        sized(json_rows_flat(reply["linearize_B"]), nx * static_cast<std::size_t>(ntau), "linearize B"),
-        reply["linearize_status"].get<int>());
+        sized(json_rows_flat(reply["linearize"]["A"]), nx * nx, "linearize A"),
+        sized(json_rows_flat(reply["linearize"]["B"]), nx * static_cast<std::size_t>(ntau), "linearize B"),
+        static_cast<int>(reply["linearize"]["returns"].get<double>()));
     for (int j = 0; j < kRows; ++j) {
       const Compared& c = compared[j];
       if (c.reference.empty()) continue;

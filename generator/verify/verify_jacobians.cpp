@@ -90,15 +90,19 @@ Compared evaluate_point(runner::RunnerProcess& process, const JacobianPoint& p, 
   for (const numeric::LoopData& l : p.instance->loops) loops += static_cast<int>(l.rows.size());
   for (int k = 0; k < loops; ++k) lambda.push_back(unit(rng));
 
-  json request{{"t", p.state.t},  {"q", p.state.q},   {"u", p.state.u},    {"tau", p.runner_tau},
-               {"p", p.runner_p}, {"eval", "energy"}, {"jacobians", true}, {"jacobian_a", a}};
-  if (loops > 0) request["jacobian_lambda"] = lambda;
-  const json reply = runner::batch_request(process, request);
+  json request{{"t", p.state.t},      {"q", p.state.q},  {"u", p.state.u},
+               {"tau", p.runner_tau}, {"p", p.runner_p}, {"input_a", a}};
+  std::vector<std::string> kernels{"forcing_jacobian", "mass_matrix_product_jacobian"};
+  if (loops > 0) {
+    request["input_lambda"] = lambda;
+    kernels.push_back("constraint_force_jacobian");
+  }
+  const json k = runner::call_kernels(process, request, kernels);
   Compared c;
-  c.generated[0] = json_rows_flat(reply["forcing_jacobian_q"]);
-  c.generated[1] = json_rows_flat(reply["forcing_jacobian_u"]);
-  c.generated[2] = json_rows_flat(reply["mass_matrix_product_jacobian"]);
-  if (loops > 0) c.generated[3] = json_rows_flat(reply["constraint_force_jacobian"]);
+  c.generated[0] = json_rows_flat(k["forcing_jacobian"]["dfdq"]);
+  c.generated[1] = json_rows_flat(k["forcing_jacobian"]["dfdu"]);
+  c.generated[2] = json_rows_flat(k["mass_matrix_product_jacobian"]["dMa_dq"]);
+  if (loops > 0) c.generated[3] = json_rows_flat(k["constraint_force_jacobian"]["dCl_dq"]);
 
   // Steps: f is quadratic in u, so its steps can be large; in q they are
   // small against each coordinate's range of values.

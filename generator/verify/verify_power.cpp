@@ -28,14 +28,13 @@ Worst power_balance(runner::RunnerProcess& runner, const TrajectoryStart& start,
   // x = (q, u, W): the kernels' q (nq: a ball's quaternion, numeric/spherical.hpp), u (n).
   numeric::Instance model = *start.instance;
   const int n = model.coordinates(), nq = n + static_cast<int>(model.ball_joints.size()), size = nq + n;
-  const auto request = [&](double t, const double* x, const char* what) {
-    nlohmann::json r{{"t", t},
-                     {"q", std::vector<double>(x, x + nq)},
-                     {"u", std::vector<double>(x + nq, x + size)},
-                     {"tau", start.runner_tau},
-                     {"p", start.runner_p},
-                     {"eval", what}};
-    return runner::batch_request(runner, r);
+  const auto request = [&](double t, const double* x, const std::vector<std::string>& kernels) {
+    const nlohmann::json r{{"t", t},
+                           {"q", std::vector<double>(x, x + nq)},
+                           {"u", std::vector<double>(x + nq, x + size)},
+                           {"tau", start.runner_tau},
+                           {"p", start.runner_p}};
+    return runner::call_kernels(runner, r, kernels);
   };
 
   std::string why;
@@ -43,8 +42,8 @@ Worst power_balance(runner::RunnerProcess& runner, const TrajectoryStart& start,
   numeric::State s = start.state;
   const runtime::Rhs rhs = [&](double t, const double* x, double* xdot) {
     singular = false;  // set by the call that fails, not by an earlier probe
-    const nlohmann::json a = request(t, x, "udot");
-    if (const int pivot = a["pivot"].get<int>(); pivot != 0) {
+    const nlohmann::json a = request(t, x, {"forward_dynamics"})["forward_dynamics"];
+    if (const int pivot = static_cast<int>(a["returns"].get<double>()); pivot != 0) {
       singular = pivot < 0;
       why = singular ? "loop equation " + std::to_string(-pivot) + " (nearly) dependent on the ones before it"
                      : "M not positive definite (pivot " + std::to_string(pivot) + ")";
@@ -67,8 +66,9 @@ Worst power_balance(runner::RunnerProcess& runner, const TrajectoryStart& start,
   double e0 = 0, scale = 0;
   std::vector<double> times, energy, work;
   const auto record = [&](double t, const double* x) {
-    const nlohmann::json a = request(t, x, "energy");
-    const double kinetic = a["kinetic_energy"].get<double>(), potential = a["potential_energy"].get<double>();
+    const nlohmann::json a = request(t, x, {"kinetic_energy", "potential_energy"});
+    const double kinetic = a["kinetic_energy"]["returns"].get<double>(),
+                 potential = a["potential_energy"]["returns"].get<double>();
     if (times.empty()) e0 = kinetic + potential;
     scale = std::max(scale, kinetic + std::abs(potential) + std::abs(x[size]));
     times.push_back(t);

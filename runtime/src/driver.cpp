@@ -472,6 +472,9 @@ int info_command(const Model& model, std::FILE* out) {
   const ModelInfo& i = model.info();
   std::vector<double> defaults(static_cast<size_t>(std::max(i.np, 1)));
   for (int k = 0; k < i.np; ++k) defaults[k] = model.parameter(k);
+  std::vector<const char*> held;  // the kernels of the spec the table holds
+  for (const KernelSpec& spec : kernel_specs)
+    if (model.has(spec.kernel)) held.push_back(spec.name);
   const auto size = [](const char* key, int n) {
     return "\"" + std::string(key) + "\": " + std::to_string(n);
   };
@@ -486,7 +489,8 @@ int info_command(const Model& model, std::FILE* out) {
                  size("nc", i.nc) + ", \"constraints\": " + json_names(i.constraint_names, i.nc) +
                  ", \"jacobians\": " + (model.has_jacobians() ? "true" : "false") +
                  ", \"inverse_dynamics\": " + (model.has_inverse_dynamics() ? "true" : "false") +
-                 ", \"controller\": " + (model.has_controller() ? "true" : "false") + "}\n");
+                 ", \"controller\": " + (model.has_controller() ? "true" : "false") +
+                 ", \"kernels\": " + json_names(held.data(), static_cast<int>(held.size())) + "}\n");
   return 0;
 }
 

@@ -3,6 +3,7 @@
 // system.hpp: simulate (CSV), eval (JSON), info and the error paths.
 #include "kanegen/runtime/driver.hpp"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
@@ -421,6 +422,12 @@ TEST_CASE("info describes the model", "[driver]") {
   CHECK(j["parameter_defaults"] == json::array({2.0, 0.5, 9.81, 1e9, 1e9}));
   CHECK(j["q0"] == json::array({0.3}));
   CHECK(j["u0"] == json::array({0.0}));
+  // The kernels its table holds, in spec order: not the loop kernels of an open tree, not an unbound one.
+  const std::vector<std::string> kernels = j["kernels"].get<std::vector<std::string>>();
+  CHECK(std::find(kernels.begin(), kernels.end(), "mass_matrix") != kernels.end());
+  CHECK(std::find(kernels.begin(), kernels.end(), "forward_dynamics") != kernels.end());
+  CHECK(std::find(kernels.begin(), kernels.end(), "constraints") == kernels.end());
+  CHECK(std::find(kernels.begin(), kernels.end(), "generalized_momentum") == kernels.end());
 }
 
 // The Model and its table are instantiated from kernels.def: the methods

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // The runner's `batch` command (what kanegen verify talks to), in-process
-// on the generated simple pendulum: answers, selections, parameters per
-// line, the kinetic-energy Hessian, and bad lines.
+// on the generated simple pendulum: the kernels named on each line, called
+// through their spec, parameters per line, and bad lines.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
@@ -53,42 +53,40 @@ Outcome batch(const std::string& input, std::vector<std::string> extra = {}) {
 
 }  // namespace
 
-TEST_CASE("batch answers each line with M, f, udot, energies and outputs", "[batch]") {
-  const double q = 0.3, u = -1.2, tau = 0.5, m = 1.5, l = 0.8, g = 9.0;
+TEST_CASE("batch answers each line with the kernels it names, at the line's parameters", "[batch]") {
+  // The simple pendulum: M = m l^2, V = -m g l cos q.
+  const double q = 0.3, m = 1.5, l = 0.8, g = 9.0;
   const Outcome o = batch(
-      "{\"t\": 0, \"q\": [0.3], \"u\": [-1.2], \"tau\": [0.5], \"p\": [1.5, 0.8, 9.0], "
-      "\"kinetic_energy_hessian\": true}\n"
-      "{\"q\": [0.3], \"u\": [-1.2]}\n");
+      "{\"t\": 0, \"q\": [0.3], \"u\": [-1.2], \"tau\": [0.5], \"p\": [1.5, 0.8, 9.0], \"kernels\": "
+      "[\"mass_matrix\", \"potential_energy\", \"outputs\"]}\n"
+      "{\"q\": [0.3], \"u\": [-1.2], \"kernels\": [\"mass_matrix\"]}\n");
   REQUIRE(o.code == 0);
   REQUIRE(o.replies.size() == 2);
-  const json& a = o.replies[0];
-  CHECK(a["mass_matrix"][0][0].get<double>() == Approx(m * l * l));
-  CHECK(a["forcing"][0].get<double>() == Approx(-m * g * l * std::sin(q) + tau));
-  CHECK(a["udot"][0].get<double>() == Approx((-m * g * l * std::sin(q) + tau) / (m * l * l)));
-  CHECK(a["pivot"].get<int>() == 0);
-  CHECK(a["kinetic_energy"].get<double>() == Approx(0.5 * m * l * l * u * u));
-  CHECK(a["potential_energy"].get<double>() == Approx(-m * g * l * std::cos(q)));
-  CHECK(a["outputs"].size() == 4);
-  CHECK(a["kinetic_energy_hessian"][0][0].get<double>() == Approx(m * l * l).epsilon(1e-14));
+  REQUIRE(o.replies[0].size() == 1);  // only "kernels"
+  const json& a = o.replies[0]["kernels"];
+  CHECK(a.size() == 3);
+  CHECK(a["mass_matrix"]["M"][0][0].get<double>() == Approx(m * l * l));
+  CHECK(a["potential_energy"]["returns"].get<double>() == Approx(-m * g * l * std::cos(q)));
+  CHECK(a["outputs"]["y"].size() == 4);
   // Without "p" the line uses the defaults again (m = 1, l = 1, g = 9.81), not the previous line's values.
-  CHECK(o.replies[1]["mass_matrix"][0][0].get<double>() == Approx(1.0));
-  CHECK_FALSE(o.replies[1].contains("kinetic_energy_hessian"));
+  CHECK(o.replies[1]["kernels"]["mass_matrix"]["M"][0][0].get<double>() == Approx(1.0));
 }
 
 TEST_CASE("batch gives gravity, nonconservative_power and inverse_dynamics; controller needs the kernels",
           "[batch]") {
   const double q = 0.3, u = -1.2, tau = 0.5, m = 1.5, l = 0.8, g = 9.0, a = 2.0;
   const Outcome o = batch(
-      "{\"q\": [0.3], \"u\": [-1.2], \"tau\": [0.5], \"p\": [1.5, 0.8, 9.0], \"inverse_dynamics_udot\": "
-      "[2.0]}\n"
-      "{\"q\": [0.3], \"u\": [-1.2], \"controller\": true}\n");
+      "{\"q\": [0.3], \"u\": [-1.2], \"tau\": [0.5], \"p\": [1.5, 0.8, 9.0], \"kernels\": [\"gravity\", "
+      "\"nonconservative_power\", \"inverse_dynamics\"], \"input_udot\": [2.0]}\n"
+      "{\"q\": [0.3], \"u\": [-1.2], \"kernels\": [\"linearize\"]}\n");
   REQUIRE(o.replies.size() == 2);
-  const json& r = o.replies[0];
-  CHECK(r["gravity"][0].get<double>() == Approx(m * g * l * std::sin(q)));
-  CHECK(r["nonconservative_power"].get<double>() == Approx(tau * u));
+  const json& r = o.replies[0]["kernels"];
+  CHECK(r["gravity"]["g"][0].get<double>() == Approx(m * g * l * std::sin(q)));
+  CHECK(r["nonconservative_power"]["returns"].get<double>() == Approx(tau * u));
   // M a - f with the inputs 0: the torque that gives the acceleration a.
-  CHECK(r["inverse_dynamics"][0].get<double>() == Approx(m * l * l * a + m * g * l * std::sin(q)));
-  CHECK(o.replies[1]["error"] == "the model has no controller kernels; generate it with --controller");
+  CHECK(r["inverse_dynamics"]["tau"][0].get<double>() == Approx(m * l * l * a + m * g * l * std::sin(q)));
+  CHECK(o.replies[1]["error"] ==
+        "\"kernels\": the model has no linearize kernel; generate the model with --controller");
   CHECK(o.code == 1);
 }
 
@@ -96,7 +94,7 @@ TEST_CASE("batch calls the kernels named in \"kernels\" through their spec", "[b
   // The simple pendulum: M = m l^2, f = -m g l sin q + tau, T = m l^2 u^2 / 2.
   const double q = 0.3, u = -1.2, tau = 0.5, m = 1.5, l = 0.8, g = 9.0, a = 2.0;
   const Outcome o = batch(
-      "{\"q\": [0.3], \"u\": [-1.2], \"tau\": [0.5], \"p\": [1.5, 0.8, 9.0], \"eval\": \"udot\", "
+      "{\"q\": [0.3], \"u\": [-1.2], \"tau\": [0.5], \"p\": [1.5, 0.8, 9.0], "
       "\"kernels\": [\"mass_matrix\", \"forcing\", \"kinetic_energy\", \"forward_dynamics\", "
       "\"inverse_dynamics\"], \"input_udot\": [2.0]}\n");
   REQUIRE(o.code == 0);
@@ -130,7 +128,7 @@ TEST_CASE("batch \"kernels\" calls every kernel of the spec the model has, by it
     called.push_back(&spec);
   }
   REQUIRE(called.size() >= 10);
-  const Outcome o = batch("{\"q\": [0.3], \"u\": [1], \"eval\": \"energy\", \"kernels\": [" + names +
+  const Outcome o = batch("{\"q\": [0.3], \"u\": [1], \"kernels\": [" + names +
                           "], \"input_udot\": [0.5], \"input_a\": [1], \"input_lambda\": []}\n");
   REQUIRE(o.code == 0);
   const json& k = o.replies.at(0)["kernels"];
@@ -147,47 +145,51 @@ TEST_CASE("batch \"kernels\" calls every kernel of the spec the model has, by it
   }
 }
 
-TEST_CASE("batch selections: udot only, energy only", "[batch]") {
+TEST_CASE("batch skips blank lines", "[batch]") {
   const Outcome o = batch(
-      "{\"q\": [0.3], \"u\": [1], \"eval\": \"udot\"}\n\n{\"q\": [0.3], \"u\": [1], \"eval\": \"energy\"}\n");
+      "{\"q\": [0.3], \"u\": [1], \"kernels\": [\"forward_dynamics\"]}\n\n"
+      "{\"q\": [0.3], \"u\": [1], \"kernels\": [\"kinetic_energy\"]}\n");
   REQUIRE(o.code == 0);
-  REQUIRE(o.replies.size() == 2);  // the blank line is skipped
-  CHECK(o.replies[0].size() == 2);
-  CHECK(o.replies[0].contains("udot"));
-  CHECK(o.replies[0].contains("pivot"));
-  CHECK(o.replies[1].size() == 2);
-  CHECK(o.replies[1].contains("kinetic_energy"));
-  CHECK(o.replies[1].contains("potential_energy"));
+  REQUIRE(o.replies.size() == 2);
+  CHECK(o.replies[0]["kernels"].contains("forward_dynamics"));
+  CHECK(o.replies[1]["kernels"]["kinetic_energy"]["returns"].get<double>() == Approx(0.5));
 }
 
 TEST_CASE("batch: a bad line gives an error answer, the others are still answered", "[batch]") {
   const char* bad[] = {
-      "{\"q\": [0.3]}",                               // u missing
-      "{\"q\": [0.3, 1], \"u\": [1]}",                // wrong count
-      "{\"q\": [0.3], \"u\": [1], \"x\": 1}",         // unknown key
-      "{\"q\": [0.3], \"u\": [1], \"eval\": \"M\"}",  // unknown selection
-      "{\"q\": [0.3], \"u\": [nan]}",                 // not a number
-      "[1, 2]",                                       // not an object
-      "{\"q\": [0.3], \"u\": [1]} trailing",
-      "{\"q\": [0.3], \"q\": [0.3], \"u\": [1]}",  // duplicate key
-      // Jacobians of a model generated without them (and without the fixed vector a)
-      "{\"q\": [0.3], \"u\": [1], \"jacobians\": true, \"jacobian_a\": [1]}",
-      "{\"q\": [0.3], \"u\": [1], \"jacobians\": true}",
+      "{\"q\": [0.3], \"kernels\": [\"forcing\"]}",                        // u missing
+      "{\"q\": [0.3, 1], \"u\": [1], \"kernels\": [\"forcing\"]}",         // wrong count
+      "{\"q\": [0.3], \"u\": [1], \"kernels\": [\"forcing\"], \"x\": 1}",  // unknown key
+      "{\"q\": [0.3], \"u\": [nan], \"kernels\": [\"forcing\"]}",          // not a number
+      "[1, 2]",                                                            // not an object
+      "{\"q\": [0.3], \"u\": [1], \"kernels\": [\"forcing\"]} trailing",
+      "{\"q\": [0.3], \"q\": [0.3], \"u\": [1], \"kernels\": [\"forcing\"]}",  // duplicate key
+      // no kernels named; the fields before "kernels" are gone
+      "{\"q\": [0.3], \"u\": [1]}",
+      "{\"q\": [0.3], \"u\": [1], \"kernels\": []}",
+      "{\"q\": [0.3], \"u\": [1], \"kernels\": [\"forcing\"], \"eval\": \"udot\"}",
+      "{\"q\": [0.3], \"u\": [1], \"kernels\": [\"forcing\"], \"jacobians\": true}",
       // kernels: an unknown name, one the model lacks, a missing or short input, not names
       "{\"q\": [0.3], \"u\": [1], \"kernels\": [\"mass_matrixx\"]}",
       "{\"q\": [0.3], \"u\": [1], \"kernels\": [\"linearize\"]}",
+      "{\"q\": [0.3], \"u\": [1], \"kernels\": [\"forcing_jacobian\"]}",
       "{\"q\": [0.3], \"u\": [1], \"kernels\": [\"inverse_dynamics\"]}",
       "{\"q\": [0.3], \"u\": [1], \"kernels\": [\"inverse_dynamics\"], \"input_udot\": []}",
       "{\"q\": [0.3], \"u\": [1], \"kernels\": [1]}",
       "{\"q\": [0.3], \"u\": [1], \"kernels\": [\"forcing\", \"forcing\"]}",
+      "{\"q\": [0.3], \"u\": [1], \"kernels\": \"forcing\"}",
   };
   for (const char* line : bad) {
     INFO(line);
-    const Outcome o = batch(std::string(line) + "\n{\"q\": [0], \"u\": [0]}\n");
+    const Outcome o =
+        batch(std::string(line) + "\n{\"q\": [0], \"u\": [0], \"kernels\": [\"forward_dynamics\"]}\n");
     CHECK(o.code == 1);
     REQUIRE(o.replies.size() == 2);
-    CHECK(o.replies[0].contains("error"));
-    CHECK(o.replies[1]["udot"][0].get<double>() == 0.0);
+    REQUIRE(o.replies[0].contains("error"));
+    if (std::string(line).find("eval") != std::string::npos ||
+        std::string(line).find("jacobians") != std::string::npos)
+      CHECK(o.replies[0]["error"].get<std::string>().rfind("unknown key", 0) == 0);  // an old field is named
+    CHECK(o.replies[1]["kernels"]["forward_dynamics"]["udot"][0].get<double>() == 0.0);
   }
 }
 
@@ -199,6 +201,7 @@ TEST_CASE("batch --help describes the protocol, unknown options are usage errors
   CHECK(code == 0);
   const std::string help = read_all(out);
   read_all(err);
-  CHECK(help.find("kinetic_energy_hessian") != std::string::npos);
+  CHECK(help.find("\"kernels\": [\"<kernel>\", ...]") != std::string::npos);
+  CHECK(help.find("input_<argument>") != std::string::npos);
   CHECK(batch("", {"--frobnicate"}).code == 2);
 }
