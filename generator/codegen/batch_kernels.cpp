@@ -89,6 +89,34 @@ std::string batch_statement(const std::string& line) {
   return in_lanes(line);
 }
 
+/// `const double s = sin(a);` and `const double c = cos(a);` of one
+/// argument in one scope become one lane loop at the first of them,
+/// `Lanes s, c; lanes_sincos(a, s, c);` (lines that batch_statement keeps),
+/// so that the compiler makes one sincos call per lane of them, as it does
+/// in the scalar kernel.
+void pair_sines_and_cosines(std::vector<std::string>& lines) {
+  static const std::regex call(R"(^(\s*)const double ([A-Za-z_]\w*) = (sin|cos)\((.+)\);$)");
+  std::map<std::string, std::size_t> first;  // argument -> line of its first sin or cos
+  std::smatch m;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    if (lines[i].find_first_of("{}") != std::string::npos) first.clear();  // a scope opens or closes
+    if (!std::regex_match(lines[i], m, call)) continue;
+    const std::string indent = m[1], name = m[2], function = m[3], argument = m[4];
+    const auto at = first.find(argument);
+    std::smatch other;
+    if (at == first.end() || !std::regex_match(lines[at->second], other, call) || other[3] == function) {
+      first[argument] = i;
+      continue;
+    }
+    const std::string sine = function == "sin" ? name : other[2].str();
+    const std::string cosine = function == "cos" ? name : other[2].str();
+    lines[at->second] = indent + "Lanes " + sine + ", " + cosine + ";\n" + indent + "lanes_sincos(" +
+                        in_lanes(argument) + ", " + sine + ", " + cosine + ");";
+    lines[i].clear();
+    first.erase(at);
+  }
+}
+
 /// The lanes type, its operators where it is the portable struct, and the
 /// lane-wise helpers of the batched kernels, for W lanes.
 std::string lanes_helpers(int lanes) {
@@ -141,7 +169,14 @@ std::string lanes_helpers(int lanes) {
          "#define KANEGEN_LANES_INLINE inline\n"
          "#endif\n\n"
          "// <math.h> lane by lane; a number (of parameters alone) stays a number.\n" +
-         math + "// Structure of arrays: entry i of lane l at from[i * " + w +
+         math +
+         "// Both of one argument in one lane loop: the compiler makes it one sincos call per lane.\n"
+         "[[maybe_unused]] KANEGEN_LANES_INLINE void lanes_sincos(const Lanes& a, Lanes& s, Lanes& c) {\n"
+         "  s = a;\n  c = a;\n  " +
+         each +
+         "{\n    s[l] = sin(a[l]);\n    c[l] = cos(a[l]);\n  }\n}\n"
+         "// Structure of arrays: entry i of lane l at from[i * " +
+         w +
          " + l].\n"
          "[[maybe_unused]] KANEGEN_LANES_INLINE void lanes_load(Lanes* to, const double* from, int n) {\n"
          "  for (int i = 0; i < n; ++i)\n    " +
@@ -250,10 +285,13 @@ std::string batch_body(const std::string& scalar_body) {
   }
   while (!lines.empty() && lines.back().find_first_not_of(' ') == std::string::npos) lines.pop_back();
   if (!lines.empty() && lines.back() == "  return 0;") lines.pop_back();
+  pair_sines_and_cosines(lines);
   std::string out;
   for (const std::string& line : lines) {
     const std::size_t first = line.find_first_not_of(' ');
-    if (first == std::string::npos || line.compare(first, 2, "//") == 0) {
+    if (line.empty()) continue;  // the second of a sine and cosine pair
+    if (first == std::string::npos || line.compare(first, 2, "//") == 0 ||
+        line.compare(first, 6, "Lanes ") == 0) {
       out += line + "\n";
       continue;
     }
