@@ -172,6 +172,12 @@ TEST_CASE("batch_body: pivot checks per lane, numbers made vectors, branches ref
         "  const Lanes pivot0 = x0*x1;\n"
         "  udot[0] = 1.0/pivot0;\n"
         "  lanes_check(status, pivot0, 1);\n");
+  // sin and cos of one argument: one lane loop at the first; not across a scope.
+  CHECK(batch_body(
+            "  const double x1 = cos(q[0]);\n  const double x2 = x1*x1;\n  const double x3 = sin(q[0]);\n") ==
+        "  Lanes x3, x1;\n  lanes_sincos(q[0], x3, x1);\n  const Lanes x2 = x1*x1;\n");
+  CHECK(batch_body("  const double x1 = cos(q[0]);\n  {\n  const double x3 = sin(q[0]);\n") ==
+        "  const Lanes x1 = lanes_cos(q[0]);\n  {\n  const Lanes x3 = lanes_sin(q[0]);\n");
   CHECK_THROWS_AS(batch_body("  if (t < 0.5) {\n  }\n"), std::logic_error);
   CHECK_THROWS_AS(batch_body("  for (int k = 0; k < NU; ++k) M[k] = 0.0;\n"), std::logic_error);
   CHECK_THROWS_AS(batch_body("  return 3;\n  return 0;\n"), std::logic_error);

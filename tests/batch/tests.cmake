@@ -39,3 +39,7 @@ add_executable(test_batch ${CMAKE_CURRENT_LIST_DIR}/test_batch_kernels.cpp)
 target_compile_options(test_batch PRIVATE ${KANEGEN_WARNINGS})
 target_link_libraries(test_batch PRIVATE ${_kg_batch_libraries} kanegen_generator kanegen_catch_main)
 catch_discover_tests(test_batch TEST_PREFIX "batch: ")
+# The hostile names of tests/data/models/hostile_names.urdf in the batched
+# files too: compiled with -Werror (a library of its own, linked by nothing).
+kanegen_add_model(kanegen_model_hostile_names_batch ${PROJECT_SOURCE_DIR}/tests/data/models/hostile_names.urdf BATCH 4)
+target_compile_options(kanegen_model_hostile_names_batch PRIVATE ${KANEGEN_WARNINGS} -Werror)
