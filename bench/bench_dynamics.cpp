@@ -29,6 +29,11 @@
 //   mujoco/rne                    only what inverse_dynamics computes:
 //                                 mj_kinematics, mj_comPos, mj_comVel,
 //                                 mj_rne with accelerations.
+// Batched (arm7 only; kanegen generate --batch W, W = 4 and 8):
+//   kanegen/forward_dynamics_batchW, kanegen/inverse_dynamics_batchW
+//                                 one call evaluates W states (structure of
+//                                 arrays); the time is per call, bench/run.sh
+//                                 divides it by W for the time per state.
 // Before timing, each model checks that the kernels and the MuJoCo variants
 // compute the same udot and tau at the benchmark states; it aborts otherwise.
 #include <benchmark/benchmark.h>
@@ -36,6 +41,8 @@
 
 #include <algorithm>
 #include <arm7.hpp>
+#include <arm7_batch4_batch4.hpp>
+#include <arm7_batch8_batch8.hpp>
 #include <chain20.hpp>
 #include <cmath>
 #include <cstdio>
@@ -70,8 +77,8 @@ struct Fixture {
   mjModel* m = nullptr;
   mjData* d = nullptr;
   typename S::Params p{};
-  std::vector<int> qadr, dadr;  // MuJoCo qpos / dof address of coordinate i
-  std::vector<double> q, u, a;  // kStates x nu, kanegen order (a: the udot given to inverse dynamics)
+  std::vector<int> qadr, dadr;     // MuJoCo qpos / dof address of coordinate i
+  std::vector<double> q, u, a;     // kStates x nu, kanegen order (a: the udot given to inverse dynamics)
   std::vector<double> mq, mu, ma;  // kStates x nv, MuJoCo qpos / qvel / qacc layout
   std::vector<double> M, f, udot, tau, tmp;
 
@@ -179,7 +186,8 @@ struct Fixture {
     }
     if (worst > 1e-6)
       die(label + ": kanegen and MuJoCo inverse dynamics disagree, max rel. error " + std::to_string(worst));
-    std::fprintf(stderr, "%s: kanegen vs MuJoCo inverse dynamics max rel. error %.1e\n", label.c_str(), worst);
+    std::fprintf(stderr, "%s: kanegen vs MuJoCo inverse dynamics max rel. error %.1e\n", label.c_str(),
+                 worst);
   }
   void smooth() {
     mj_kinematics(m, d);
@@ -347,6 +355,112 @@ void register_model(Fixture<S>* fx) {
   });
 }
 
+// The batched kernels of arm7 (the same model, renamed arm7_batch<W>).
+struct Arm7Batch4 {
+  using Params = kanegen_models::arm7_batch4::Params;
+  static constexpr int lanes = 4;
+  static int forward(const Params& p, const double* t, const double* q, const double* u, const double* tau,
+                     double* udot, int* status) {
+    return kanegen_models::arm7_batch4::forward_dynamics_batch4(p, t, q, u, tau, udot, status);
+  }
+  static void inverse(const Params& p, const double* t, const double* q, const double* u, const double* a,
+                      double* tau) {
+    kanegen_models::arm7_batch4::inverse_dynamics_batch4(p, t, q, u, a, tau);
+  }
+};
+struct Arm7Batch8 {
+  using Params = kanegen_models::arm7_batch8::Params;
+  static constexpr int lanes = 8;
+  static int forward(const Params& p, const double* t, const double* q, const double* u, const double* tau,
+                     double* udot, int* status) {
+    return kanegen_models::arm7_batch8::forward_dynamics_batch8(p, t, q, u, tau, udot, status);
+  }
+  static void inverse(const Params& p, const double* t, const double* q, const double* u, const double* a,
+                      double* tau) {
+    kanegen_models::arm7_batch8::inverse_dynamics_batch8(p, t, q, u, a, tau);
+  }
+};
+
+// The fixture's states as kStates / W batches of W lanes, entry i of lane l
+// of batch b at [(b * n + i) * W + l]; checked against the scalar kernels.
+template <class B, class S>
+struct Batched {
+  static constexpr int W = B::lanes, batches = kStates / B::lanes;
+  typename B::Params p{};
+  std::vector<double> t, q, u, a, tau, out;
+  std::vector<int> status;
+
+  explicit Batched(Fixture<S>& fx) : t(W, 0.0), tau(std::max(S::ntau, 1) * W, 0.0), status(W, 0) {
+    const int n = S::nu;
+    for (const auto& [from, to] :
+         {std::make_pair(&fx.q, &q), std::make_pair(&fx.u, &u), std::make_pair(&fx.a, &a)}) {
+      to->assign(from->size(), 0.0);
+      for (int k = 0; k < kStates; ++k)
+        for (int i = 0; i < n; ++i) (*to)[((k / W) * n + i) * W + k % W] = (*from)[k * n + i];
+    }
+    out.assign(n * W, 0.0);
+    verify(fx);
+  }
+  const double* at(const std::vector<double>& v, int b) const { return &v[b * S::nu * W]; }
+  int forward(int b) {
+    return B::forward(p, t.data(), at(q, b), at(u, b), tau.data(), out.data(), status.data());
+  }
+  void inverse(int b) { B::inverse(p, t.data(), at(q, b), at(u, b), at(a, b), out.data()); }
+
+  // Each lane against the scalar kernel: equal but for the compiler's
+  // contractions (FMA with -march=native), which may differ between the two.
+  void verify(Fixture<S>& fx) {
+    const int n = S::nu;
+    double worst = 0.0;
+    std::vector<double> scalar(n);
+    for (int pass = 0; pass < 2; ++pass)
+      for (int b = 0; b < batches; ++b) {
+        if (pass == 0 && forward(b) != 0) die(fx.label + ": forward_dynamics_batch failed");
+        if (pass == 1) inverse(b);
+        for (int l = 0; l < W; ++l) {
+          const int k = b * W + l;
+          if (pass == 0)
+            S::forward_dynamics(fx.p, 0.0, &fx.q[k * n], &fx.u[k * n], fx.tau.data(), scalar.data());
+          else
+            S::inverse_dynamics(fx.p, 0.0, &fx.q[k * n], &fx.u[k * n], &fx.a[k * n], scalar.data());
+          for (int i = 0; i < n; ++i)
+            worst =
+                std::max(worst, std::abs(out[i * W + l] - scalar[i]) / std::max(std::abs(scalar[i]), 1e-300));
+        }
+      }
+    if (worst > 1e-9)
+      die(fx.label + ": batched and scalar kernels disagree, max rel. error " + std::to_string(worst));
+    std::fprintf(stderr, "%s: batched (%d lanes) vs scalar kernels max rel. error %.1e\n", fx.label.c_str(),
+                 W, worst);
+  }
+};
+
+template <class B, class S>
+void register_batched(Batched<B, S>* bx, const std::string& label) {
+  const std::string w = std::to_string(B::lanes);
+  benchmark::RegisterBenchmark((label + "/kanegen/forward_dynamics_batch" + w).c_str(),
+                               [bx](benchmark::State& st) {
+                                 int b = 0;
+                                 for (auto _ : st) {
+                                   const int rc = bx->forward(b);
+                                   benchmark::DoNotOptimize(rc);
+                                   benchmark::DoNotOptimize(bx->out.data());
+                                   benchmark::ClobberMemory();
+                                   b = (b + 1) % Batched<B, S>::batches;
+                                 }
+                               });
+  benchmark::RegisterBenchmark((label + "/kanegen/inverse_dynamics_batch" + w).c_str(),
+                               [bx](benchmark::State& st) {
+                                 int b = 0;
+                                 for (auto _ : st) {
+                                   bx->inverse(b);
+                                   benchmark::DoNotOptimize(bx->out.data());
+                                   benchmark::ClobberMemory();
+                                   b = (b + 1) % Batched<B, S>::batches;
+                                 }
+                               });
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -355,7 +469,11 @@ int main(int argc, char** argv) {
   benchmark::AddCustomContext("mujoco", mj_versionString());
   Fixture<kanegen_models::arm7::System> arm7("arm7", KANEGEN_ARM7_URDF);
   Fixture<kanegen_models::chain20::System> chain20("chain20", KANEGEN_CHAIN20_URDF);
+  Batched<Arm7Batch4, kanegen_models::arm7::System> arm7_batch4(arm7);
+  Batched<Arm7Batch8, kanegen_models::arm7::System> arm7_batch8(arm7);
   register_model(&arm7);
+  register_batched(&arm7_batch4, "arm7");
+  register_batched(&arm7_batch8, "arm7");
   register_model(&chain20);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

@@ -54,13 +54,22 @@ pairs = [
     ("kanegen/M_udot_minus_f", "kanegen/inverse_dynamics"),
 ]
 models = sorted({name.split("/")[0] for name in times})
+# A batched kernel's call evaluates W states: its time per state is the call's / W.
+for name in list(times):
+    if "_batch" in name:
+        times[name + "_per_state"] = times[name] / int(name.rsplit("_batch", 1)[1])
+for w in (4, 8):
+    pairs += [("mujoco/mj_forward", "kanegen/forward_dynamics_batch%d_per_state" % w),
+              ("kanegen/forward_dynamics", "kanegen/forward_dynamics_batch%d_per_state" % w),
+              ("mujoco/mj_inverse", "kanegen/inverse_dynamics_batch%d_per_state" % w),
+              ("kanegen/inverse_dynamics", "kanegen/inverse_dynamics_batch%d_per_state" % w)]
 print()
 print("peer time / kanegen time (median CPU time per call; > 1 means kanegen is faster)")
-print("%-9s %-24s %-26s %12s %12s %8s" % ("model", "peer", "kanegen", "peer [ns]", "kanegen [ns]", "ratio"))
+print("%-9s %-24s %-42s %12s %12s %8s" % ("model", "peer", "kanegen", "peer [ns]", "kanegen [ns]", "ratio"))
 for model in models:
     for mj, kg in pairs:
         a, b = times.get(model + "/" + mj), times.get(model + "/" + kg)
         if a is None or b is None:
             continue
-        print("%-9s %-24s %-26s %12.0f %12.0f %8.2f" % (model, mj, kg, a, b, a / b))
+        print("%-9s %-24s %-42s %12.1f %12.1f %8.2f" % (model, mj, kg, a, b, a / b))
 EOF

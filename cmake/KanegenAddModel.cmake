@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: MIT
 # kanegen_add_model(<target> <model file> [NAME <model name>] [RUNNER] [JACOBIANS] [CONTROLLER] [PRECISION float]
-#                   [DYNAMICS recursive|composite|auto] [SPLIT_THRESHOLD N])
+#                   [DYNAMICS recursive|composite|auto] [SPLIT_THRESHOLD N] [BATCH 4|8])
 #
 # Generates the model's kernels at build time (again whenever the model file
 # or the kanegen generator changes) and makes <target> a static library with
@@ -14,12 +14,15 @@
 # such a model has no runner (docs/embedded.md). DYNAMICS picks how
 # forward_dynamics solves (kanegen generate --dynamics; default auto).
 # SPLIT_THRESHOLD: kernels of more operations become several functions
-# (kanegen generate --split-threshold; 0: never).
+# (kanegen generate --split-threshold; 0: never). BATCH W: the library also has
+# the batched kernels, W states per call (kanegen generate --batch W): include
+# "<model name>_batch<W>.hpp"; define KANEGEN_BATCH_PORTABLE on <target> for
+# the portable lanes instead of the vector extension.
 #
 # The model name is read from the file (JSON "name", URDF <robot name>, made
 # a C++ identifier as kanegen does); NAME overrides it if your file is unusual.
 function(kanegen_add_model target model)
-  cmake_parse_arguments(ARG "RUNNER;JACOBIANS;CONTROLLER" "NAME;PRECISION;DYNAMICS;SPLIT_THRESHOLD" "" ${ARGN})
+  cmake_parse_arguments(ARG "RUNNER;JACOBIANS;CONTROLLER" "NAME;PRECISION;DYNAMICS;SPLIT_THRESHOLD;BATCH" "" ${ARGN})
   get_filename_component(model_path ${model} ABSOLUTE)
   if(NOT EXISTS ${model_path})
     message(FATAL_ERROR "kanegen_add_model(${target}): model file ${model_path} does not exist")
@@ -66,6 +69,14 @@ function(kanegen_add_model target model)
     endif()
     list(APPEND options --split-threshold ${ARG_SPLIT_THRESHOLD})
   endif()
+  set(batch_sources)
+  if(DEFINED ARG_BATCH)
+    if(NOT ARG_BATCH MATCHES "^(4|8)$")
+      message(FATAL_ERROR "kanegen_add_model(${target}): BATCH is 4 or 8, not ${ARG_BATCH}")
+    endif()
+    list(APPEND options --batch ${ARG_BATCH})
+    set(batch_sources ${out}/${name}_batch${ARG_BATCH}.cpp ${out}/${name}_batch${ARG_BATCH}.hpp)
+  endif()
   set(runner_source ${out}/${name}_runner.cpp)
   if(ARG_PRECISION STREQUAL "float")
     list(APPEND options --precision float)
@@ -78,12 +89,12 @@ function(kanegen_add_model target model)
     message(FATAL_ERROR "kanegen_add_model(${target}): PRECISION is double or float, not ${ARG_PRECISION}")
   endif()
   add_custom_command(
-    OUTPUT ${out}/${name}.hpp ${out}/${name}.cpp ${runner_source}
+    OUTPUT ${out}/${name}.hpp ${out}/${name}.cpp ${runner_source} ${batch_sources}
     COMMAND ${KANEGEN_EXECUTABLE} generate ${model_path} -o ${out} --quiet ${options}
     DEPENDS ${model_path} ${KANEGEN_EXECUTABLE}
     COMMENT "kanegen: generating ${name} from ${model}"
     VERBATIM)
-  add_library(${target} STATIC ${out}/${name}.cpp ${out}/${name}.hpp)
+  add_library(${target} STATIC ${out}/${name}.cpp ${out}/${name}.hpp ${batch_sources})
   target_include_directories(${target} PUBLIC ${out})
   target_link_libraries(${target} PUBLIC kanegen::runtime)
   set_target_properties(${target} PROPERTIES POSITION_INDEPENDENT_CODE ON)

@@ -160,6 +160,7 @@ struct GenerateCommand {
   std::string precision = "double";
   bool controller = false;
   int split_threshold = kanegen::codegen::kDefaultSplitThreshold;
+  int batch = 0;
 };
 
 constexpr const char* kControllerHelp =
@@ -193,6 +194,15 @@ void add_generate(CLI::App& app, GenerateCommand& c) {
       ->type_name("N")
       ->capture_default_str()
       ->check(kNonNegative);
+  c.command
+      ->add_option(
+          "--batch", c.batch,
+          "also write <name>_batchW.hpp and .cpp: forward_dynamics and inverse_dynamics over W = 4 or 8 "
+          "states per call (SIMD lanes by GCC/Clang vector extensions, a portable struct elsewhere; "
+          "structure of arrays; double, trees without loops or prescribed motions; "
+          "docs/architecture.md#batched-kernels)")
+      ->type_name("W")
+      ->check(CLI::IsMember({4, 8}));
 }
 
 int run_generate(const GenerateCommand& c) {
@@ -205,7 +215,7 @@ int run_generate(const GenerateCommand& c) {
         {c.jacobians, c.controller,
          c.precision == "float" ? kanegen::codegen::Precision::single_precision
                                 : kanegen::codegen::Precision::double_precision,
-         b.dynamics, c.split_threshold});
+         b.dynamics, c.split_threshold, c.batch});
   }();
   kanegen::codegen::write_files_atomically(c.out_dir, g.files);
   if (!c.run.quiet) {

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "codegen/batch_kernels.hpp"
 #include "codegen/cpp_printer.hpp"
 #include "codegen/cpp_text.hpp"
 #include "codegen/embedded_templates.hpp"
@@ -219,6 +220,11 @@ EmittedModel emit_model(kane::DerivationContext& products, ExpressionGraph& grap
   emitted.files[name + ".cpp"] = fill_template(embedded::model_cpp_template, values);
   if (scalar.is_double())  // the runner is the runtime's, which is double
     emitted.files[name + "_runner.cpp"] = fill_template(embedded::runner_cpp_template, values);
+  if (options.batch > 0) {
+    if (!scalar.is_double() || products.has_loops() || !products.coordinates().prescribed.empty())
+      throw std::logic_error("batched kernels need double, no loops and no prescribed motions");
+    for (auto& [file, code] : batch_files(kernels, values, options.batch)) emitted.files[file] = code;
+  }
   for (const auto& [file, code] : emitted.files) check_emitted_text(file, code);
   return emitted;
 }

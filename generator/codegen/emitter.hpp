@@ -41,6 +41,10 @@ struct EmitOptions {
   /// Kernels of more statements are split into functions of at most this
   /// many, so that the compile time grows linearly (kernel_splitter.hpp); 0: never.
   int split_threshold = kDefaultSplitThreshold;
+  /// 4 or 8: also <name>_batch<W>.hpp and .cpp, forward_dynamics and
+  /// inverse_dynamics over W states at once (batch_kernels.hpp); 0: none.
+  /// Double only, for trees without loops or prescribed motions.
+  int batch = 0;
 };
 
 /// The name of the emitted files and namespace: the model's, "_float" added for float.

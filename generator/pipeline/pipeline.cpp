@@ -50,6 +50,31 @@ void refuse_controller_kernels(const model::Model& model) {
                               "generate without --controller; " + why);
 }
 
+/// The batched kernels evaluate the scalar kernels' straight-line code over
+/// lanes: no time-dependent branch (a prescribed motion's pieces), no
+/// saddle-point solve (loops), double only.
+void refuse_batch_kernels(const model::Model& model, const GenerateOptions& options) {
+  const std::string why =
+      "--batch supports double kernels of trees without prescribed motions "
+      "(docs/architecture.md#batched-kernels)";
+  if (options.batch != 4 && options.batch != 8)
+    throw model::ModelError(model.source_file, "",
+                            "--batch " + std::to_string(options.batch) + " is not a lane count",
+                            "use --batch 4 or --batch 8");
+  if (options.precision != codegen::Precision::double_precision)
+    throw model::ModelError(model.source_file, "", "--batch cannot be combined with --precision float",
+                            "generate the batched kernels in double (leave out --precision)");
+  if (!model.loops.empty())
+    throw model::ModelError(model.source_file, model.loops.front().where,
+                            "the batched kernels are not made for closed loops",
+                            "generate without --batch; " + why);
+  for (const model::Joint& joint : model.joints)
+    if (joint.is_prescribed())
+      throw model::ModelError(model.source_file, joint.where + "/prescribed",
+                              "the batched kernels are not made for prescribed motions",
+                              "generate without --batch; " + why);
+}
+
 /// The Jacobian kernels (implicit integration, --controller) are d/dq of
 /// kernels, the whole Jacobian only where q_dot = u: not for a quaternion.
 void refuse_quaternion_jacobians(const model::Model& model, const GenerateOptions& options) {
@@ -114,6 +139,7 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
   check_precision(model, generate_options);
 
   if (generate_options.controller) refuse_controller_kernels(model);
+  if (generate_options.batch > 0) refuse_batch_kernels(model, generate_options);
   refuse_quaternion_jacobians(model, generate_options);
   if (generate_options.dynamics == codegen::DynamicsMethod::recursive) refuse_recursive_dynamics(model);
 
@@ -136,8 +162,11 @@ GeneratedModel generate(const std::string& model_path, const model::LoadOptions&
   // the context and the graph refer to it.
   const symbolic::Variables vars(model, elastic_counts);
   const codegen::EmitOptions emit_options{generate_options.jacobians || generate_options.controller,
-                                          generate_options.controller, generate_options.precision,
-                                          generate_options.dynamics, generate_options.split_threshold};
+                                          generate_options.controller,
+                                          generate_options.precision,
+                                          generate_options.dynamics,
+                                          generate_options.split_threshold,
+                                          generate_options.batch};
   const codegen::ScalarType scalar(generate_options.precision);
   long fewest = 0;
   std::unique_ptr<symbolic::Program> chosen_program;

@@ -52,6 +52,10 @@ struct GenerateOptions {
   /// `--split-threshold`: kernels of more statements are emitted as functions
   /// of at most this many (compile time linear in the model); 0: never.
   int split_threshold = codegen::kDefaultSplitThreshold;
+  /// `--batch W` (4 or 8): also forward_dynamics and inverse_dynamics over W
+  /// states at once, <name>_batch<W>.hpp and .cpp; 0 (the default): none.
+  /// Double only, for trees without loops or prescribed motions.
+  int batch = 0;
 };
 
 /// Runs every stage on the model file. Throws model::ModelError for a bad

@@ -151,6 +151,39 @@ TEST_CASE("generate --jacobians adds the Jacobian kernels, and only then", "[cli
   CHECK(kanegen("verify --help").out.find("--jacobians") != std::string::npos);
 }
 
+TEST_CASE(
+    "generate --batch W adds the batched kernels beside unchanged files, and refuses what it cannot batch",
+    "[cli][batch]") {
+  const fs::path plain = scratch() / "gen_batch_plain", with = scratch() / "gen_batch";
+  REQUIRE(kanegen("generate " + model("arm7.urdf") + " -o " + plain.string() + " --quiet").status == 0);
+  REQUIRE(kanegen("generate " + model("arm7.urdf") + " -o " + with.string() + " --quiet --batch 8").status ==
+          0);
+  for (const char* f : {"arm7.hpp", "arm7.cpp", "arm7_runner.cpp"})
+    CHECK(slurp(plain / f) == slurp(with / f));
+  CHECK(!fs::exists(plain / "arm7_batch8.cpp"));
+  const std::string header = slurp(with / "arm7_batch8.hpp"), source = slurp(with / "arm7_batch8.cpp");
+  CHECK(header.find("int forward_dynamics_batch8(const Params& p, const double* t_lanes,") !=
+        std::string::npos);
+  CHECK(header.find("void inverse_dynamics_batch8(") != std::string::npos);
+  CHECK(source.find("vector_size(8 * sizeof(double))") != std::string::npos);
+  CHECK(source.find("lanes_check(status, pivot0, 1);") != std::string::npos);
+  CHECK(kanegen("generate --help").out.find("--batch") != std::string::npos);
+  // 4 or 8 lanes; double; open trees without prescribed motions. Nothing written.
+  const fs::path refused = scratch() / "gen_batch_refused";
+  CHECK(kanegen("generate " + model("arm7.urdf") + " -o " + refused.string() + " --batch 3").status != 0);
+  const Result float_batch =
+      kanegen("generate " + model("arm7.urdf") + " -o " + refused.string() + " --batch 4 --precision float");
+  CHECK(float_batch.status != 0);
+  CHECK(float_batch.err.find("--batch cannot be combined with --precision float") != std::string::npos);
+  const Result loops =
+      kanegen("generate " + model("four_bar.json") + " -o " + refused.string() + " --batch 4");
+  CHECK(loops.status != 0);
+  CHECK(loops.err.find("four_bar.json: /loops/0: the batched kernels are not made for closed loops") !=
+        std::string::npos);
+  CHECK(!fs::exists(refused / "arm7_batch4.cpp"));
+  CHECK(!fs::exists(refused / "four_bar_batch4.cpp"));
+}
+
 TEST_CASE("eval of the simple pendulum matches the closed form", "[cli]") {
   const double q = 0.7, u = 1.3, m = 1.0, l = 1.0, g = 9.81;
   const Result r = kanegen("eval " + model("simple_pendulum.json") + " --q 0.7 --u 1.3 --quiet");
