@@ -150,6 +150,11 @@ std::string write_html(const AnimateOptions& o, const std::string& three, const 
 
 }  // namespace
 
+std::vector<std::string> result_state_columns(const std::string& model_file, const model::LoadOptions& load) {
+  const model::Model m = model::load_model(model_file, load);
+  return state_columns(numeric::instantiate(m, parameter_values(m, {})));
+}
+
 std::string animate(const AnimateOptions& o) {
   if (!(o.scale >= 0) || !std::isfinite(o.scale))
     throw std::runtime_error("--scale " + runtime::format_double(o.scale) + ": give a finite number >= 0");

@@ -25,6 +25,11 @@ struct AnimateOptions {
   bool verbose = true;  ///< progress on stderr
 };
 
+/// The columns a result CSV of the model starts with after t (its state, as
+/// kanegen simulate writes it; parameters at their defaults).
+std::vector<std::string> result_state_columns(const std::string& model_file,
+                                              const model::LoadOptions& load = {});
+
 /// Writes the series, or the page; returns the path of the .pvd or .html.
 /// Throws model::ModelError for the model, std::runtime_error naming the
 /// file and the fix for a CSV that is not of this model, an unknown --set

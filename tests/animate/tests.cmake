@@ -15,11 +15,18 @@ set_tests_properties("animate: vtk frames against the run's outputs" PROPERTIES 
 # or else Debian's libjs-three. It skips without them, unless
 # KANEGEN_REQUIRE_BROWSER is set (.ci/run).
 add_executable(test_animate ${CMAKE_CURRENT_LIST_DIR}/script_text_test.cpp ${CMAKE_CURRENT_LIST_DIR}/surface_test.cpp
-                            ${CMAKE_CURRENT_LIST_DIR}/three_js_test.cpp)
+                            ${CMAKE_CURRENT_LIST_DIR}/three_js_test.cpp ${CMAKE_CURRENT_LIST_DIR}/every_model_test.cpp)
 target_compile_options(test_animate PRIVATE ${KANEGEN_WARNINGS})
 target_compile_definitions(test_animate PRIVATE KANEGEN_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 target_link_libraries(test_animate PRIVATE kanegen_animate kanegen_model kanegen_catch_main)
-catch_discover_tests(test_animate TEST_PREFIX "animate: ")
+catch_discover_tests(test_animate TEST_PREFIX "animate: " TEST_SPEC "~[every_model]")
+# Both formats for every shipped model, one test each (every_model_test.cpp).
+file(GLOB KANEGEN_ANIMATE_MODELS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/models/*.json ${PROJECT_SOURCE_DIR}/models/*.urdf)
+foreach(model ${KANEGEN_ANIMATE_MODELS})
+  get_filename_component(name ${model} NAME)
+  add_test(NAME "animate: both formats of ${name}" COMMAND test_animate "[every_model]")
+  set_tests_properties("animate: both formats of ${name}" PROPERTIES ENVIRONMENT "KANEGEN_ANIMATE_MODEL=${model}")
+endforeach()
 add_test(NAME "animate: html page in headless Chromium against the run's outputs"
          COMMAND /usr/bin/python3 ${CMAKE_CURRENT_LIST_DIR}/check_html.py --kanegen $<TARGET_FILE:kanegen>
                  --source ${PROJECT_SOURCE_DIR} --work ${CMAKE_CURRENT_BINARY_DIR}/animate_html_work)
