@@ -53,7 +53,7 @@ void compare_paths(const MeshBody& mb, const Constraint& c, int rigid, int k) {
       continue;
     }
     CHECK(std::abs(sparse.omega[i] / dense.omega[i] - 1.0) < 1e-8);
-    const bool single = !clustered(dense.eigenvalues[i - 1], dense.eigenvalues[i]) &&
+    const bool single = (i == 0 || !clustered(dense.eigenvalues[i - 1], dense.eigenvalues[i])) &&
                         !clustered(dense.eigenvalues[i], dense.eigenvalues[i + 1]);
     if (single) {
       const Eigen::VectorXd d = sparse.shapes.col(i) - dense.shapes.col(i);
