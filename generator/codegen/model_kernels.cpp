@@ -593,6 +593,14 @@ int inverse_dynamics_row(const Derivation& d, int r) {
   return d.graph.add(d.eq.inverse_dynamics().inertial[r].subs(no_inputs));
 }
 
+/// Row r of f - M udot on a rigid tree: the generalized inputs f(tau) - f(0)
+/// less `inverse_dynamics` (a node of the recursion's row r, M udot - f(0),
+/// possibly with u or udot replaced).
+int residual_row(const Derivation& d, int r, int inverse_dynamics) {
+  return d.graph.sum({d.graph.add(d.eq.forcing()[r] - unforced(d, r)),
+                      d.graph.product({d.graph.constant(-1.0), inverse_dynamics})});
+}
+
 /// The rows of the recursive inverse dynamics with u = 0 (none of its
 /// velocity terms) and udot replaced by `accelerations` (nodes; 0 or a
 /// kernel argument).
@@ -620,10 +628,7 @@ KernelCode forcing_jacobian_kernel(const Derivation& d) {
     std::map<int, int> no_acceleration;
     for (int i = 0; i < d.n(); ++i) no_acceleration[d.graph.add(d.vars.udot[i])] = d.graph.constant(0.0);
     GraphSubstitution at_rest(d.graph, std::move(no_acceleration));
-    for (int r = 0; r < d.n(); ++r)
-      forcing[r] =
-          d.graph.sum({d.graph.add(d.eq.forcing()[r] - unforced(d, r)),
-                       d.graph.product({d.graph.constant(-1.0), at_rest.of(inverse_dynamics_row(d, r))})});
+    for (int r = 0; r < d.n(); ++r) forcing[r] = residual_row(d, r, at_rest.of(inverse_dynamics_row(d, r)));
   }
   std::string fill;
   std::vector<Assignment> entries =
@@ -921,9 +926,7 @@ const char* const kLinearizeStart =
 /// composite M and f grow with n^3 and more.
 std::string recursive_linearize(const Derivation& d) {
   std::vector<int> residual;
-  for (int r = 0; r < d.n(); ++r)
-    residual.push_back(d.graph.sum({d.graph.add(d.eq.forcing()[r] - unforced(d, r)),
-                                    d.graph.product({d.graph.constant(-1.0), inverse_dynamics_row(d, r)})}));
+  for (int r = 0; r < d.n(); ++r) residual.push_back(residual_row(d, r, inverse_dynamics_row(d, r)));
   std::string fill;
   std::vector<Assignment> entries =
       jacobian_entries(d.graph, residual, input_nodes(d.graph, d.vars.q), "dRdq", "NU * NQ", fill);
