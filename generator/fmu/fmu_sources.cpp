@@ -6,18 +6,16 @@
 
 #include "codegen/cpp_text.hpp"
 #include "fmu/embedded_files.hpp"
+#include "kanegen/runtime/methods.hpp"
 
 namespace kanegen::fmu {
 
 namespace {
 
-/// The runtime's Method enumerator of an FMU integrator: the ones that need no library beyond the
-/// standard one and step from any t0 (templates/fmu/absent_methods.cpp stands in for the others).
-const char* method_enumerator(const std::string& method) {
-  check_integrator(method);
-  if (method == "rk4") return "kRk4";
-  if (method == "dopri5") return "kDopri5";
-  return "kRadau";  // radau, or implicit, which selects it
+/// Whether an FMU carries the row's method (an alias's, its target's; the runtime's registry,
+/// methods.hpp: a row with a reason in not_in_fmu is not carried).
+bool in_fmu(const runtime::MethodSpec& row) {
+  return runtime::resolved_spec(row.method).not_in_fmu == nullptr;
 }
 
 }  // namespace
@@ -25,11 +23,13 @@ const char* method_enumerator(const std::string& method) {
 void check_integrator(const std::string& method) {
   for (const std::string& name : fmu_integrators())
     if (name == method) return;
-  std::string known;
+  std::string known, why;
   for (const std::string& name : fmu_integrators()) known += (known.empty() ? "" : ", ") + name;
-  throw std::invalid_argument(
-      "--integrator " + method + ": an FMU's co-simulation integrates with " + known +
-      " (bdf needs SUNDIALS, which an FMU does not carry; genalpha steps whole runs)");
+  for (const runtime::MethodSpec& row : runtime::kMethods)
+    if (row.alias_of == row.method && !in_fmu(row))
+      why += std::string(why.empty() ? "" : "; ") + row.name + ": " + row.not_in_fmu;
+  throw std::invalid_argument("--integrator " + method + ": an FMU's co-simulation integrates with " + known +
+                              " (" + why + ")");
 }
 
 namespace {
@@ -49,7 +49,8 @@ std::string fmu_model_source(const SourceOptions& o) {
   std::string text = embedded::fmu_model_template;
   replace_all(text, "@NAME@", codegen::cpp_identifier(o.identifier));
   replace_all(text, "@TOKEN@", codegen::cpp_string_literal(o.token));
-  replace_all(text, "@METHOD@", method_enumerator(o.method));
+  check_integrator(o.method);
+  replace_all(text, "@METHOD@", codegen::cpp_string_literal(o.method));
   replace_all(text, "@RTOL@", number(o.rtol));
   replace_all(text, "@ATOL@", number(o.atol));
   replace_all(text, "@MAX_STEP@", number(o.max_step));
@@ -64,7 +65,12 @@ bool ends_with(const std::string& text, const std::string& end) {
 }  // namespace
 
 const std::vector<std::string>& fmu_integrators() {
-  static const std::vector<std::string> names = {"dopri5", "rk4", "radau", "implicit"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const runtime::MethodSpec& row : runtime::kMethods)
+      if (in_fmu(row)) out.push_back(row.name);
+    return out;
+  }();
   return names;
 }
 

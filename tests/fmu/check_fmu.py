@@ -229,7 +229,7 @@ def case_refused(a):
     model = os.path.join(a.source, "models", "simple_pendulum.json")
     out = os.path.join(work, "p.fmu")
     refused(a, [model, "-o", os.path.join(work, "p.zip")], "ends in .fmu", work)
-    refused(a, [model, "-o", out, "--integrator", "bdf"], "dopri5, rk4, radau", work)
+    refused(a, [model, "-o", out, "--integrator", "bdf"], "integrates with rk4, dopri5, implicit, radau (bdf: it needs SUNDIALS", work)
     refused(a, [model, "-o", "/proc/kanegen-none/p.fmu"], "cannot write in /proc/kanegen-none", work)
     refused(a, [model, "-o", out, "--fmi", "4"], "--fmi", work, status=105)
     # An output named as a coordinate: FMI asks for unique variable names.

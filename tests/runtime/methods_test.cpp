@@ -88,9 +88,13 @@ TEST_CASE("methods: the properties agree with the kind, an alias with its target
       CHECK(m.needs_jacobians == target.needs_jacobians);
       CHECK(m.steps_by_dt == target.steps_by_dt);
       CHECK(m.takes_tolerances == target.takes_tolerances);
-    } else {  // exactly one entry: an ODE method or one that steps the Model
+      CHECK(m.not_in_fmu == nullptr);  // an FMU carries an alias if it carries its target
+    } else {                           // exactly one entry: an ODE method or one that steps the Model
       CHECK((m.ode == nullptr) != (m.model == nullptr));
+      // An FMU's DoStep integrates from any communication point: a method that steps a whole run cannot.
+      if (m.model != nullptr) CHECK(m.not_in_fmu != nullptr);
     }
+    if (m.not_in_fmu != nullptr) CHECK(*m.not_in_fmu != '\0');
   }
   CHECK(implicit_method() == method_spec(Method::kImplicit).alias_of);
   CHECK(method_spec(kDefaultMethod).alias_of == kDefaultMethod);

@@ -88,23 +88,29 @@ struct MethodSpec {
   detail::OdeEntry ode;        ///< steps x' = f(t, x); nullptr for an alias or a method that steps the Model
   detail::ModelEntry model;    ///< steps the Model itself; nullptr: `ode` on the model's right-hand side
   detail::OptionsCheck check;  ///< an extra rule on the options, or nullptr
+  /// Why an FMU (kanegen fmu) does not carry the method, or nullptr if it does: an FMU compiles every
+  /// source of runtime/src/ but the runner's own and those of the methods with a reason here
+  /// (generator/CMakeLists.txt), whose entries templates/fmu/absent_methods.cpp stands in for.
+  const char* not_in_fmu;
 };
 
 // clang-format off
 inline constexpr MethodSpec kMethods[] = {
     {Method::kRk4, "rk4", MethodKind::kExplicitFixedStep, Method::kRk4, false, true, false,
-     "fixed step dt", detail::integrate_rk4, nullptr, nullptr},
+     "fixed step dt", detail::integrate_rk4, nullptr, nullptr, nullptr},
     {Method::kDopri5, "dopri5", MethodKind::kExplicitAdaptive, Method::kDopri5, false, false, true,
-     "adaptive explicit", detail::integrate_dopri5, nullptr, nullptr},
+     "adaptive explicit", detail::integrate_dopri5, nullptr, nullptr, nullptr},
     {Method::kImplicit, "implicit", MethodKind::kImplicitAdaptive, Method::kRadau, true, false, true,
      "adaptive implicit for stiff models: use it for elastic links, with --rtol 1e-2 to 1e-4 and --atol 100 "
-     "times smaller", nullptr, nullptr, nullptr},
+     "times smaller", nullptr, nullptr, nullptr, nullptr},
     {Method::kRadau, "radau", MethodKind::kImplicitAdaptive, Method::kRadau, true, false, true,
-     "Radau IIA of order 5", detail::integrate_radau, nullptr, nullptr},
+     "Radau IIA of order 5", detail::integrate_radau, nullptr, nullptr, nullptr},
     {Method::kBdf, "bdf", MethodKind::kImplicitAdaptive, Method::kBdf, true, false, true,
-     "SUNDIALS CVODE's BDF", detail::integrate_cvode, nullptr, nullptr},
+     "SUNDIALS CVODE's BDF", detail::integrate_cvode, nullptr, nullptr,
+     "it needs SUNDIALS, which an FMU does not carry"},
     {Method::kGenAlpha, "genalpha", MethodKind::kImplicitFixedStep, Method::kGenAlpha, true, true, false,
-     "fixed step dt, real time", nullptr, detail::integrate_genalpha, detail::genalpha_check},
+     "fixed step dt, real time", nullptr, detail::integrate_genalpha, detail::genalpha_check,
+     "it steps whole runs from t = 0, not communication steps"},
 };
 // clang-format on
 
