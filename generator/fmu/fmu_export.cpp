@@ -15,7 +15,6 @@
 #include "fmu/model_description.hpp"
 #include "fmu/xml_text.hpp"
 #include "fmu/zip_writer.hpp"
-#include "model/joint_types.hpp"
 #include "model/model_error.hpp"
 #include "pipeline/pipeline.hpp"
 #include "runner/generation_interrupt.hpp"
@@ -53,21 +52,6 @@ void write_file(const fs::path& path, const std::string& bytes) {
   std::ofstream out(path, std::ios::binary);
   out << bytes;
   if (!out.flush()) throw std::runtime_error(path.string() + ": cannot write");
-}
-
-/// The units kanegen knows: a turning joint's coordinate in rad, a sliding one's in m, their inputs in
-/// N.m and N; an elastic coordinate (nodal displacements and rotations, modal amplitudes) has none.
-void add_units(const model::Model& model, ModelFacts& facts) {
-  facts.coordinate_units.assign(facts.coordinates.size(), "");
-  for (std::size_t i = 0; i < facts.coordinates.size(); ++i)
-    for (const model::Joint& joint : model.joints)
-      if (!facts.coordinate_joints[i].empty() && joint.name == facts.coordinate_joints[i])
-        facts.coordinate_units[i] = joint.type == model::JointType::prismatic ? "m" : "rad";
-  facts.input_units.assign(facts.inputs.size(), "");
-  for (std::size_t k = 0; k < facts.inputs.size(); ++k)
-    for (std::size_t i = 0; i < facts.coordinates.size(); ++i)
-      if (facts.inputs[k] == facts.coordinates[i] + "_tau" && !facts.coordinate_units[i].empty())
-        facts.input_units[k] = facts.coordinate_units[i] == "m" ? "N" : "N.m";
 }
 
 std::string token_of(const pipeline::GeneratedModel& generated, const ExportOptions& o) {

@@ -4,6 +4,8 @@
 #include <map>
 #include <stdexcept>
 
+#include "model/joint_types.hpp"
+#include "model/model.hpp"
 #include "model/model_error.hpp"
 
 namespace kanegen::fmu {
@@ -45,7 +47,7 @@ void add_states(const ModelFacts& f, FmuVariables& out) {
     v.initial = initial;
     v.has_start = true;
     v.start = f.u0[i];
-    v.unit = i < f.coordinate_units.size() ? per_second(f.coordinate_units[i], "/s") : "";
+    v.unit = i < f.speed_units.size() ? f.speed_units[i] : "";
     out.states.push_back(static_cast<int>(out.all.size()));
     out.all.push_back(v);
   }
@@ -63,6 +65,24 @@ void add_states(const ModelFacts& f, FmuVariables& out) {
 }
 
 }  // namespace
+
+void add_units(const model::Model& model, ModelFacts& facts) {
+  const std::size_t n = facts.coordinates.size();
+  facts.coordinate_units.assign(n, "");
+  facts.speed_units.assign(facts.speeds.size(), "");
+  facts.input_units.assign(facts.inputs.size(), "");
+  for (std::size_t i = 0; i < n && i < facts.coordinate_joints.size(); ++i) {
+    const model::JointTypeInfo* type = nullptr;
+    for (const model::Joint& joint : model.joints)
+      if (!facts.coordinate_joints[i].empty() && joint.name == facts.coordinate_joints[i])
+        type = &model::joint_type_info(joint.type);
+    if (type == nullptr) continue;
+    facts.coordinate_units[i] = type->coordinate_unit;
+    if (i < facts.speeds.size()) facts.speed_units[i] = type->speed_unit;
+    for (std::size_t k = 0; k < facts.inputs.size(); ++k)
+      if (facts.inputs[k] == facts.coordinates[i] + "_tau") facts.input_units[k] = type->force_unit;
+  }
+}
 
 FmuVariables fmu_variables(const ModelFacts& f) {
   FmuVariables out;

@@ -8,6 +8,10 @@
 #include <string>
 #include <vector>
 
+namespace kanegen::model {
+struct Model;
+}
+
 namespace kanegen::fmu {
 
 /// What the FMU says of the model, read from its compiled kernel table (fmu_binary.hpp) and the model
@@ -19,12 +23,17 @@ struct ModelFacts {
   std::vector<double> q0, u0, parameter_values;
   /// Per coordinate: its joint ("" for an elastic coordinate).
   std::vector<std::string> coordinate_joints;
-  /// Per coordinate: "rad" (a turn), "m" (a slide) or "" (an elastic coordinate: no one unit).
-  std::vector<std::string> coordinate_units;
-  /// Per input: "N.m", "N" or "".
-  std::vector<std::string> input_units;
+  /// Per coordinate, per speed and per input: the unit of its joint's type (model/joint_types.hpp: "rad",
+  /// "rad/s", "N.m" for a turn, "m", "m/s", "N" for a slide), or "" where there is no one unit (an elastic
+  /// coordinate, a quaternion's components, an input that is not a joint's "<coordinate>_tau").
+  std::vector<std::string> coordinate_units, speed_units, input_units;
   bool loops = false;  ///< closed loops: the states' start values are guesses that assembly corrects
 };
+
+/// Fills the units of `facts` from the types of the joints of `model` that its coordinate_joints name. The
+/// coordinates' speeds come first in q, in the order of the speeds (docs/model-format.md: a quaternion's w
+/// after every coordinate with a speed), so speed i is the speed of coordinate i.
+void add_units(const model::Model& model, ModelFacts& facts);
 
 enum class Causality { independent, parameter, local, input, output };
 

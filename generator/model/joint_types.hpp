@@ -39,6 +39,13 @@ struct JointTypeInfo {
   int speeds;        ///< speeds (u): as many as coordinates (q_dot = u) but for a quaternion's
   /// May sit on a node of a flexible parent (a slide there is not derived).
   bool on_nodes;
+  /// SI units of one coordinate, one speed and one generalized force of the
+  /// type, as an FMU declares them ("rad", "rad/s", "N.m" for a turn; "m",
+  /// "m/s", "N" for a slide; "" where there is no one unit: a quaternion's
+  /// components, and what a compound type's steps have instead).
+  const char* coordinate_unit;
+  const char* speed_unit;
+  const char* force_unit;
   /// A compound type's steps (step_count of them), in the order of its
   /// coordinates; a primitive type has none.
   int step_count = 0;
@@ -48,20 +55,23 @@ struct JointTypeInfo {
 };
 
 inline constexpr std::array<JointTypeInfo, 7> joint_types{{
-    {JointType::revolute, "revolute", 1, 1, true},
-    {JointType::continuous, "continuous", 1, 1, true},
-    {JointType::prismatic, "prismatic", 1, 1, false},
-    {JointType::fixed, "fixed", 0, 0, true},
+    {JointType::revolute, "revolute", 1, 1, true, "rad", "rad/s", "N.m"},
+    {JointType::continuous, "continuous", 1, 1, true, "rad", "rad/s", "N.m"},
+    {JointType::prismatic, "prismatic", 1, 1, false, "m", "m/s", "N"},
+    {JointType::fixed, "fixed", 0, 0, true, "", "", ""},
     // URDF's planar: the child slides in the plane across the axis and turns about it.
     {JointType::planar,
      "planar",
      3,
      3,
      false,
+     "",
+     "",
+     "",
      3,
      {{{JointType::prismatic, 0, "x"}, {JointType::prismatic, 1, "y"}, {JointType::revolute, 2, "theta"}}}},
     // A ball joint (MuJoCo's ball): quaternion (x, y, z, w) and angular velocity in child axes.
-    {JointType::spherical, "spherical", 4, 3, false},
+    {JointType::spherical, "spherical", 4, 3, false, "", "rad/s", "N.m"},
     // Six degrees of freedom (MuJoCo's free, URDF's floating): slides along the
     // joint frame's x, y, z, then a spherical joint that keeps the joint's name.
     {JointType::free,
@@ -69,6 +79,9 @@ inline constexpr std::array<JointTypeInfo, 7> joint_types{{
      7,
      6,
      false,
+     "",
+     "",
+     "",
      4,
      {{{JointType::prismatic, 0, "x"},
        {JointType::prismatic, 1, "y"},

@@ -1,12 +1,16 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // The two pieces of kanegen fmu that untrusted text and every FMU pass through: the XML escaping of names
-// (fmu/xml_text.hpp) and the ZIP writer with its CRC-32 (fmu/zip_writer.hpp). The FMUs themselves are
-// checked by tests/fmu/check_fmu.py (Python's zipfile and xml.etree read them back).
+// (fmu/xml_text.hpp) and the ZIP writer with its CRC-32 (fmu/zip_writer.hpp); and the variables' units. The
+// FMUs themselves are checked by tests/fmu/check_fmu.py (Python's zipfile and xml.etree read them back).
 #include <catch2/catch.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
+#include "fmu/fmu_variables.hpp"
 #include "fmu/xml_text.hpp"
 #include "fmu/zip_writer.hpp"
+#include "model/model.hpp"
 
 using kanegen::fmu::crc32;
 using kanegen::fmu::xml_attribute;
@@ -70,4 +74,44 @@ TEST_CASE("ZipWriter writes stored entries, a central directory and its end reco
   CHECK_THROWS_AS(zip.add("sources/a.cpp", ""), std::invalid_argument);
   for (const char* bad : {"", "/etc/passwd", "../x", "a/../../x", "a\\b"})
     CHECK_THROWS_AS(zip.add(bad, ""), std::invalid_argument);
+}
+
+TEST_CASE("add_units reads each coordinate's, speed's and input's unit from its joint type's row") {
+  using kanegen::model::JointType;
+  kanegen::model::Model model;
+  for (const auto& [name, type] :
+       {std::pair{"hinge", JointType::revolute}, std::pair{"rail", JointType::prismatic},
+        std::pair{"ball", JointType::spherical}}) {
+    kanegen::model::Joint joint;
+    joint.name = name;
+    joint.type = type;
+    model.joints.push_back(joint);
+  }
+  // q: the speeds' coordinates first (a quaternion's x, y, z among them), the elastic ones, then the w.
+  kanegen::fmu::ModelFacts facts;
+  facts.coordinates = {"hinge", "rail", "ball_qx", "ball_qy", "ball_qz", "arm.e1", "ball_qw"};
+  facts.coordinate_joints = {"hinge", "rail", "ball", "ball", "ball", "", "ball"};
+  facts.speeds = {"hinge_dot", "rail_dot", "ball_wx", "ball_wy", "ball_wz", "arm.e1_dot"};
+  facts.inputs = {"hinge_tau", "rail_tau", "ball_mx"};
+  kanegen::fmu::add_units(model, facts);
+  CHECK(facts.coordinate_units == std::vector<std::string>{"rad", "m", "", "", "", "", ""});
+  CHECK(facts.speed_units == std::vector<std::string>{"rad/s", "m/s", "rad/s", "rad/s", "rad/s", ""});
+  CHECK(facts.input_units == std::vector<std::string>{"N.m", "N", ""});
+
+  facts.q0.assign(facts.coordinates.size(), 0.0);
+  facts.u0.assign(facts.speeds.size(), 0.0);
+  const kanegen::fmu::FmuVariables variables = kanegen::fmu::fmu_variables(facts);
+  const auto unit_of = [&](const std::string& name) {
+    for (const kanegen::fmu::Variable& v : variables.all)
+      if (v.name == name) return v.unit;
+    FAIL("no variable " << name);
+    return std::string();
+  };
+  CHECK(unit_of("rail") == "m");
+  CHECK(unit_of("der(rail)") == "m/s");
+  CHECK(unit_of("der(rail_dot)") == "m/s2");
+  CHECK(unit_of("ball_wz") == "rad/s");
+  CHECK(unit_of("der(ball_wz)") == "rad/s2");
+  CHECK(unit_of("der(ball_qw)").empty());
+  CHECK(unit_of("arm.e1_dot").empty());
 }
