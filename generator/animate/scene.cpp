@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "fem/element_families.hpp"
 #include "numeric/spherical.hpp"
 
 namespace kanegen::animate {
@@ -79,18 +80,14 @@ BodyStates body_states(const numeric::Instance& model, const std::vector<double>
   return states;
 }
 
-bool vtk_cell_of(const std::string& calculix_type, CellType* type) {
-  // The same node order as CalculiX's (Abaqus's): corners, then mid-edge nodes.
-  static const std::pair<const char*, CellType> cells[] = {{"CPS4", CellType::quad},
-                                                           {"CPS8", CellType::quadratic_quad},
-                                                           {"C3D8", CellType::hexahedron},
-                                                           {"C3D20", CellType::quadratic_hexahedron}};
-  for (const auto& [name, cell] : cells)
-    if (calculix_type == name) {
-      *type = cell;
-      return true;
-    }
-  return false;
+bool vtk_cell_of(const std::string& calculix_type, CellType* type, std::vector<int>* order) {
+  // The family's row (fem/element_families.cpp) knows its VTK cell and node order.
+  fem::ContinuumFamily family;
+  if (!fem::family_from_ccx_name(calculix_type, family)) return false;
+  const fem::FamilyRow& row = fem::family_row(family);
+  *type = static_cast<CellType>(row.vtk_cell);
+  *order = row.vtk_nodes;
+  return true;
 }
 
 SceneBuilder::SceneBuilder(const numeric::Instance& instance, double scale,
@@ -148,9 +145,13 @@ void SceneBuilder::add_elastic(Scene& scene, int body, const Pose<double>& pose,
   }
   for (const numeric::SolidElementData& e : f.solids) {
     CellType type;
-    if (!vtk_cell_of(e.type, &type)) continue;
+    std::vector<int> order;
+    if (!vtk_cell_of(e.type, &type, &order)) continue;
     Scene::Cell cell{type, {}, body};
-    for (int n : e.nodes) cell.points.push_back(first + n);
+    if (order.empty())
+      for (int n : e.nodes) cell.points.push_back(first + n);
+    else
+      for (int k : order) cell.points.push_back(first + e.nodes[k]);
     scene.cells.push_back(std::move(cell));
   }
 }

@@ -32,9 +32,13 @@ enum class CellType : std::uint8_t {
   triangle = 5,
   polygon = 7,
   quad = 9,
+  tetra = 10,
   hexahedron = 12,
+  wedge = 13,
   quadratic_quad = 23,
+  quadratic_tetra = 24,
   quadratic_hexahedron = 25,
+  quadratic_wedge = 26,
 };
 
 /// What a point is: a body frame's origin, a point of a rigid part's shape
@@ -72,9 +76,11 @@ BodyStates body_states(const numeric::Instance& instance, const std::vector<doub
 /// box) without mass or inertia.
 std::array<std::array<double, 3>, 8> equivalent_box(const numeric::BodyData& body, bool* drawn);
 
-/// The VTK cell of a CalculiX element type whose node order VTK shares,
-/// or false (the element is then left out of the picture).
-bool vtk_cell_of(const std::string& calculix_type, CellType* type);
+/// The VTK cell of a CalculiX element type and its points as indices into
+/// the element's nodes (empty: CalculiX's order), from the family's row in
+/// fem/element_families.cpp; false for a type without one (the element is
+/// then left out of the picture).
+bool vtk_cell_of(const std::string& calculix_type, CellType* type, std::vector<int>* order);
 
 class SceneBuilder {
  public:

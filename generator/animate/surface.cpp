@@ -8,35 +8,17 @@
 #include <string>
 #include <utility>
 
+#include "fem/element_families.hpp"
+
 namespace kanegen::animate {
 namespace {
 
-/// A face of an element: four corners in turn, and the node in the middle
-/// of each edge corner[k] - corner[k + 1] (-1 for a linear element).
-/// Indices are into the element's node list, CalculiX's order.
-struct Face {
-  std::array<int, 4> corner, middle;
-};
-
-/// The faces of a CalculiX element type, or none for a type not drawn.
-std::vector<Face> faces_of(const std::string& type) {
-  static const std::array<int, 4> linear{-1, -1, -1, -1};
-  if (type == "CPS4") return {{{0, 1, 2, 3}, linear}};
-  if (type == "CPS8") return {{{0, 1, 2, 3}, {4, 5, 6, 7}}};
-  // Solids: bottom, top, then the four sides; C3D20's mid-edge nodes 8-19
-  // lie on edges 0-1, 1-2, 2-3, 3-0, 4-5, 5-6, 6-7, 7-4, 0-4, 1-5, 2-6, 3-7.
-  static const std::array<std::array<int, 4>, 6> corners{
-      {{0, 1, 2, 3}, {4, 7, 6, 5}, {0, 4, 5, 1}, {1, 5, 6, 2}, {2, 6, 7, 3}, {3, 7, 4, 0}}};
-  static const std::array<std::array<int, 4>, 6> middles{{{8, 9, 10, 11},
-                                                          {15, 14, 13, 12},
-                                                          {16, 12, 17, 8},
-                                                          {17, 13, 18, 9},
-                                                          {18, 14, 19, 10},
-                                                          {19, 15, 16, 11}}};
-  std::vector<Face> faces;
-  if (type == "C3D8" || type == "C3D20")
-    for (int f = 0; f < 6; ++f) faces.push_back({corners[f], type == "C3D20" ? middles[f] : linear});
-  return faces;
+/// The faces of a CalculiX element type (its family's row,
+/// fem/element_families.cpp), or none for a type not drawn.
+std::vector<fem::FamilyFace> faces_of(const std::string& type) {
+  fem::ContinuumFamily family;
+  if (!fem::family_from_ccx_name(type, family)) return {};
+  return fem::family_row(family).faces;
 }
 
 /// A face with its element's node numbers (FlexibleData indices).
@@ -50,17 +32,21 @@ void add_face(Surface& s, std::set<std::pair<int, int>>& edges, const PlacedFace
   const auto edge = [&](int a, int b) {
     if (edges.insert({std::min(a, b), std::max(a, b)}).second) s.edges.insert(s.edges.end(), {a, b});
   };
+  const int n = c[3] < 0 ? 3 : 4;  // a triangle or a quadrilateral
   if (m[0] < 0) {
-    s.triangles.insert(s.triangles.end(), {c[0], c[1], c[2], c[0], c[2], c[3]});
-    for (int k = 0; k < 4; ++k) edge(c[k], c[(k + 1) % 4]);
+    s.triangles.insert(s.triangles.end(), {c[0], c[1], c[2]});
+    if (n == 4) s.triangles.insert(s.triangles.end(), {c[0], c[2], c[3]});
+    for (int k = 0; k < n; ++k) edge(c[k], c[(k + 1) % n]);
     return;
   }
-  // A corner triangle at each corner, and the inner quad of the mid-edge nodes as two.
-  s.triangles.insert(s.triangles.end(), {c[0], m[0], m[3], m[0], c[1], m[1], m[1], c[2], m[2], m[2], c[3],
-                                         m[3], m[0], m[1], m[2], m[0], m[2], m[3]});
-  for (int k = 0; k < 4; ++k) {
+  // A corner triangle at each corner, and the inner polygon of the mid-edge nodes.
+  s.triangles.insert(s.triangles.end(), {c[0], m[0], m[n - 1]});
+  for (int k = 1; k < n; ++k) s.triangles.insert(s.triangles.end(), {m[k - 1], c[k], m[k]});
+  s.triangles.insert(s.triangles.end(), {m[0], m[1], m[2]});
+  if (n == 4) s.triangles.insert(s.triangles.end(), {m[0], m[2], m[3]});
+  for (int k = 0; k < n; ++k) {
     edge(c[k], m[k]);
-    edge(m[k], c[(k + 1) % 4]);
+    edge(m[k], c[(k + 1) % n]);
   }
 }
 
@@ -71,10 +57,10 @@ Surface mesh_surface(const numeric::FlexibleData& mesh) {
   std::map<std::array<int, 4>, std::pair<int, PlacedFace>> solid_faces;
   std::vector<PlacedFace> plane_faces;
   for (const numeric::SolidElementData& e : mesh.solids)
-    for (const Face& face : faces_of(e.type)) {
+    for (const fem::FamilyFace& face : faces_of(e.type)) {
       PlacedFace placed{};
       for (int k = 0; k < 4; ++k) {
-        placed.corner[k] = e.nodes[face.corner[k]];
+        placed.corner[k] = face.corner[k] < 0 ? -1 : e.nodes[face.corner[k]];
         placed.middle[k] = face.middle[k] < 0 ? -1 : e.nodes[face.middle[k]];
       }
       if (e.type.rfind("CPS", 0) == 0) {

@@ -8,12 +8,13 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <array>
 #include <string>
 #include <vector>
 
 namespace kanegen::fem {
 
-enum class ContinuumFamily { kQuad4, kQuad8, kHex8, kHex20 };
+enum class ContinuumFamily { kQuad4, kQuad8, kHex8, kHex20, kTet10, kWedge6, kWedge15 };
 
 /// Shape functions N (num_nodes) and their derivatives dN/dxi (num_nodes x dimension) at xi.
 struct NaturalShape {
@@ -25,6 +26,14 @@ struct NaturalShape {
 struct NaturalPoint {
   Eigen::Vector3d xi;
   double weight;
+};
+
+/// A face of an element as `kanegen animate` draws it: its corners in turn
+/// (outward normal by the right-hand rule; corner[3] = -1 for a triangle)
+/// and the node in the middle of each edge corner[k] - corner[k + 1] (-1 for
+/// a linear element). Indices into the element's nodes, CalculiX order.
+struct FamilyFace {
+  std::array<int, 4> corner, middle;
 };
 
 struct FamilyRow {
@@ -39,16 +48,23 @@ struct FamilyRow {
   /// `scale` (the thickness of plane elements, else 1), so that the products
   /// are formed in one fixed order (the generated code prints them).
   std::vector<NaturalPoint> (*quadrature)(double scale);
+  /// The VTK cell type number (.vtu files of `kanegen animate`).
+  int vtk_cell;
+  /// The VTK cell's points as indices into the CalculiX nodes; empty: the
+  /// same order as CalculiX's.
+  std::vector<int> vtk_nodes;
+  /// The faces `kanegen animate` draws (the outer ones of a mesh).
+  std::vector<FamilyFace> faces;
 };
 
 /// The row of a family.
 const FamilyRow& family_row(ContinuumFamily family);
 /// The family of a CalculiX type name (upper case); false if none.
 bool family_from_ccx_name(const std::string& name, ContinuumFamily& family);
-/// "CPS4, CPS8, C3D8, C3D20": the type names kanegen reads, for messages.
+/// "CPS4, CPS8, C3D8, C3D20, ...": the type names kanegen reads, for messages.
 std::string supported_ccx_names();
 
-/// CalculiX / Abaqus type name of the family: CPS4, CPS8, C3D8, C3D20.
+/// CalculiX / Abaqus type name of the family: CPS4, CPS8, C3D8, C3D20, C3D10, C3D6, C3D15.
 inline const char* ccx_type_name(ContinuumFamily family) { return family_row(family).ccx_name; }
 inline int family_num_nodes(ContinuumFamily family) { return family_row(family).nodes; }
 /// 2 for the plane-stress quadrilaterals, 3 for the solids.

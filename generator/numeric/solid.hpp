@@ -105,6 +105,95 @@ std::vector<NaturalPoint> box_gauss() {
   return points;
 }
 
+/// Tetrahedra and wedges, from the vertices each node lies between: a corner
+/// is (a, a), a mid-edge node (a, b). The tetrahedron's volume coordinates
+/// are (1 - xi - eta - zeta, xi, eta, zeta); the wedge's vertices are
+/// triangle vertex t (area coordinates (1 - xi - eta, xi, eta)) at level
+/// h = -1 (bottom, vertices 0-2) or h = 1 (top, 3-5), zeta in [-1, 1].
+/// CalculiX order: C3D10's mid-edge nodes on 1-2, 2-3, 3-1, 1-4, 2-4, 3-4;
+/// C3D15's on 1-2, 2-3, 3-1, 4-5, 5-6, 6-4, 1-4, 2-5, 3-6.
+inline const std::array<std::array<int, 2>, 15>& simplex_node_vertices(bool tet) {
+  static const std::array<std::array<int, 2>, 15> tet10{
+      {{0, 0}, {1, 1}, {2, 2}, {3, 3}, {0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}}};
+  static const std::array<std::array<int, 2>, 15> wedge{{{0, 0},
+                                                         {1, 1},
+                                                         {2, 2},
+                                                         {3, 3},
+                                                         {4, 4},
+                                                         {5, 5},
+                                                         {0, 1},
+                                                         {1, 2},
+                                                         {2, 0},
+                                                         {3, 4},
+                                                         {4, 5},
+                                                         {5, 3},
+                                                         {0, 3},
+                                                         {1, 4},
+                                                         {2, 5}}};
+  return tet ? tet10 : wedge;
+}
+
+/// The quadratic tetrahedron: L_a (2 L_a - 1) at a corner, 4 L_a L_b between.
+inline Dual<double> tet10_shape(int node, const std::array<Dual<double>, 3>& xi) {
+  const std::array<Dual<double>, 4> L{Dual<double>(1.0) - xi[0] - xi[1] - xi[2], xi[0], xi[1], xi[2]};
+  const auto& v = simplex_node_vertices(true)[static_cast<std::size_t>(node)];
+  if (v[0] == v[1]) return L[v[0]] * (L[v[0]] * 2.0 - 1.0);
+  return L[v[0]] * L[v[1]] * 4.0;
+}
+
+/// The wedges: a linear one is the triangle's L_t times (1 + h zeta) / 2. The
+/// quadratic (serendipity) one: a corner L_t (1 + h zeta) (2 L_t + h zeta - 2) / 2,
+/// a node between two vertices of one level 2 L_s L_t (1 + h zeta), a node
+/// between the levels L_t (1 - zeta^2).
+template <bool Quadratic>
+Dual<double> wedge_shape(int node, const std::array<Dual<double>, 3>& xi) {
+  const std::array<Dual<double>, 3> L{Dual<double>(1.0) - xi[0] - xi[1], xi[0], xi[1]};
+  const auto& v = simplex_node_vertices(false)[static_cast<std::size_t>(node)];
+  const int s = v[0] % 3, t = v[1] % 3;
+  const double h0 = v[0] < 3 ? -1.0 : 1.0, h1 = v[1] < 3 ? -1.0 : 1.0;
+  const Dual<double> up = xi[2] * h0 + 1.0;  // 1 + h zeta
+  if (!Quadratic) return L[t] * up * 0.5;
+  if (v[0] == v[1]) return L[t] * up * (L[t] * 2.0 + xi[2] * h0 - 2.0) * 0.5;
+  if (h0 == h1) return L[s] * L[t] * up * 2.0;
+  return L[t] * (Dual<double>(1.0) - xi[2] * xi[2]);
+}
+
+/// CalculiX's rule for C3D10: 4 points, the volume coordinates a, a, a and
+/// 1 - 3a in turn, a = 0.1381966011250105 ((5 - sqrt 5) / 20), weight 1/24.
+inline std::vector<NaturalPoint> tet_gauss() {
+  const double a = 0.1381966011250105, b = 1 - 3 * a;
+  std::vector<NaturalPoint> points;
+  for (int k = 0; k < 4; ++k) {
+    std::array<double, 4> L{a, a, a, a};
+    L[static_cast<std::size_t>(k)] = b;
+    points.push_back({{L[1], L[2], L[3]}, 1.0 / 24});
+  }
+  return points;
+}
+
+/// CalculiX's rules for the wedges: C3D6 the triangle's centroid (weight
+/// 1/2) times 2 Gauss points in zeta; C3D15 the triangle's points with area
+/// coordinates (2/3, 1/6, 1/6) in turn (weight 1/6) times 3 Gauss points.
+template <bool Quadratic>
+std::vector<NaturalPoint> wedge_gauss() {
+  const int n = Quadratic ? 3 : 2;
+  const GaussRule rule = gauss_rule(n);  // on [0, 1]
+  std::vector<NaturalPoint> points;
+  for (int z = 0; z < n; ++z) {
+    const double zeta = 2 * rule.points[z] - 1, wz = 2 * rule.weights[z];
+    if (!Quadratic) {
+      points.push_back({{1.0 / 3, 1.0 / 3, zeta}, 0.5 * wz});
+      continue;
+    }
+    for (int k = 0; k < 3; ++k) {
+      std::array<double, 3> L{1.0 / 6, 1.0 / 6, 1.0 / 6};
+      L[static_cast<std::size_t>(k)] = 2.0 / 3;
+      points.push_back({{L[1], L[2], zeta}, wz / 6});
+    }
+  }
+  return points;
+}
+
 /// The family of a CalculiX element type; throws std::invalid_argument for
 /// one the numeric path does not know.
 inline const SolidFamily& solid_family(const std::string& type) {
@@ -113,6 +202,9 @@ inline const SolidFamily& solid_family(const std::string& type) {
       {"CPS8", 2, 8, box_shape<2, true>, box_gauss<2, 3>},
       {"C3D8", 3, 8, box_shape<3, false>, box_gauss<3, 2>},
       {"C3D20", 3, 20, box_shape<3, true>, box_gauss<3, 3>},
+      {"C3D10", 3, 10, tet10_shape, tet_gauss},
+      {"C3D6", 3, 6, wedge_shape<false>, wedge_gauss<false>},
+      {"C3D15", 3, 15, wedge_shape<true>, wedge_gauss<true>},
   };
   for (const SolidFamily& f : families)
     if (type == f.name) return f;

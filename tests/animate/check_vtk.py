@@ -68,6 +68,8 @@ def read_vtu(path):
         "kind": vtk_to_numpy(data.GetArray("kind")),
         "displacement": vtk_to_numpy(data.GetArray("displacement")),
         "cells": cells,
+        "cell_points": [[grid.GetCell(i).GetPointId(k) for k in range(grid.GetCell(i).GetNumberOfPoints())]
+                        for i in range(grid.GetNumberOfCells())],
         "cell_body": vtk_to_numpy(grid.GetCellData().GetArray("body")),
     }
 
@@ -179,6 +181,30 @@ def check_mesh(kanegen, model, work):
         quads = [c for c in g["cells"] if c == 9]
         check(len(quads) == len(elements), "plate: %d quads for %d CPS4 elements" % (len(quads), len(elements)))
         check(np.isfinite(g["points"]).all() and np.isfinite(g["displacement"]).all(), "plate: finite points")
+
+
+def check_tet_mesh(kanegen, model, work):
+    """A C3D10 bar (tests/data/models/tip_bar_c3d10.json): one VTK_QUADRATIC_TETRA per element, each with
+    VTK's orientation (corners 0-1-2 turn right-handed towards corner 3) and its mid-edge points halfway
+    along VTK's edges 0-1, 1-2, 2-0, 0-3, 1-3, 2-3 (to 1e-6 m: the steel bar bends by microns)."""
+    csv_path = os.path.join(work, "tet.csv")
+    run(kanegen, "simulate", model, "--t-end", "0.02", "-o", csv_path, "--quiet")
+    out = os.path.join(work, "tet_vtk")
+    run(kanegen, "animate", csv_path, model, "-o", out, "--frames", "2", "--quiet")
+    with open(model.replace(".json", ".inp")) as f:
+        text = f.read()
+    elements = text.split("type=C3D10")[1].split("*")[0].strip().splitlines()[1:]
+    for _, path in frames_of(os.path.join(out, "tip_bar_c3d10.pvd")):
+        g = read_vtu(path)
+        tets = [p for c, p in zip(g["cells"], g["cell_points"]) if c == 24]
+        check(len(tets) == len(elements), "tet bar: %d quadratic tetra for %d C3D10" % (len(tets), len(elements)))
+        x = g["points"]
+        for p in tets:
+            volume = np.linalg.det(np.array([x[p[1]] - x[p[0]], x[p[2]] - x[p[0]], x[p[3]] - x[p[0]]]))
+            check(volume > 0, "tet bar: a cell of VTK volume %.3g" % volume)
+            for k, (a, b) in enumerate([(0, 1), (1, 2), (2, 0), (0, 3), (1, 3), (2, 3)]):
+                err = np.abs(x[p[4 + k]] - (x[p[a]] + x[p[b]]) / 2).max()
+                check(err < 1e-6, "tet bar: mid-edge point %d off by %.3g" % (4 + k, err))
 
 
 def check_refusals(kanegen, source, work):
@@ -293,6 +319,7 @@ def main():
     check_refusals(a.kanegen, a.source, a.work)
     check_free_body(a.kanegen, os.path.join(a.source, "tests/consistency/data/free_body.json"), a.work)
     check_mesh(a.kanegen, os.path.join(a.source, "models/plate_hub.json"), a.work)
+    check_tet_mesh(a.kanegen, os.path.join(a.source, "tests/data/models/tip_bar_c3d10.json"), a.work)
     check_simulate_animate(a.kanegen, a.source, a.work)
     check_visuals(a.kanegen, a.source, a.work)
     if failures:

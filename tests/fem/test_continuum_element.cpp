@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
-// Plane-stress quadrilaterals and hexahedra (issue 18) against closed forms:
-// interpolation, the strain energy of homogeneous stress states on distorted
-// elements, and the inertia invariants of a plate and of a block (mass, first
-// and second moments, rigid motions carrying the rigid body's inertia).
+// Plane-stress quadrilaterals, hexahedra (issue 18), tetrahedra and wedges
+// (issue 38) against closed forms: interpolation and partition of unity, the
+// strain energy of homogeneous stress states on distorted elements, rigid
+// motions free of strain, the patch test on Gmsh meshes (a linear field on
+// the boundary gives it exactly inside), and the inertia invariants of a
+// plate and of a block (mass, first and second moments, rigid motions
+// carrying the rigid body's inertia).
 #include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -12,14 +15,19 @@
 #include "fem/body.hpp"
 #include "fem/continuum_element.hpp"
 #include "fem/invariants.hpp"
+#include "fem/mesh_body.hpp"
 
 using namespace kanegen::fem;
 
 namespace {
 
 const ContinuumMaterial kSteel{2.1e11, 0.3, 7850.0};
-const ContinuumFamily kFamilies[] = {ContinuumFamily::kQuad4, ContinuumFamily::kQuad8, ContinuumFamily::kHex8,
-                                     ContinuumFamily::kHex20};
+const ContinuumFamily kFamilies[] = {
+    ContinuumFamily::kQuad4, ContinuumFamily::kQuad8,  ContinuumFamily::kHex8,   ContinuumFamily::kHex20,
+    ContinuumFamily::kTet10, ContinuumFamily::kWedge6, ContinuumFamily::kWedge15};
+// The families whose elements tile a box on a grid (box_body).
+const ContinuumFamily kBoxFamilies[] = {ContinuumFamily::kQuad4, ContinuumFamily::kQuad8,
+                                        ContinuumFamily::kHex8, ContinuumFamily::kHex20};
 
 /// Nodes of one element of the family mapped from natural coordinates by x = center + A xi / 2,
 /// plus a bilinear twist (eps) on the corners so the element is not a parallelepiped.
@@ -142,7 +150,7 @@ TEST_CASE("continuum: homogeneous stress states give the closed-form strain ener
 TEST_CASE("continuum: inertia invariants of a plate and a block match the closed forms", "[continuum]") {
   // Plate a x b x t and block a x b x c, each in 3 x 2 (x 2) elements, corner at the origin.
   const double a = 0.3, b = 0.05, c = 0.02, t = 0.004, rho = kSteel.rho;
-  for (ContinuumFamily family : kFamilies) {
+  for (ContinuumFamily family : kBoxFamilies) {
     INFO(ccx_type_name(family));
     const bool plane = family_dimension(family) == 2;
     const Body body = box_body(family, Eigen::Vector3d(a, b, c), 3, 2, 2, t);
@@ -224,5 +232,49 @@ TEST_CASE("continuum: consistent mass of a rectangle and a brick is the textbook
           for (int b = 0; b < d; ++b)
             CHECK(M(d * i + a, d * j + b) == Approx(a == b ? expected : 0.0).margin(1e-15 * m));
       }
+  }
+}
+
+TEST_CASE("continuum: tetrahedra and wedges pass the patch test on Gmsh meshes of a bar", "[continuum]") {
+  // The bars of data/bar_c3d10.inp, bar_c3d6.inp and bar_c3d15.inp (Gmsh, CalculiX's node order): a
+  // linear field u = G x + e prescribed on the boundary nodes (x = 0, x = L, y = 0, y = H, z = 0 or z = T)
+  // must come out exactly at every inner node from K u = 0, its strain constant: exact if the elements
+  // reproduce constant strain across their shared faces. The same field as a rigid motion stores no energy.
+  const double L = 0.2, H = 0.02, T = 0.012;
+  Eigen::Matrix3d G;
+  G << 1e-3, 2e-4, -3e-4, 5e-4, -7e-4, 1e-4, -2e-4, 3e-4, 4e-4;
+  for (const char* name : {"bar_c3d10", "bar_c3d6", "bar_c3d15"}) {
+    INFO(name);
+    const InpMesh mesh = read_inp_mesh_file(std::string(KANEGEN_FEM_DATA_DIR) + "/" + name + ".inp");
+    const MeshBody mb = build_mesh_body(mesh, kSteel);
+    const Body& body = mb.body;
+    const Eigen::MatrixXd K = body.stiffness();
+    const Eigen::VectorXd exact = linear_field(body, G, Eigen::Vector3d(1e-3, -2e-3, 3e-3));
+    std::vector<int> inner, outer;
+    for (int n = 0; n < body.num_nodes(); ++n) {
+      const Eigen::Vector3d x = body.node_position(n);
+      const bool boundary = std::abs(x.x()) < 1e-12 || std::abs(x.x() - L) < 1e-12 ||
+                            std::abs(x.y()) < 1e-12 || std::abs(x.y() - H) < 1e-12 ||
+                            std::abs(x.z()) < 1e-12 || std::abs(x.z() - T) < 1e-12;
+      for (int k = 0; k < 3; ++k) (boundary ? outer : inner).push_back(body.dof(n, k));
+    }
+    REQUIRE(!inner.empty());
+    Eigen::MatrixXd Kii(inner.size(), inner.size()), Kio(inner.size(), outer.size());
+    for (std::size_t i = 0; i < inner.size(); ++i) {
+      for (std::size_t j = 0; j < inner.size(); ++j) Kii(i, j) = K(inner[i], inner[j]);
+      for (std::size_t j = 0; j < outer.size(); ++j) Kio(i, j) = K(inner[i], outer[j]);
+    }
+    Eigen::VectorXd u_outer(outer.size()), u_exact(inner.size());
+    for (std::size_t j = 0; j < outer.size(); ++j) u_outer[j] = exact[outer[j]];
+    for (std::size_t i = 0; i < inner.size(); ++i) u_exact[i] = exact[inner[i]];
+    const Eigen::VectorXd u_inner = Kii.llt().solve(-Kio * u_outer);
+    CHECK((u_inner - u_exact).norm() < 1e-10 * u_exact.norm());
+    // Rigid motions (a translation and an infinitesimal rotation) are free of strain.
+    const Eigen::Vector3d w(0.2, -0.5, 0.4);
+    const Eigen::VectorXd rigid = linear_field(body, skew(w), Eigen::Vector3d(1e-3, -2e-3, 3e-3));
+    CHECK((K * rigid).norm() < 1e-9 * K.norm() * rigid.norm());
+    // The mass is the bar's, whatever the quadrature (it integrates rho over the element exactly).
+    const Eigen::VectorXd ex = linear_field(body, Eigen::Matrix3d::Zero(), Eigen::Vector3d::UnitX());
+    CHECK(ex.dot(body.mass() * ex) == Approx(kSteel.rho * L * H * T).epsilon(1e-12));
   }
 }

@@ -24,11 +24,21 @@ using namespace kanegen::fem;
 namespace {
 
 const ContinuumMaterial kSteel{2.1e11, 0.3, 7850.0};
-const ContinuumFamily kFamilies[] = {ContinuumFamily::kQuad4, ContinuumFamily::kQuad8, ContinuumFamily::kHex8,
-                                     ContinuumFamily::kHex20};
+const ContinuumFamily kFamilies[] = {
+    ContinuumFamily::kQuad4, ContinuumFamily::kQuad8,  ContinuumFamily::kHex8,   ContinuumFamily::kHex20,
+    ContinuumFamily::kTet10, ContinuumFamily::kWedge6, ContinuumFamily::kWedge15};
 
-/// The family's nodes at x = A xi + offset (an affine element: a parallelogram or parallelepiped of volume
-/// |det A| 2^d), with the node `bent` moved by `bend` (zero: affine).
+/// The measure of the family's natural domain: [-1, 1]^d, the unit tetrahedron (1/6), the unit triangle
+/// times [-1, 1] (1).
+double natural_measure(ContinuumFamily family) {
+  if (family == ContinuumFamily::kTet10) return 1.0 / 6.0;
+  if (family == ContinuumFamily::kWedge6 || family == ContinuumFamily::kWedge15) return 1.0;
+  return std::pow(2.0, family_dimension(family));
+}
+
+/// The family's nodes at x = A xi + offset (an affine element: a parallelogram, parallelepiped,
+/// tetrahedron or wedge of volume |det A| natural_measure), with the node `bent` moved by `bend` (zero:
+/// affine).
 Eigen::Matrix3Xd affine_nodes(ContinuumFamily family, const Eigen::Matrix3d& A, const Eigen::Vector3d& bend) {
   const Eigen::MatrixXd c = family_natural_nodes(family);
   Eigen::Matrix3Xd x(3, c.cols());
@@ -75,7 +85,7 @@ TEST_CASE("geometric: uniform stress, u^T K_sigma u = V tr(G S G^T) for linear f
     const Eigen::Matrix3Xd nodes = affine_nodes(family, A, Eigen::Vector3d::Zero());
     const ContinuumElement element(family, nodes, kSteel, t);
     const double volume =
-        std::abs(A.topLeftCorner(d, d).determinant()) * std::pow(2.0, d) * (d == 2 ? t : 1.0);
+        std::abs(A.topLeftCorner(d, d).determinant()) * natural_measure(family) * (d == 2 ? t : 1.0);
     const Eigen::Matrix3d S = uniform_stress(d);
     const Eigen::MatrixXd kg = element.geometric_stiffness(constant(S));
     CHECK((kg - kg.transpose()).norm() == 0.0);

@@ -89,7 +89,8 @@ TEST_CASE("inp mesh: bad meshes get an error naming the file, the line and the e
   };
   const Case cases[] = {
       {"unknown_type.inp",
-       {"unknown_type.inp: line 7:", "unknown element type 'CPS4R'", "CPS4, CPS8, C3D8, C3D20"}},
+       {"unknown_type.inp: line 7:", "unknown element type 'CPS4R'",
+        "CPS4, CPS8, C3D8, C3D20, C3D10, C3D6, C3D15"}},
       {"missing_node.inp", {"missing_node.inp: line 11:", "element 2 refers to node 7", "does not define"}},
       {"duplicate_node.inp", {"duplicate_node.inp: line 6:", "node 3 is defined twice (first on line 5)"}},
       {"duplicate_element.inp",

@@ -40,8 +40,8 @@ catch_discover_tests(test_verify_cli TEST_PREFIX "verify: ")
 # nodes of spatial beams (a spatial revolute, a slider); loops, forces and
 # outputs on the node sets of mesh bodies (a CPS4 four-bar with a planar
 # revolute and slider, a C3D8 bar with a spatial revolute, slider and
-# spherical joint; the tip-force case of tests/flexible. Its propped twin,
-# slender_propped, is left out: a stiff bar pinned at both ends, whose small
+# spherical joint, a C3D10 bar with an arm on its tip face; the tip-force
+# case of tests/flexible. Its propped twin, slender_propped, is left out: a stiff bar pinned at both ends, whose small
 # prop force in random states is the difference of elastic forces 1e3 times
 # larger, so that lambda agrees only to about 2e-9); planar joints (a body
 # across z, one on an oblique, turned plane, a pendulum on a planar cart); a
@@ -51,7 +51,7 @@ foreach(name forced_cart_pendulum flex_hub_planar flex_hub_modal flex_spatial_hu
              force_elements flex_spring assumed_hub assumed_spatial_hub rsur_spherical rsur_revolute ring_slider
              quick_return free_strip free_strip_modal l_beam_stiffened euler_column_modal
              rsur_revolute_flexible ring_slider_flexible plate_tip_pendulum
-             plate_tip_cb plate_node_set_loops tip_bar_loops slender_tip_force solid_slider_crank_stiff
+             plate_tip_cb plate_node_set_loops tip_bar_loops tip_bar_c3d10 slender_tip_force solid_slider_crank_stiff
              planar_body planar_tilted planar_pendulum spherical_top)
   list(APPEND KANEGEN_VERIFY_MODELS ${PROJECT_SOURCE_DIR}/tests/data/models/${name}.json)
 endforeach()

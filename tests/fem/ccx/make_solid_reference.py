@@ -13,6 +13,16 @@ CalculiX's *FREQUENCY on the same mesh and element type:
   bar_c3d20    the same bar, 8 x 2 x 1 C3D20 (records continued over two lines);
                bar_c3d20_gmsh.inp is Gmsh's mesh of it (bar_c3d20_gmsh.geo), only
                meshed: the test checks it against bar_c3d20's reference
+  bar_c3d10    the same bar, 120 C3D10 (10 x 2 x 1 boxes of 6 tetrahedra), meshed by
+               Gmsh from bar_c3d10.geo
+  bar_c3d6     the same bar, 192 C3D6 (16 x 3 x 2 boxes of 2 wedges: triangles
+               extruded), meshed by Gmsh from bar_c3d6.geo
+  bar_c3d15    the same bar, 32 C3D15 (8 x 2 x 1 boxes of 2 wedges), meshed by Gmsh
+               from bar_c3d15.geo
+  solid_slider_crank_c3d10
+               the rod of solid_slider_crank below in C3D10 (its faces in
+               triangles, extruded as tetrahedra), meshed by Gmsh from
+               solid_slider_crank_c3d10.geo, clamped at BIG_END
   solid_slider_crank
                the connecting rod of models/solid_slider_crank.json, 28 C3D20
                meshed by Gmsh from models/solid_slider_crank.geo (the shipped
@@ -30,7 +40,7 @@ The CalculiX job adds material, section, boundary and step to the mesh; for
 the Gmsh mesh it keeps only the solid elements (Gmsh also writes the ROOT
 face's quadrilaterals, which the kanegen reader skips for the same reason).
 
-Usage: tests/fem/ccx/make_solid_reference.py [--ccx ccx] [--gmsh gmsh]
+Usage: tests/fem/ccx/make_solid_reference.py [--ccx ccx] [--gmsh gmsh] [--only NAME ...]
 (needs calculix-ccx and gmsh; Debian: apt-get install calculix-ccx gmsh)
 """
 import argparse
@@ -59,6 +69,11 @@ MODELS = {
     "plate_cps8": {"type": "CPS8", "divisions": (12, 2)},
     "bar_c3d8": {"type": "C3D8", "gmsh": []},
     "bar_c3d20": {"type": "C3D20", "divisions": (8, 2, 1)},
+    "bar_c3d10": {"type": "C3D10", "gmsh": ["-order", "2"]},
+    "bar_c3d6": {"type": "C3D6", "gmsh": []},
+    "bar_c3d15": {"type": "C3D15", "gmsh": GMSH_SECOND_ORDER},
+    "solid_slider_crank_c3d10": {"type": "C3D10", "gmsh": ["-order", "2"], "clamp": "BIG_END",
+                                 "material": {"E": 2.0e11, "nu": 0.3, "rho": 7870.0}},
     # A shipped mesh: read from models/, clamped at its own node set, in its model's material.
     "solid_slider_crank": {"type": "C3D20", "shipped": True, "clamp": "BIG_END",
                            "material": {"E": 2.0e11, "nu": 0.3, "rho": 7870.0}},
@@ -180,11 +195,15 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--ccx", default="ccx")
     parser.add_argument("--gmsh", default="gmsh")
+    parser.add_argument("--only", nargs="+", metavar="NAME", help="write only these references")
     args = parser.parse_args()
     version = ccx_version(args.ccx)
     for name, options in GMSH_ONLY.items():
-        gmsh_mesh(args.gmsh, name, options)
+        if not args.only or name in args.only:
+            gmsh_mesh(args.gmsh, name, options)
     for name, model in MODELS.items():
+        if args.only and name not in args.only:
+            continue
         inp = os.path.join(MODELS_DIR if model.get("shipped") else DATA, name + ".inp")
         material, clamp = model.get("material", MATERIAL), model.get("clamp", "ROOT")
         if "gmsh" in model:
