@@ -47,6 +47,9 @@ constexpr long kMaxGenerated = 10000000;
 
 /// Two- and three-node truss elements: Gmsh's elements of a physical curve.
 bool is_gmsh_line_type(const std::string& type) { return type == "T3D2" || type == "T3D3"; }
+/// Triangles, which Gmsh writes for a physical surface of a tetrahedron or
+/// wedge mesh (a boundary node set); kanegen has no triangle family.
+bool is_gmsh_triangle_type(const std::string& type) { return type == "CPS3" || type == "CPS6"; }
 
 class Reader {
  public:
@@ -128,9 +131,10 @@ class Reader {
       if (type == params.end())
         fail(line_,
              "*ELEMENT without TYPE=", std::string("give the element type, one of ") + supported_ccx_names());
-      if (is_gmsh_line_type(upper(type->second))) {
-        // The line elements Gmsh writes for a physical curve (a 2D mesh's
-        // boundary node set): only their node set matters.
+      if (is_gmsh_line_type(upper(type->second)) || is_gmsh_triangle_type(upper(type->second))) {
+        // The line (or triangle) elements Gmsh writes for a physical curve
+        // (surface) of a 2D (3D) mesh's boundary node set: only their node set matters.
+        if (is_gmsh_triangle_type(upper(type->second))) skipped_triangles_ = true;
         block_ = Block::kLineElements;
         return;
       }
@@ -262,6 +266,11 @@ class Reader {
   }
 
   void check() {
+    if (mesh_.elements.empty() && skipped_triangles_)
+      fail(line_,
+           "the file's only elements are triangles (CPS3/CPS6), which kanegen reads only as faces of a solid",
+           std::string("mesh a plane body with quadrilaterals (Gmsh: Recombine), or a solid with ") +
+               supported_ccx_names());
     if (mesh_.elements.empty())
       fail(line_, "the file has no elements",
            std::string("add an *ELEMENT block of type ") + supported_ccx_names());
@@ -298,6 +307,7 @@ class Reader {
   }
 
   InpMesh mesh_;
+  bool skipped_triangles_ = false;
   int line_ = 0;
   Block block_ = Block::kNone;
   ContinuumFamily family_ = ContinuumFamily::kHex8;
