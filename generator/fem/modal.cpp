@@ -76,13 +76,21 @@ ModalBasis modal_analysis(const Eigen::MatrixXd& M, const Eigen::MatrixXd& K, in
   if (M.cols() != n || K.rows() != n || K.cols() != n)
     throw std::invalid_argument("modal_analysis: M and K must be n x n");
   if (k < 0 || k > n) k = n;
+  // EXPERIMENT: M x = mu (K + sigma M) x, lambda = 1/mu - sigma (M may be nearly singular).
+  const double sigma = 1e-6 * K.trace() / M.trace();
+  const Eigen::MatrixXd B = K + sigma * M;
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(
-      K, M, Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
+      M, B, Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
   if (solver.info() != Eigen::Success)
     throw std::runtime_error("modal_analysis: the eigensolver failed (is M positive definite?)");
-  // Canonicalize over all modes first, so that a cluster cut by k is still whole.
-  Eigen::VectorXd all_values = solver.eigenvalues();
-  Eigen::MatrixXd all_shapes = solver.eigenvectors();
+  Eigen::VectorXd all_values(n);
+  Eigen::MatrixXd all_shapes(n, n);
+  for (int i = 0; i < n; ++i) {
+    const double mu = solver.eigenvalues()[n - 1 - i];
+    all_values[i] = 1.0 / mu - sigma;
+    const Eigen::VectorXd v = solver.eigenvectors().col(n - 1 - i);
+    all_shapes.col(i) = v / std::sqrt(v.dot(M * v));
+  }
   canonicalize_modes(M, all_values, all_shapes);
   ModalBasis basis;
   basis.eigenvalues = all_values.head(k);
