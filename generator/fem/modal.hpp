@@ -17,8 +17,10 @@ struct ModalBasis {
   Eigen::MatrixXd reduced_stiffness;  ///< k x k: Phi^T K Phi (diag(eigenvalues) to rounding)
 };
 
-/// The first k modes (k < 0: all) of K phi = lambda M phi, M: n x n symmetric
-/// positive definite, K: n x n symmetric. Orientation: see canonicalize_modes.
+/// The first k modes (k < 0: all that have mass) of K phi = lambda M phi, M:
+/// n x n symmetric positive semi-definite (a reduced mass quadrature leaves M
+/// singular: its massless modes are not modes), K: n x n symmetric.
+/// Orientation: see canonicalize_modes.
 ModalBasis modal_analysis(const Eigen::MatrixXd& M, const Eigen::MatrixXd& K, int k = -1);
 
 /// Makes M-orthonormal modes unique. Modes whose eigenvalues agree to a relative

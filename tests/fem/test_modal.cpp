@@ -110,3 +110,23 @@ TEST_CASE("modal: the same beam built with a rolled section frame gives the same
   const ModalBasis ma = modal_analysis(a.M, a.K), mb = modal_analysis(b.M, b.K);
   CHECK(max_abs(ma.shapes - mb.shapes) < 1e-6 * max_abs(ma.shapes));
 }
+
+TEST_CASE("modal: a massless dof (a singular M, as a reduced mass quadrature gives) is condensed, not a mode",
+          "[modal]") {
+  // With M = diag(I, 0) the massless dof follows the others statically, so the modes are those of Guyan's
+  // exact condensation K_aa - K_ab K_bb^-1 K_ba with M_aa = I: 2 modes of 3, whose values are computed here
+  // from the 2 x 2 condensed matrix by its closed form.
+  Eigen::MatrixXd K(3, 3);
+  K << 4.0, 1.0, 1.0, 1.0, 3.0, 1.0, 1.0, 1.0, 2.0;
+  const Eigen::MatrixXd M = Eigen::Vector3d(1.0, 1.0, 0.0).asDiagonal();
+  const double a = 4.0 - 0.5, b = 1.0 - 0.5, d = 3.0 - 0.5;  // K_aa - K_ab K_ba / K_bb
+  const double mean = (a + d) / 2.0, radius = std::sqrt((a - d) * (a - d) / 4.0 + b * b);
+  const ModalBasis all = modal_analysis(M, K);
+  REQUIRE(all.eigenvalues.size() == 2);
+  CHECK(all.eigenvalues[0] == Approx(mean - radius).epsilon(1e-10));
+  CHECK(all.eigenvalues[1] == Approx(mean + radius).epsilon(1e-10));
+  CHECK(max_abs(all.reduced_mass - Eigen::MatrixXd::Identity(2, 2)) < 1e-10);
+  for (int j = 0; j < 2; ++j)  // K phi = lambda M phi also in the massless row
+    CHECK((K * all.shapes.col(j) - all.eigenvalues[j] * M * all.shapes.col(j)).norm() < 1e-9);
+  CHECK_THROWS_WITH(modal_analysis(M, K, 3), Catch::Contains("only 2 of the 3 have mass"));
+}
