@@ -79,6 +79,7 @@ int Body::add_element(std::shared_ptr<const Element> element, std::vector<int> n
 }
 
 void Body::add_point_mass(int node, double mass, const Eigen::Matrix3d& inertia) {
+  if (imported_) throw std::invalid_argument("Body::add_point_mass: the body's mass matrix is imported");
   if (node < 0 || node >= num_nodes()) throw std::invalid_argument("Body::add_point_mass: no such node");
   if (!(mass >= 0.0)) throw std::invalid_argument("Body::add_point_mass: negative mass");
   point_masses_.push_back({node, mass, inertia});
@@ -94,7 +95,17 @@ Eigen::MatrixXd Body::scatter(const Eigen::MatrixXd& element_matrix, int e) cons
   return full;
 }
 
+void Body::set_imported_matrices(Eigen::SparseMatrix<double> stiffness, Eigen::SparseMatrix<double> mass) {
+  if (stiffness.rows() != num_dofs() || stiffness.cols() != num_dofs() || mass.rows() != num_dofs() ||
+      mass.cols() != num_dofs())
+    throw std::invalid_argument("Body::set_imported_matrices: the matrices are not num_dofs x num_dofs");
+  if (!point_masses_.empty())
+    throw std::invalid_argument("Body::set_imported_matrices: the body has point masses");
+  imported_ = Imported{std::move(stiffness), std::move(mass)};
+}
+
 Eigen::MatrixXd Body::mass() const {
+  if (imported_) return Eigen::MatrixXd(imported_->mass);
   Eigen::MatrixXd m = Eigen::MatrixXd::Zero(num_dofs(), num_dofs());
   for (int e = 0; e < num_elements(); ++e) m += scatter(elements_[e].element->mass(), e);
   for (const PointMass& p : point_masses_) {
@@ -105,12 +116,17 @@ Eigen::MatrixXd Body::mass() const {
 }
 
 Eigen::MatrixXd Body::stiffness() const {
+  if (imported_) return Eigen::MatrixXd(imported_->stiffness);
   Eigen::MatrixXd k = Eigen::MatrixXd::Zero(num_dofs(), num_dofs());
   for (int e = 0; e < num_elements(); ++e) k += scatter(elements_[e].element->stiffness(), e);
   return k;
 }
 
 Eigen::MatrixXd Body::geometric_stiffness(const std::function<Prestress(int element)>& prestress) const {
+  if (imported_)
+    throw std::invalid_argument(
+        "the body's stiffness is imported from a solver's matrices, which carry no element stresses for a "
+        "geometric stiffness");
   Eigen::MatrixXd k = Eigen::MatrixXd::Zero(num_dofs(), num_dofs());
   for (int e = 0; e < num_elements(); ++e)
     k += scatter(elements_[e].element->geometric_stiffness(prestress(e)), e);

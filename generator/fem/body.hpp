@@ -12,8 +12,10 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "fem/element.hpp"
@@ -60,11 +62,23 @@ class Body {
   const Eigen::Vector3d& node_position(int node) const { return nodes_.at(node); }
   const ElementPlacement& element(int e) const { return elements_.at(e); }
 
-  /// M: num_dofs x num_dofs, consistent mass including point masses.
+  /// M: num_dofs x num_dofs, consistent mass including point masses; the
+  /// imported matrix instead, if the body has one.
   Eigen::MatrixXd mass() const;
-  /// K_e: num_dofs x num_dofs.
+  /// K_e: num_dofs x num_dofs; the imported matrix instead, if the body has one.
   Eigen::MatrixXd stiffness() const;
-  /// K_G: num_dofs x num_dofs for the prestress of each element.
+
+  /// K and M from a solver's files (fem/ccx_matrices.hpp), num_dofs x num_dofs
+  /// in body dofs, both triangles: they replace the elements' K and M in
+  /// stiffness(), mass(), sparse_stiffness() and sparse_mass(). The elements
+  /// stay (node positions, mass points of the inertia invariants). No point
+  /// masses may be added before or after.
+  void set_imported_matrices(Eigen::SparseMatrix<double> stiffness, Eigen::SparseMatrix<double> mass);
+  bool has_imported_matrices() const { return imported_.has_value(); }
+  const Eigen::SparseMatrix<double>& imported_stiffness() const { return imported_->stiffness; }
+  const Eigen::SparseMatrix<double>& imported_mass() const { return imported_->mass; }
+  /// K_G: num_dofs x num_dofs for the prestress of each element; refused
+  /// (std::invalid_argument) for a body with imported matrices.
   Eigen::MatrixXd geometric_stiffness(const std::function<Prestress(int element)>& prestress) const;
 
   /// Element e's mass points, transformed to the link frame and to body dofs.
@@ -89,6 +103,10 @@ class Body {
     Eigen::Matrix3d inertia;
   };
   std::vector<PointMass> point_masses_;
+  struct Imported {
+    Eigen::SparseMatrix<double> stiffness, mass;
+  };
+  std::optional<Imported> imported_;
 };
 
 }  // namespace kanegen::fem

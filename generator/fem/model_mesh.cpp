@@ -1,12 +1,17 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "fem/model_mesh.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 
+#include "fem/ccx_matrices.hpp"
 #include "fem/continuum_foreshortening.hpp"
 #include "fem/craig_bampton.hpp"
 #include "fem/reduction.hpp"
+#include "fem/sparse_assembly.hpp"
 #include "model/model_error.hpp"
 
 namespace kanegen::fem {
@@ -49,6 +54,132 @@ void add_foreshortening(const model::Body& body, const Constraint& held,
   out.foreshortening = continuum_foreshortening(out.body, out.second_order,
                                                 static_cast<int>(out.reduced.basis.cols()), points);
   add_second_order_mass(out.body, out.reduced.basis, out.second_order, *out.foreshortening);
+}
+
+/// x in 7 significant digits, for messages.
+std::string shortest(double x) {
+  std::ostringstream out;
+  out.precision(7);
+  out << x;
+  return out.str();
+}
+
+/// The body dof of each row of the imported matrices: a ModelError naming the
+/// .dof file and line for a node that is on none of the body's elements or a
+/// direction the body lacks, and one naming a body dof the files miss that
+/// the constraint does not hold (the solver's *BOUNDARY must be the body's).
+std::vector<int> imported_dofs(const model::Body& body, const InpMesh& mesh, const MeshBody& mb,
+                               const Constraint& constraint, const std::string& model_file) {
+  const model::MeshMatrices& x = body.elastic.mesh.matrices;
+  const std::string place = x.where + "/dofs";
+  const std::vector<CcxDof> dofs = at_model_place(model_file, place, [&] { return read_ccx_dofs(x.dofs); });
+  const Body& b = mb.body;
+  std::vector<int> to_body;
+  std::vector<char> listed(static_cast<std::size_t>(b.num_dofs()), 0);
+  const std::string fix = "write the matrices from the same mesh and element set that \"mesh\" names";
+  for (std::size_t k = 0; k < dofs.size(); ++k) {
+    const std::string at = x.dofs + ": line " + std::to_string(k + 1) + ": ";
+    const auto it = mb.node_of.find(dofs[k].node);
+    if (it == mb.node_of.end())
+      throw ModelError(
+          model_file, place,
+          at + "node " + std::to_string(dofs[k].node) + " is on none of the body's elements in " + mesh.file,
+          fix);
+    if (dofs[k].direction > b.dofs_per_node())
+      throw ModelError(model_file, place,
+                       at + "direction " + std::to_string(dofs[k].direction) + " of node " +
+                           std::to_string(dofs[k].node) + ": the body's plane elements move in x and y only",
+                       fix);
+    to_body.push_back(b.dof(it->second, dofs[k].direction - 1));
+    listed[static_cast<std::size_t>(to_body.back())] = 1;
+  }
+  for (int d = 0; d < b.num_dofs(); ++d)
+    if (!listed[static_cast<std::size_t>(d)] && constraint.reduced_index(d) >= 0)
+      throw ModelError(model_file, place,
+                       x.dofs + " lists no row for node " +
+                           std::to_string(mb.node_ids[d / b.dofs_per_node()]) + " direction " +
+                           std::to_string(d % b.dofs_per_node() + 1) +
+                           ", which the body does not hold (only the clamped set's dofs may be missing)",
+                       "hold the same nodes in the CalculiX job (*BOUNDARY on the clamped set, or none) "
+                       "as \"clamped_set\" (or \"support\": \"free\") does");
+  return to_body;
+}
+
+/// a (n x n, the files' rows) placed at the body dofs `to_body`.
+Eigen::SparseMatrix<double> to_body_dofs(const Eigen::SparseMatrix<double>& a,
+                                         const std::vector<int>& to_body, int num_dofs) {
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (int j = 0; j < a.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(a, j); it; ++it)
+      triplets.emplace_back(to_body[static_cast<std::size_t>(it.row())], to_body[static_cast<std::size_t>(j)],
+                            it.value());
+  Eigen::SparseMatrix<double> out(num_dofs, num_dofs);
+  out.setFromTriplets(triplets.begin(), triplets.end());
+  return out;
+}
+
+/// The imported mass must be the mesh's consistent mass (at the dofs the files
+/// list), since the inertia invariants are integrated over the mesh's
+/// elements with the model's density: a ModelError naming the .mas file, the
+/// largest difference and the masses otherwise.
+void check_imported_mass(const model::Body& body, const MeshBody& mb, const Eigen::SparseMatrix<double>& mass,
+                         const std::vector<int>& to_body, const std::string& model_file) {
+  const model::MeshMatrices& x = body.elastic.mesh.matrices;
+  const Body& b = mb.body;
+  std::vector<char> listed(static_cast<std::size_t>(b.num_dofs()), 0);
+  for (int d : to_body) listed[static_cast<std::size_t>(d)] = 1;
+  // Sparse throughout: a large mesh's M does not fit densely.
+  const Eigen::SparseMatrix<double> own = sparse_mass(b);
+  std::vector<Eigen::Triplet<double>> kept;
+  double scale = 0.0;
+  for (int j = 0; j < own.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(own, j); it; ++it)
+      if (listed[static_cast<std::size_t>(it.row())] && listed[static_cast<std::size_t>(j)]) {
+        kept.emplace_back(static_cast<int>(it.row()), j, it.value());
+        if (it.row() == j) scale = std::max(scale, std::abs(it.value()));
+      }
+  Eigen::SparseMatrix<double> listed_own(b.num_dofs(), b.num_dofs());
+  listed_own.setFromTriplets(kept.begin(), kept.end());
+  const Eigen::SparseMatrix<double> difference = mass - listed_own;
+  double worst = 0.0;
+  for (int j = 0; j < difference.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(difference, j); it; ++it)
+      worst = std::max(worst, std::abs(it.value()));
+  // The x translations' sums: the mass the listed dofs carry, for the message.
+  Eigen::VectorXd x_dofs = Eigen::VectorXd::Zero(b.num_dofs());
+  for (int d : to_body)
+    if (d % b.dofs_per_node() == 0) x_dofs(d) = 1.0;
+  const double own_x = x_dofs.dot(listed_own * x_dofs), imported_x = x_dofs.dot(mass * x_dofs);
+  if (!(scale > 0.0))
+    throw ModelError(model_file, x.where + "/mass",
+                     "the mesh's elements have no mass at the dofs of " + x.dofs,
+                     "give the material a positive \"density\"");
+  if (worst > 1e-6 * scale)
+    throw ModelError(
+        model_file, x.where + "/mass",
+        x.mass + " is not the consistent mass of the mesh with density " +
+            shortest(body.elastic.density) + " kg/m^3: entries differ by up to " +
+            shortest(worst / scale) + " of the largest diagonal (its x translations sum to " +
+            shortest(imported_x) + " kg, the mesh's to " + shortest(own_x) +
+            " kg); the inertia invariants are the mesh's",
+        "give the model the CalculiX job's *DENSITY, and write the matrices with full-integration "
+        "elements of the same mesh (a lumped mass matrix is not accepted)");
+}
+
+/// Replaces K and M of the body by the solver's files (model::MeshMatrices).
+void import_matrices(const model::Body& body, const InpMesh& mesh, const Constraint& constraint, MeshBody& mb,
+                     const std::string& model_file) {
+  const model::MeshMatrices& x = body.elastic.mesh.matrices;
+  const std::vector<int> to_body = imported_dofs(body, mesh, mb, constraint, model_file);
+  const int n = static_cast<int>(to_body.size()), num_dofs = mb.body.num_dofs();
+  const Eigen::SparseMatrix<double> k = at_model_place(model_file, x.where + "/stiffness", [&] {
+    return to_body_dofs(read_ccx_matrix(x.stiffness, n), to_body, num_dofs);
+  });
+  const Eigen::SparseMatrix<double> m = at_model_place(model_file, x.where + "/mass", [&] {
+    return to_body_dofs(read_ccx_matrix(x.mass, n), to_body, num_dofs);
+  });
+  check_imported_mass(body, mb, m, to_body, model_file);
+  mb.body.set_imported_matrices(k, m);
 }
 
 }  // namespace
@@ -155,11 +286,12 @@ InterfacePoint interface_point(const MeshBody& mb, const InpMesh& mesh, const mo
 ElasticModel build_model_mesh(const model::Body& body, const std::string& model_file) {
   const model::ElasticPart& f = body.elastic;
   const InpMesh mesh = read_model_mesh(body, model_file);
-  const MeshBody mb = build_model_mesh_body(body, mesh, model_file);
+  MeshBody mb = build_model_mesh_body(body, mesh, model_file);
   const Constraint constraint = f.support == model::BeamSupport::free
                                     ? Constraint(mb.body.num_dofs(), {})
                                     : at_model_place(model_file, f.mesh.where + "/clamped_set",
                                                      [&] { return mb.clamped(mesh, f.mesh.clamped_set); });
+  if (f.mesh.matrices.present()) import_matrices(body, mesh, constraint, mb, model_file);
   if (f.modes > constraint.num_free())
     throw ModelError(model_file, f.where + "/modes",
                      "body '" + body.name + "' has " + std::to_string(constraint.num_free()) +

@@ -32,6 +32,7 @@ Eigen::SparseMatrix<double> from_triplets(int n, const Triplets& triplets) {
 }  // namespace
 
 Eigen::SparseMatrix<double> sparse_mass(const Body& body) {
+  if (body.has_imported_matrices()) return body.imported_mass();
   Triplets triplets;
   for (int e = 0; e < body.num_elements(); ++e)
     add_element(body, e, body.element(e).element->mass(), triplets);
@@ -45,6 +46,7 @@ Eigen::SparseMatrix<double> sparse_mass(const Body& body) {
 }
 
 Eigen::SparseMatrix<double> sparse_stiffness(const Body& body) {
+  if (body.has_imported_matrices()) return body.imported_stiffness();
   Triplets triplets;
   for (int e = 0; e < body.num_elements(); ++e)
     add_element(body, e, body.element(e).element->stiffness(), triplets);

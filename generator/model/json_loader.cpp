@@ -217,6 +217,15 @@ class JsonReader {
     }
   }
 
+  /// A file named in the model, relative to the model file, so that a model
+  /// and its data move together.
+  std::string relative_to_model(const std::string& name) const {
+    const std::filesystem::path given(name);
+    return given.is_absolute()
+               ? given.string()
+               : (std::filesystem::path(file_).parent_path() / given).lexically_normal().string();
+  }
+
   /// A body meshed with plane or solid elements (ElasticPart::mesh).
   ElasticPart mesh_body(const json& j, const std::string& place) const {
     for (const char* key :
@@ -229,11 +238,14 @@ class JsonReader {
     const json& m = j["mesh"];
     f.mesh.where = place + "/mesh";
     f.mesh.file = m["file"].get<std::string>();
-    // Relative to the model file, so that a model and its mesh move together.
-    const std::filesystem::path given(f.mesh.file);
-    f.mesh.path = given.is_absolute()
-                      ? given.string()
-                      : (std::filesystem::path(file_).parent_path() / given).lexically_normal().string();
+    f.mesh.path = relative_to_model(f.mesh.file);
+    if (m.contains("matrices")) {
+      const json& x = m["matrices"];
+      f.mesh.matrices.where = f.mesh.where + "/matrices";
+      f.mesh.matrices.stiffness = relative_to_model(x["stiffness"].get<std::string>());
+      f.mesh.matrices.mass = relative_to_model(x["mass"].get<std::string>());
+      f.mesh.matrices.dofs = relative_to_model(x["dofs"].get<std::string>());
+    }
     f.mesh.element_set = m.value("element_set", "");
     f.mesh.thickness = m.value("thickness", 1.0);
     const json& material = j["material"];
@@ -276,6 +288,16 @@ class JsonReader {
               "field needs the body held on a node set",
               "give \"support\": \"clamped\" with a \"clamped_set\" (or Craig-Bampton), or set "
               "\"geometric_stiffening\": false (or leave it out)");
+      f.geometric_stiffening = false;
+    }
+    // Imported matrices carry no element stresses: no geometric stiffness.
+    if (f.mesh.matrices.present()) {
+      if (j.value("geometric_stiffening", false))
+        error(place + "/geometric_stiffening",
+              "geometric stiffening of a body whose matrices are imported is not available: the solver's K "
+              "and M carry no element stresses for its geometric stiffness",
+              "set \"geometric_stiffening\": false (or leave it out), or remove \"matrices\" so that "
+              "kanegen assembles the mesh itself");
       f.geometric_stiffening = false;
     }
     if (f.mesh.craig_bampton && f.modal_damping > 0)

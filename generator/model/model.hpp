@@ -85,6 +85,15 @@ struct MeshInterface {
   std::string rotation_where;
 };
 
+/// K and M of a mesh body from a solver's files instead of the elements
+/// (fem/ccx_matrices.hpp): CalculiX's *FREQUENCY, SOLVER=MATRIXSTORAGE output.
+struct MeshMatrices {
+  std::string stiffness, mass, dofs;  ///< resolved against the model file's directory
+  std::string where;                  ///< JSON pointer of "matrices"
+
+  bool present() const { return !stiffness.empty(); }
+};
+
 /// A flexible body meshed with plane or solid elements (a CalculiX/Abaqus
 /// .inp file, e.g. from Gmsh) instead of a beam. The mesh's coordinates are
 /// the body frame's. Read and reduced when code is generated
@@ -106,6 +115,8 @@ struct MeshSource {
   /// Craig-Bampton: the coordinates are the static shapes of the interfaces'
   /// rigid motions, then the first `modes` fixed-interface modes.
   bool craig_bampton = false;
+  /// Imported K and M; the mesh then gives the nodes, sets and inertia invariants.
+  MeshMatrices matrices;
   std::string where;  ///< JSON pointer of "mesh"
 
   bool present() const { return !file.empty(); }

@@ -52,6 +52,7 @@ foreach(name forced_cart_pendulum flex_hub_planar flex_hub_modal flex_spatial_hu
              quick_return free_strip free_strip_modal l_beam_stiffened euler_column_modal
              rsur_revolute_flexible ring_slider_flexible plate_tip_pendulum
              plate_tip_cb plate_node_set_loops tip_bar_loops tip_bar_c3d10 slender_tip_force solid_slider_crank_stiff
+             matrix_bar_hub
              planar_body planar_tilted planar_pendulum spherical_top)
   list(APPEND KANEGEN_VERIFY_MODELS ${PROJECT_SOURCE_DIR}/tests/data/models/${name}.json)
 endforeach()
