@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 #include "fem/ccx_matrices.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -147,6 +148,22 @@ Eigen::SparseMatrix<double> read_ccx_matrix(const std::string& path, int n) {
            "the matrix is not symmetric: entry (" + f[0] + ", " + f[1] +
                ") differs from its mirror on line " + std::to_string(it->second.line),
            "give a symmetric matrix (CalculiX writes one triangle of its symmetric K and M)");
+  }
+  // A stiffness or mass matrix has a positive diagonal; a file cut short
+  // (or one for fewer dofs than the .dof file lists) lacks the last ones.
+  const int end = static_cast<int>(lines.size());
+  for (int d = 0; d < n; ++d) {
+    const auto it = entries.find({d, d});
+    if (it == entries.end())
+      fail(path, end,
+           "the file ends without the diagonal entry (" + std::to_string(d + 1) + ", " +
+               std::to_string(d + 1) + ") of the " + range + " dofs of the dof map (cut short?)",
+           "give the complete file CalculiX wrote, with the .dof file of the same job");
+    if (!(it->second.value > 0.0))
+      fail(path, it->second.line,
+           "the diagonal entry (" + std::to_string(d + 1) + ", " + std::to_string(d + 1) +
+               ") is not positive, which no stiffness or mass matrix of a body has",
+           "give the file CalculiX wrote, unchanged");
   }
   std::vector<Eigen::Triplet<double>> triplets;
   triplets.reserve(2 * entries.size());

@@ -29,7 +29,8 @@ std::vector<CcxDof> read_ccx_dofs(const std::string& path);
 
 /// A .sti or .mas file of `n` rows (the .dof file's lines): n x n, both
 /// triangles stored. A lower-triangle entry is accepted and mirrored; an entry
-/// given in both triangles must agree to 1e-9 relative.
+/// given in both triangles must agree to 1e-9 relative. Every diagonal entry
+/// must be given and positive (a file cut short lacks the last ones).
 Eigen::SparseMatrix<double> read_ccx_matrix(const std::string& path, int n);
 
 }  // namespace kanegen::fem

@@ -85,12 +85,12 @@ std::vector<int> imported_dofs(const model::Body& body, const InpMesh& mesh, con
           model_file, place,
           at + "node " + std::to_string(dofs[k].node) + " is on none of the body's elements in " + mesh.file,
           fix);
-    if (dofs[k].direction > b.dofs_per_node())
+    if (b.dof(it->second, static_cast<DofKind>(dofs[k].direction - 1)) < 0)
       throw ModelError(model_file, place,
                        at + "direction " + std::to_string(dofs[k].direction) + " of node " +
                            std::to_string(dofs[k].node) + ": the body's plane elements move in x and y only",
                        fix);
-    to_body.push_back(b.dof(it->second, dofs[k].direction - 1));
+    to_body.push_back(b.dof(it->second, static_cast<DofKind>(dofs[k].direction - 1)));
     listed[static_cast<std::size_t>(to_body.back())] = 1;
   }
   for (int d = 0; d < b.num_dofs(); ++d)
@@ -157,13 +157,69 @@ void check_imported_mass(const model::Body& body, const MeshBody& mb, const Eige
   if (worst > 1e-6 * scale)
     throw ModelError(
         model_file, x.where + "/mass",
-        x.mass + " is not the consistent mass of the mesh with density " +
-            shortest(body.elastic.density) + " kg/m^3: entries differ by up to " +
-            shortest(worst / scale) + " of the largest diagonal (its x translations sum to " +
-            shortest(imported_x) + " kg, the mesh's to " + shortest(own_x) +
-            " kg); the inertia invariants are the mesh's",
+        x.mass + " is not the consistent mass of the mesh with density " + shortest(body.elastic.density) +
+            " kg/m^3: entries differ by up to " + shortest(worst / scale) +
+            " of the largest diagonal (its x translations sum to " + shortest(imported_x) +
+            " kg, the mesh's to " + shortest(own_x) + " kg); the inertia invariants are the mesh's",
         "give the model the CalculiX job's *DENSITY, and write the matrices with full-integration "
         "elements of the same mesh (a lumped mass matrix is not accepted)");
+}
+
+/// num_dofs x 6: the body's rigid motions, translations along and rotations
+/// about x, y, z through the nodes' centroid (a plane body's rotations about
+/// x and y are zero columns: they move out of its plane only).
+Eigen::MatrixXd rigid_motions(const Body& b) {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (int node = 0; node < b.num_nodes(); ++node) c += b.node_position(node);
+  c /= static_cast<double>(b.num_nodes());
+  Eigen::MatrixXd r = Eigen::MatrixXd::Zero(b.num_dofs(), 6);
+  const DofKind kinds[3] = {DofKind::kUx, DofKind::kUy, DofKind::kUz};
+  for (int node = 0; node < b.num_nodes(); ++node) {
+    const Eigen::Vector3d p = b.node_position(node) - c;
+    for (int a = 0; a < 3; ++a) {
+      const Eigen::Vector3d turn = Eigen::Vector3d::Unit(a).cross(p);
+      for (int k = 0; k < 3; ++k) {
+        const int d = b.dof(node, kinds[k]);
+        if (d < 0) continue;
+        r(d, a) = a == k ? 1.0 : 0.0;
+        r(d, 3 + a) = turn(k);
+      }
+    }
+  }
+  return r;
+}
+
+/// A body's K leaves its rigid motions unstrained: (K r)_d = 0 at every dof d
+/// that couples (in the mesh's own K) to listed dofs only. A line of the .sti
+/// file missing or changed breaks that: a ModelError naming the file and the
+/// node otherwise. Called before the import (the mesh's own K).
+void check_imported_stiffness(const model::Body& body, const MeshBody& mb,
+                              const Eigen::SparseMatrix<double>& k, const std::vector<int>& to_body,
+                              const std::string& model_file) {
+  const model::MeshMatrices& x = body.elastic.mesh.matrices;
+  const Body& b = mb.body;
+  std::vector<char> listed(static_cast<std::size_t>(b.num_dofs()), 0);
+  for (int d : to_body) listed[static_cast<std::size_t>(d)] = 1;
+  std::vector<char> inner = listed;
+  const Eigen::SparseMatrix<double> own = sparse_stiffness(b);
+  for (int j = 0; j < own.outerSize(); ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(own, j); it; ++it)
+      if (!listed[static_cast<std::size_t>(j)]) inner[static_cast<std::size_t>(it.row())] = 0;
+  const Eigen::MatrixXd r = rigid_motions(b);
+  const Eigen::MatrixXd kr = k * r;
+  const Eigen::MatrixXd scale = Eigen::SparseMatrix<double>(k.cwiseAbs()) * r.cwiseAbs();
+  const char* motion[6] = {"translation along x", "translation along y", "translation along z",
+                           "rotation about x",    "rotation about y",    "rotation about z"};
+  for (int d = 0; d < b.num_dofs(); ++d)
+    for (int c = 0; c < 6; ++c)
+      if (inner[static_cast<std::size_t>(d)] && std::abs(kr(d, c)) > 1e-8 * scale(d, c))
+        throw ModelError(model_file, x.where + "/stiffness",
+                         x.stiffness + " strains the body's rigid " + motion[c] + " at node " +
+                             std::to_string(mb.node_ids[static_cast<std::size_t>(d / b.dofs_per_node())]) +
+                             " direction " + std::to_string(d % b.dofs_per_node() + 1) + ": K r is " +
+                             shortest(std::abs(kr(d, c)) / scale(d, c)) +
+                             " of |K| |r| there, where a stiffness gives 0 (a line missing or changed?)",
+                         "give the complete .sti file CalculiX wrote for this mesh, unchanged");
 }
 
 /// Replaces K and M of the body by the solver's files (model::MeshMatrices).
@@ -178,6 +234,7 @@ void import_matrices(const model::Body& body, const InpMesh& mesh, const Constra
   const Eigen::SparseMatrix<double> m = at_model_place(model_file, x.where + "/mass", [&] {
     return to_body_dofs(read_ccx_matrix(x.mass, n), to_body, num_dofs);
   });
+  check_imported_stiffness(body, mb, k, to_body, model_file);
   check_imported_mass(body, mb, m, to_body, model_file);
   mb.body.set_imported_matrices(k, m);
 }

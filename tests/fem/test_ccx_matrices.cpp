@@ -183,12 +183,19 @@ TEST_CASE("bad CalculiX matrix files are refused naming the file, the line and t
   CHECK_THAT(matrix_error("", 2), Catch::Contains("the matrix file is empty"));
   CHECK_THAT(matrix_error(std::string(300, '1') + "\n", 2), Catch::Contains("line 1: the line is longer"));
   // Both triangles agreeing, and a lower-triangle entry alone, are accepted.
-  CHECK(matrix_error("1 2 1.0\n2 1 1.0\n2 2 3.0\n\n", 2).empty());
-  const TempFile lower("l.mas", "2 1 1.5\n1 1 2\n");
+  CHECK(matrix_error("1 1 2.0\n1 2 1.0\n2 1 1.0\n2 2 3.0\n\n", 2).empty());
+  const TempFile lower("l.mas", "2 1 1.5\n1 1 2\n2 2 3\n");
   const Eigen::MatrixXd a = Eigen::MatrixXd(fem::read_ccx_matrix(lower.path, 2));
   CHECK(a(0, 1) == 1.5);
   CHECK(a(1, 0) == 1.5);
-  CHECK(a(1, 1) == 0.0);
+  CHECK(a(1, 1) == 3.0);
+  // A file cut short lacks the last diagonal entries; a diagonal is positive.
+  CHECK_THAT(matrix_error("1 1 2.0\n1 2 1.0\n", 2),
+             Catch::Contains("m.sti: line 2: the file ends without the diagonal entry (2, 2)") &&
+                 Catch::Contains("cut short") && Catch::Contains("complete file"));
+  CHECK_THAT(matrix_error("1 1 2.0\n1 2 1.0\n2 2 0\n", 2),
+             Catch::Contains("line 3: the diagonal entry (2, 2) is not positive"));
+  CHECK_THAT(matrix_error("1 1 2.0\n2 2 3.0e+\n", 2), Catch::Contains("line 2: not an entry"));
 
   CHECK_THAT(dofs_error("1.1\n1.2\nx\n"), Catch::Contains("m.dof: line 3: not a dof node.direction"));
   CHECK_THAT(dofs_error("1.1\n\n1.2\n"), Catch::Contains("line 2: not a dof"));
@@ -228,6 +235,69 @@ TEST_CASE("matrices that do not fit the mesh or the model are refused", "[ccx_ma
     const TempFile bad("short.dof", text);
     const std::string e = error_of(body_json(with(sti, mas, bad.path), "clamped"));
     CHECK_THAT(e, Catch::Contains("lists no row for node") || Catch::Contains("is not in 1.."));
+  }
+  SECTION("a dof map of more rows than the matrices") {
+    const TempFile bad("long.dof", read_all(dof) + "1.1\n");
+    const std::string e = error_of(body_json(with(sti, mas, bad.path), "clamped"));
+    CHECK_THAT(e, Catch::Contains("/mesh/matrices/stiffness") && Catch::Contains("clamped.sti: line 2070") &&
+                      Catch::Contains("without the diagonal entry (109, 109) of the 109 dofs"));
+  }
+  SECTION("a stiffness file cut short") {
+    std::string text = read_all(sti);
+    for (int k = 0; k < 3; ++k) text.erase(text.rfind('\n', text.size() - 2) + 1);
+    const TempFile bad("cut.sti", text);
+    const std::string e = error_of(body_json(with(bad.path, mas, dof), "clamped"));
+    CHECK_THAT(e, Catch::Contains("/mesh/matrices/stiffness") && Catch::Contains("cut.sti: line 2067") &&
+                      Catch::Contains("without the diagonal entry (108, 108)"));
+  }
+  SECTION("a stiffness file cut within its last number") {
+    // "1.2637891737772e+09\n" cut to "1.2637891737772e+": not a number.
+    std::string text = read_all(sti);
+    text.erase(text.size() - 3);
+    const TempFile bad("cut.sti", text);
+    CHECK_THAT(error_of(body_json(with(bad.path, mas, dof), "clamped")),
+               Catch::Contains("cut.sti: line 2070: not an entry"));
+    // Cut to "1.263789173777": a number, but not the stiffness.
+    text = read_all(sti);
+    text.erase(text.size() - 6);
+    const TempFile changed("changed.sti", text);
+    CHECK_THAT(
+        error_of(body_json(with(changed.path, mas, dof), "clamped")),
+        Catch::Contains("changed.sti strains the body's rigid translation along z at node 42 direction 3"));
+  }
+  SECTION("a line missing within the stiffness file") {
+    std::string text = read_all(sti);
+    const std::size_t line_1001 = [&] {
+      std::size_t at = 0;
+      for (int k = 0; k < 1000; ++k) at = text.find('\n', at) + 1;
+      return at;
+    }();
+    // An off-diagonal entry that is not zero.
+    std::size_t at = line_1001;
+    for (;;) {
+      const std::size_t end = text.find('\n', at);
+      std::istringstream row(text.substr(at, end - at));
+      int i = 0, j = 0;
+      double v = 0;
+      row >> i >> j >> v;
+      if (i != j && std::abs(v) > 1e6) break;
+      at = end + 1;
+    }
+    text.erase(at, text.find('\n', at) - at + 1);
+    const TempFile bad("gap.sti", text);
+    const std::string e = error_of(body_json(with(bad.path, mas, dof), "clamped"));
+    CHECK_THAT(e, Catch::Contains("/mesh/matrices/stiffness") &&
+                      Catch::Contains("gap.sti strains the body's rigid") &&
+                      Catch::Contains("a line missing or changed"));
+  }
+  SECTION("a NaN in the mass file") {
+    std::string text = read_all(mas);
+    const std::size_t line_2 = text.find('\n') + 1;
+    text.replace(line_2, text.find('\n', line_2) - line_2, "1 2 nan");
+    const TempFile bad("nan.mas", text);
+    const std::string e = error_of(body_json(with(sti, bad.path, dof), "clamped"));
+    CHECK_THAT(e, Catch::Contains("/mesh/matrices/mass") &&
+                      Catch::Contains("nan.mas: line 2: not an entry") && Catch::Contains("unchanged"));
   }
   SECTION("another density than the job's") {
     const std::string e = error_of(body_json(with(sti, mas, dof), "clamped", "", 7800));
