@@ -30,7 +30,7 @@ constexpr std::size_t kMaxLine = 200;
 std::ifstream open(const std::string& path, const std::string& what) {
   std::ifstream in(path);
   if (!in)
-    throw ModelError(path, "", "cannot open the " + what + " file",
+    throw ModelError(path, "file", "cannot open the " + what + " file",
                      "write it with CalculiX's *FREQUENCY, SOLVER=MATRIXSTORAGE (jobname.sti, jobname.mas, "
                      "jobname.dof) and give its path relative to the model file");
   return in;
@@ -84,7 +84,8 @@ std::vector<CcxDof> read_ccx_dofs(const std::string& path) {
   std::ifstream in = open(path, "dof map (.dof)");
   const std::vector<std::string> lines = lines_of(in, path);
   if (lines.empty())
-    throw ModelError(path, "", "the dof map is empty", "give the jobname.dof file of the same CalculiX job");
+    throw ModelError(path, "file", "the dof map is empty",
+                     "give the jobname.dof file of the same CalculiX job");
   const std::string fix = "each line is node.direction (as 12.3), as CalculiX writes jobname.dof";
   std::vector<CcxDof> dofs;
   std::set<std::pair<int, int>> seen;
@@ -114,7 +115,8 @@ Eigen::SparseMatrix<double> read_ccx_matrix(const std::string& path, int n) {
   std::ifstream in = open(path, "matrix (.sti, .mas)");
   const std::vector<std::string> lines = lines_of(in, path);
   if (lines.empty())
-    throw ModelError(path, "", "the matrix file is empty", "give the file CalculiX wrote for the same job");
+    throw ModelError(path, "file", "the matrix file is empty",
+                     "give the file CalculiX wrote for the same job");
   struct Entry {
     double value;
     int line;

@@ -89,7 +89,9 @@ std::vector<int> imported_dofs(const model::Body& body, const InpMesh& mesh, con
       throw ModelError(model_file, place,
                        at + "direction " + std::to_string(dofs[k].direction) + " of node " +
                            std::to_string(dofs[k].node) + ": the body's plane elements move in x and y only",
-                       fix);
+                       "import the matrices of a solid mesh (C3D8, C3D20): for a plane mesh CalculiX writes "
+                       "the z rows of its 3-D expansion; leave \"matrices\" out and kanegen assembles the "
+                       "plane mesh");
     to_body.push_back(b.dof(it->second, static_cast<DofKind>(dofs[k].direction - 1)));
     listed[static_cast<std::size_t>(to_body.back())] = 1;
   }
