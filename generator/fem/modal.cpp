@@ -14,7 +14,7 @@ namespace {
 
 constexpr double kClusterTolerance = 1e-8;
 constexpr double kTieTolerance = 1e-6;
-/// Below this ratio of M's Cholesky pivots, modal_analysis turns the pencil around (all_eigenpairs).
+/// Below this ratio of M's Cholesky pivots, modal_analysis turns the pencil around (eigenpairs_with_mass).
 constexpr double kNearlySingularMass = 1e-8;
 
 /// Pivot rows of the n x m cluster basis V, independent of V's orthonormal basis.
