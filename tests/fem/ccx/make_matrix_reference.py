@@ -70,12 +70,7 @@ def main():
         f.write(f"# CalculiX {ref.ccx_version(args.ccx)} (C3D8, *FREQUENCY), mesh {NAME}.inp, "
                 "by tests/fem/ccx/make_matrix_reference.py\n")
         f.write(f"# E {m['E']:.12g}\n# nu {m['nu']:.12g}\n# rho {m['rho']:.12g}\n")
-        f.write("# support mode omega_rad_s frequency_hz\n")
-        for support, freqs in results.items():
-            for mode, rad, hz in freqs:
-                f.write(f"{support} {mode} {rad:.7e} {hz:.7e}\n")
-    for support, freqs in results.items():
-        print(f"{NAME} {support}: " + ", ".join(f"{rad:.6g}" for _, rad, _ in freqs) + " rad/s")
+        ref.write_frequencies(f, NAME, results)
 
 
 if __name__ == "__main__":

@@ -191,6 +191,16 @@ def gmsh_mesh(gmsh, name, options):
                     name + ".geo", "-o", name + ".inp"], cwd=DATA, check=True, capture_output=True)
 
 
+def write_frequencies(f, name, results):
+    """The table of a reference file (support, mode, omega, frequency), also printed as a summary."""
+    f.write("# support mode omega_rad_s frequency_hz\n")
+    for support, freqs in results.items():
+        for mode, rad, hz in freqs:
+            f.write(f"{support} {mode} {rad:.7e} {hz:.7e}\n")
+    for support, freqs in results.items():
+        print(f"{name} {support}: " + ", ".join(f"{rad:.6g}" for _, rad, _ in freqs) + " rad/s")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--ccx", default="ccx")
@@ -220,12 +230,7 @@ def main():
             f.write(f"# E {material['E']:.12g}\n# nu {material['nu']:.12g}\n# rho {material['rho']:.12g}\n")
             if model["type"].startswith("CPS"):
                 f.write(f"# thickness {PLATE['t']:.12g}\n")
-            f.write("# support mode omega_rad_s frequency_hz\n")
-            for support, freqs in results.items():
-                for mode, rad, hz in freqs:
-                    f.write(f"{support} {mode} {rad:.7e} {hz:.7e}\n")
-        for support, freqs in results.items():
-            print(f"{name} {support}: " + ", ".join(f"{rad:.6g}" for _, rad, _ in freqs) + " rad/s")
+            write_frequencies(f, name, results)
 
 
 if __name__ == "__main__":
